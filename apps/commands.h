@@ -1,0 +1,15 @@
+// Each subcommand of the slipgraph CLI registers itself on the app and returns the callback's
+// exit status through `*status`. Subcommands stay thin: parse flags, call the library, print.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace slipgraph {
+
+// The bundled sample log, used when a subcommand's LOG is omitted.
+std::string DefaultLogPath();
+
+void RegisterInfoCommand(CLI::App* app, int* status);
+
+}  // namespace slipgraph

@@ -1,0 +1,33 @@
+// slipgraph: wheel slip, immobilization and sinkage estimation for ground robots.
+// Thin command-line front end; the work is done by the libraries.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "io/input_error.h"
+
+namespace slipgraph {
+
+std::string DefaultLogPath() { return SLIPGRAPH_DEFAULT_LOG; }
+
+}  // namespace slipgraph
+
+int main(int argc, char** argv) {
+  CLI::App app{"slipgraph: wheel slip, immobilization and sinkage estimation for ground robots"};
+  app.require_subcommand(1);
+  int status = 0;
+  slipgraph::RegisterInfoCommand(&app, &status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const slipgraph::InputError& e) {
+    std::cerr << "slipgraph: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "slipgraph: error: " << e.what() << "\n";
+    return 1;
+  }
+  return status;
+}

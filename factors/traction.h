@@ -1,0 +1,27 @@
+// Tire traction / braking force, Ward & Iagnemma eq. (8):
+//
+//   F_traction = N ( sign(v_rel) C1 (1 - exp(-At |v_rel|)) + C2 v_rel ),   v_rel = r w - v_fwd
+//
+// Inputs: N normal force on the tire (N), v_rel tire surface speed relative to the ground (m/s),
+// positive when the wheel spins faster than the ground moves under it (traction), negative when
+// braking. Output: force along the wheel's heading (N), positive forward. Continuous and
+// differentiable everywhere, including v_rel = 0 (see smooth_math.h).
+#pragma once
+
+#include "factors/smooth_math.h"
+#include "model/vehicle.h"
+
+namespace slipgraph {
+
+template <typename T>
+inline T TractionForceN(const T& normal_force_n, const T& v_rel_mps, const TireParams& tire) {
+  return normal_force_n * (tire.C1 * SignedSaturation(v_rel_mps, tire.At) + tire.C2 * v_rel_mps);
+}
+
+// Relative velocity of a tire, v_rel = r w - v_fwd (Ward & Iagnemma, below eq. 8).
+template <typename T>
+inline T TireRelativeVelocityMps(const T& omega_radps, double wheel_radius_m, const T& v_fwd_mps) {
+  return wheel_radius_m * omega_radps - v_fwd_mps;
+}
+
+}  // namespace slipgraph

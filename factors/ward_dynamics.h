@@ -1,0 +1,128 @@
+// Longitudinal and yaw dynamics of Ward & Iagnemma, eqs. (1), (2) and the state derivative (10).
+//
+//   v_bx'     = f_tire + a_dist - g sin(phi)                                  (1)
+//   f_tire    = ( sum_driven F_traction + sum_all F_roll ) / m
+//   yaw_rate' = g_tire = c / (2 J) ( F_right - F_left ),  F_side = F_traction + F_roll     (2)
+//   x'        = [ v_bx', -b_ax / tau_ax, 0, 0, 0, yaw_rate', -b_gz / tau_gz ]              (10)
+//
+// Tire forward speeds v_fwd = v_bx -/+ c/2 yaw_rate (left/right; REP-103 yaw is counter-clockwise,
+// so a left turn speeds the right wheel up). Ward's eq. (2) is written in a z-down frame
+// (F1 - F2 with 1 = left); here it is in z-up REP-103, hence F_right - F_left. The wheel
+// controller term of (10) is neglected, as in the paper (its effect is in the process noise).
+// Rear castors of diff_drive_castor roll with the same track and contribute rolling resistance
+// only; all-wheel-drive types use each side's total normal force (normal_forces.h).
+#pragma once
+
+#include <cmath>
+
+#include "factors/frames.h"
+#include "factors/normal_forces.h"
+#include "factors/rolling_resistance.h"
+#include "factors/traction.h"
+#include "factors/ward_state.h"
+
+namespace slipgraph {
+namespace ward {
+
+template <typename T>
+struct TireForces {
+  T f_tire_mps2;        // body-x acceleration from all tire forces, eq. (1)
+  T g_tire_radps2;      // yaw acceleration from the driven tires, eq. (2)
+  T traction_left_n;    // driven left side traction/braking force
+  T traction_right_n;   // driven right side traction/braking force
+  T v_rel_left_mps;     // r w_l - v_fwd_l
+  T v_rel_right_mps;    // r w_r - v_fwd_r
+};
+
+template <typename T>
+inline TireForces<T> ComputeTireForces(const T* x, const Attitude<T>& attitude, const Params& p) {
+  const T roll = WardRollRad(attitude.roll_rad);
+  const T phi = WardPitchUphillRad(attitude.pitch_rad);
+  const double weight_n = p.mass_kg * p.gravity_mps2;
+  const T half_track_yaw = 0.5 * p.track_width_m * x[kYawRate];
+  const T v_fwd_left = x[kVbx] - half_track_yaw;
+  const T v_fwd_right = x[kVbx] + half_track_yaw;
+
+  T driven_left_n, driven_right_n;
+  T roll_left_n, roll_right_n;  // rolling resistance of all wheels on each side
+  if (p.type == VehicleType::kDiffDriveCastor) {
+    const DiffDriveNormalForces<T> n = DiffDriveCastorNormalForcesN(
+        weight_n, roll, phi, p.cg_to_front_m, p.cg_to_rear_m, p.track_width_m, p.cg_height_m);
+    driven_left_n = n.front_left_n;
+    driven_right_n = n.front_right_n;
+    roll_left_n = n.front_left_n + n.rear_each_n;
+    roll_right_n = n.front_right_n + n.rear_each_n;
+  } else {
+    const SideNormalForces<T> n =
+        SideTotalNormalForcesN(weight_n, roll, phi, p.track_width_m, p.cg_height_m);
+    driven_left_n = roll_left_n = n.left_n;
+    driven_right_n = roll_right_n = n.right_n;
+  }
+
+  TireForces<T> out;
+  out.v_rel_left_mps = TireRelativeVelocityMps(x[kOmegaLeft], p.wheel_radius_m, v_fwd_left);
+  out.v_rel_right_mps = TireRelativeVelocityMps(x[kOmegaRight], p.wheel_radius_m, v_fwd_right);
+  out.traction_left_n = TractionForceN(driven_left_n, out.v_rel_left_mps, p.tire);
+  out.traction_right_n = TractionForceN(driven_right_n, out.v_rel_right_mps, p.tire);
+  const T rolling_left_n = RollingResistanceForceN(roll_left_n, v_fwd_left, p.rolling);
+  const T rolling_right_n = RollingResistanceForceN(roll_right_n, v_fwd_right, p.rolling);
+
+  out.f_tire_mps2 =
+      (out.traction_left_n + out.traction_right_n + rolling_left_n + rolling_right_n) / p.mass_kg;
+  // Eq. (2) uses the driven wheels' rolling resistance; for the castor vehicle that is the front
+  // pair only (the castors sit near the yaw axis's line and are free to swivel).
+  T yaw_roll_left_n = rolling_left_n, yaw_roll_right_n = rolling_right_n;
+  if (p.type == VehicleType::kDiffDriveCastor) {
+    yaw_roll_left_n = RollingResistanceForceN(driven_left_n, v_fwd_left, p.rolling);
+    yaw_roll_right_n = RollingResistanceForceN(driven_right_n, v_fwd_right, p.rolling);
+  }
+  out.g_tire_radps2 = p.track_width_m / (2.0 * p.yaw_inertia_kgm2) *
+                      (out.traction_right_n + yaw_roll_right_n - out.traction_left_n -
+                       yaw_roll_left_n);
+  return out;
+}
+
+// Continuous state derivative, eq. (10), noise-free.
+template <typename T>
+inline void StateDerivative(const T* x, const Attitude<T>& attitude, const Params& p, T* x_dot) {
+  using std::sin;
+  const TireForces<T> forces = ComputeTireForces(x, attitude, p);
+  const T phi = WardPitchUphillRad(attitude.pitch_rad);
+  x_dot[kVbx] = forces.f_tire_mps2 + x[kAdist] - p.gravity_mps2 * sin(phi);
+  x_dot[kAccelBias] = -x[kAccelBias] / p.accel_bias_tau_s;
+  x_dot[kAdist] = T(0.0);
+  x_dot[kOmegaLeft] = T(0.0);
+  x_dot[kOmegaRight] = T(0.0);
+  x_dot[kYawRate] = forces.g_tire_radps2;
+  x_dot[kGyroBias] = -x[kGyroBias] / p.gyro_bias_tau_s;
+}
+
+// Discrete propagation over dt with classical RK4 on sub-steps no longer than max_substep_s.
+// The tire law is stiff (d v' / d v ~ -g C1 At, about -150 1/s for the LAGR values), so forward
+// Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78. The EKF and the dynamics factor
+// both call this, so filter and smoother share one discretization.
+template <typename T>
+inline void Propagate(const T* x, const Attitude<T>& attitude, const Params& p, double dt_s,
+                      T* x_next, double max_substep_s = 0.01) {
+  const int substeps = dt_s > max_substep_s ? static_cast<int>(std::ceil(dt_s / max_substep_s)) : 1;
+  const double h = dt_s / substeps;
+  T state[kStateSize], k1[kStateSize], k2[kStateSize], k3[kStateSize], k4[kStateSize],
+      tmp[kStateSize];
+  for (int i = 0; i < kStateSize; ++i) state[i] = x[i];
+  for (int step = 0; step < substeps; ++step) {
+    StateDerivative(state, attitude, p, k1);
+    for (int i = 0; i < kStateSize; ++i) tmp[i] = state[i] + 0.5 * h * k1[i];
+    StateDerivative(tmp, attitude, p, k2);
+    for (int i = 0; i < kStateSize; ++i) tmp[i] = state[i] + 0.5 * h * k2[i];
+    StateDerivative(tmp, attitude, p, k3);
+    for (int i = 0; i < kStateSize; ++i) tmp[i] = state[i] + h * k3[i];
+    StateDerivative(tmp, attitude, p, k4);
+    for (int i = 0; i < kStateSize; ++i) {
+      state[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    }
+  }
+  for (int i = 0; i < kStateSize; ++i) x_next[i] = state[i];
+}
+
+}  // namespace ward
+}  // namespace slipgraph

@@ -1,0 +1,118 @@
+#include "io/csv_reader.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "io/input_error.h"
+
+namespace slipgraph {
+namespace {
+
+std::string_view Trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) {
+    s.remove_suffix(1);
+  }
+  return s;
+}
+
+void SplitCells(std::string_view line, std::vector<std::string_view>* cells) {
+  cells->clear();
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    if (comma == std::string_view::npos) {
+      cells->push_back(Trim(line.substr(start)));
+      return;
+    }
+    cells->push_back(Trim(line.substr(start, comma - start)));
+    start = comma + 1;
+  }
+}
+
+bool IsMissing(std::string_view cell) {
+  return cell.empty() || cell == "nan" || cell == "NaN" || cell == "NAN";
+}
+
+}  // namespace
+
+CsvReader::CsvReader(std::string path, std::vector<CsvColumn> columns)
+    : path_(std::move(path)), columns_(std::move(columns)), positions_(columns_.size(), -1) {
+  std::ifstream file(path_, std::ios::binary);
+  if (!file) throw InputError(path_, 0, "", "", "cannot open file");
+  std::ostringstream contents;
+  contents << file.rdbuf();
+  buffer_ = contents.str();
+
+  // The header is the first line that is neither blank nor a comment.
+  std::vector<std::string_view> header;
+  while (Next()) {
+    header = cells_;
+    break;
+  }
+  if (header.empty()) throw InputError(path_, 0, "", "", "no header line");
+  for (std::string_view name : header) header_.emplace_back(name);
+  for (size_t c = 0; c < columns_.size(); ++c) {
+    for (size_t h = 0; h < header.size(); ++h) {
+      if (header[h] == columns_[c].name) positions_[c] = static_cast<int>(h);
+    }
+    if (positions_[c] < 0 && columns_[c].required) {
+      throw InputError(path_, line_number_, columns_[c].name, "",
+                       "required column is missing from the header");
+    }
+  }
+}
+
+bool CsvReader::Next() {
+  while (cursor_ < buffer_.size()) {
+    size_t end = buffer_.find('\n', cursor_);
+    if (end == std::string::npos) end = buffer_.size();
+    const std::string_view line = Trim(std::string_view(buffer_).substr(cursor_, end - cursor_));
+    cursor_ = end + 1;
+    ++line_number_;
+    if (line.empty() || line.front() == '#') continue;
+    SplitCells(line, &cells_);
+    return true;
+  }
+  return false;
+}
+
+std::string_view CsvReader::Cell(int column) const {
+  const int position = positions_[column];
+  if (position < 0 || position >= static_cast<int>(cells_.size())) return {};
+  return cells_[position];
+}
+
+void CsvReader::Fail(int column, const std::string& value, const std::string& what) const {
+  throw InputError(path_, line_number_, columns_[column].name, value, what);
+}
+
+double CsvReader::Number(int column) const {
+  const std::string_view cell = Cell(column);
+  if (positions_[column] >= 0 && positions_[column] >= static_cast<int>(cells_.size())) {
+    Fail(column, "", "row has fewer cells than the header");
+  }
+  if (IsMissing(cell)) {
+    if (columns_[column].required) Fail(column, std::string(cell), "missing value in a required column");
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double value = 0.0;
+  const char* begin = cell.data();
+  const char* end = begin + cell.size();
+  if (*begin == '+') ++begin;  // from_chars rejects a leading '+', which CSV writers may emit
+  const auto result = std::from_chars(begin, end, value);
+  if (result.ec != std::errc() || result.ptr != end) Fail(column, std::string(cell), "not a number");
+  if (!std::isfinite(value)) Fail(column, std::string(cell), "not a finite number");
+  return value;
+}
+
+std::string CsvReader::Text(int column) const {
+  const std::string_view cell = Cell(column);
+  if (cell.empty()) Fail(column, "", "missing value");
+  return std::string(cell);
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,38 @@
+// Estimate files: CSV with a header, SI units, one row per estimate time, each value's standard
+// deviation beside it as sd_<name>. Written by every solver, read by `evaluate`.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/csv_writer.h"
+
+namespace slipgraph {
+
+struct EstimateColumn {
+  std::string name;    // e.g. "v_bx"; SI units implied by the name's documentation
+  bool with_sd = true;  // writes sd_<name> right after it
+};
+
+class EstimateWriter {
+ public:
+  EstimateWriter(const std::string& path, std::vector<EstimateColumn> columns);
+  // values and sds are indexed like the columns; sds of columns without sd are ignored.
+  void Write(double t, const std::vector<double>& values, const std::vector<double>& sds);
+
+ private:
+  std::vector<EstimateColumn> columns_;
+  CsvWriter writer_;
+};
+
+// Every column of a numeric CSV by name ("t" included). Throws InputError naming file, line,
+// column and value on a bad cell (missing values are NaN).
+struct NumericTable {
+  std::vector<std::string> names;
+  std::map<std::string, std::vector<double>> columns;
+  size_t rows() const { return columns.empty() ? 0 : columns.begin()->second.size(); }
+};
+NumericTable ReadNumericTable(const std::string& path);
+
+}  // namespace slipgraph

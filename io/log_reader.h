@@ -1,0 +1,25 @@
+// Reads a drive log directory (shared/log-format.md) into a DriveLog.
+#pragma once
+
+#include <string>
+
+#include "io/drive_log.h"
+
+namespace slipgraph {
+
+struct ReadOptions {
+  // false: the first bad row or bad optional file is an InputError naming file, line, column and
+  // value. true: bad rows are dropped and an optional file whose header is unusable is left out;
+  // each is reported in DriveLog::warnings. Required files must exist and have their header.
+  bool skip_bad = false;
+};
+
+// Throws InputError for a missing required file (vehicle.yaml, imu.csv, wheels.csv), a bad
+// vehicle.yaml, and, unless skip_bad, any bad row: a missing required column, a non-numeric or
+// non-finite cell, a missing value in a required column, a repeated or decreasing time stamp.
+DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options = {});
+
+// True when `directory` holds a log (has vehicle.yaml); a suite is a directory of such.
+bool IsLogDirectory(const std::string& directory);
+
+}  // namespace slipgraph

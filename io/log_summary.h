@@ -1,0 +1,33 @@
+// What `slipgraph info` reports about a log: vehicle, streams with rates, durations and gaps, and
+// every problem found (reader warnings, defaulted keys, gaps, implausible values).
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/drive_log.h"
+
+namespace slipgraph {
+
+struct StreamSummary {
+  std::string name;  // file name without ".csv"
+  size_t samples = 0;
+  double t_first_s = 0.0;
+  double t_last_s = 0.0;
+  double rate_hz = 0.0;  // from the median interval between distinct time stamps
+  std::vector<std::pair<double, double>> gaps;  // [t_before, t_after] where dt > 5 x median
+};
+
+struct LogSummary {
+  std::vector<StreamSummary> streams;  // present streams only
+  double t_start_s = 0.0;
+  double t_end_s = 0.0;
+  std::vector<std::string> problems;
+};
+
+LogSummary SummarizeLog(const DriveLog& log);
+void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostream& out);
+
+}  // namespace slipgraph

@@ -1,0 +1,303 @@
+#include "io/yaml_config.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+
+#include "io/input_error.h"
+
+namespace slipgraph {
+namespace {
+
+struct NumberField {
+  const char* key;
+  double* target;
+  bool needed;
+};
+
+[[noreturn]] void Fail(const std::string& path, const YAML::Node& node, const std::string& key,
+                       const std::string& value, const std::string& what) {
+  const YAML::Mark mark = node.Mark();
+  const int line = mark.is_null() ? 0 : mark.line + 1;
+  throw InputError(path, line, key, value, what);
+}
+
+double ReadNumber(const std::string& path, const YAML::Node& node, const std::string& key) {
+  if (!node.IsScalar()) Fail(path, node, key, "", "expected a number");
+  double value = 0.0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    Fail(path, node, key, node.Scalar(), "not a number");
+  }
+  if (!std::isfinite(value)) Fail(path, node, key, node.Scalar(), "not a finite number");
+  return value;
+}
+
+// Reads the listed numeric keys of `map`. A missing needed key is an error. Keys not listed are
+// errors when `strict`, warnings otherwise.
+void ReadNumbers(const std::string& path, const YAML::Node& map, const std::string& prefix,
+                 const std::vector<NumberField>& fields, bool strict,
+                 std::vector<std::string>* warnings, const std::set<std::string>& sections = {}) {
+  if (!map.IsMap()) Fail(path, map, prefix, "", "expected a mapping");
+  for (const NumberField& field : fields) {
+    const YAML::Node value = map[field.key];
+    if (!value) {
+      if (field.needed) Fail(path, map, prefix + field.key, "", "missing key");
+      continue;
+    }
+    *field.target = ReadNumber(path, value, prefix + field.key);
+  }
+  for (const auto& entry : map) {
+    const std::string key = entry.first.as<std::string>();
+    bool known = sections.count(key) > 0;
+    for (const NumberField& field : fields) known = known || key == field.key;
+    if (known) continue;
+    if (strict) Fail(path, entry.first, prefix + key, "", "unknown key");
+    if (warnings) warnings->push_back(path + ": unknown key '" + prefix + key + "' ignored");
+  }
+}
+
+YAML::Node LoadYaml(const std::string& path) {
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw InputError(path, 0, "", "", "cannot open file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(path, e.mark.line + 1, "", "", "YAML syntax error: " + e.msg);
+  }
+}
+
+}  // namespace
+
+Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warnings) {
+  const YAML::Node root = LoadYaml(path);
+  if (!root.IsMap()) throw InputError(path, 1, "", "", "expected a mapping at the top level");
+  Vehicle v;
+  const YAML::Node type = root["type"];
+  if (!type) Fail(path, root, "type", "", "missing key");
+  if (!ParseVehicleType(type.as<std::string>(""), &v.type)) {
+    Fail(path, type, "type", type.as<std::string>(""),
+         "unknown vehicle type (expected diff_drive_castor, skid_steer or rocker_bogie6)");
+  }
+  v.name = root["name"] ? root["name"].as<std::string>("") : std::string();
+
+  const bool castor = v.type == VehicleType::kDiffDriveCastor;
+  const bool rocker = v.type == VehicleType::kRockerBogie6;
+  std::vector<NumberField> top = {
+      {"mass", &v.mass_kg, true},
+      {"yaw_inertia", &v.yaw_inertia_kgm2, true},
+      {"wheel_radius", &v.wheel_radius_m, true},
+      {"track_width", &v.track_width_m, true},
+      {"cg_to_front", &v.cg_to_front_m, castor},
+      {"cg_to_rear", &v.cg_to_rear_m, castor},
+      {"cg_height", &v.cg_height_m, true},
+      {"axle_spacing", &v.axle_spacing_m, rocker},
+  };
+  ReadNumbers(path, root, "", top, false, warnings, {"name", "type", "tire", "rolling", "sensors"});
+  for (const NumberField& field : top) {
+    if (root[field.key] && *field.target <= 0.0) {
+      Fail(path, root[field.key], field.key, root[field.key].Scalar(), "must be positive");
+    }
+  }
+
+  const YAML::Node tire = root["tire"];
+  if (!tire) Fail(path, root, "tire", "", "missing key");
+  ReadNumbers(path, tire, "tire.",
+              {{"C1", &v.tire.C1, true}, {"At", &v.tire.At, true}, {"C2", &v.tire.C2, true}},
+              false, warnings);
+  const YAML::Node rolling = root["rolling"];
+  if (!rolling) Fail(path, root, "rolling", "", "missing key");
+  ReadNumbers(path, rolling, "rolling.",
+              {{"R1", &v.rolling.R1, true},
+               {"A_roll", &v.rolling.A_roll, true},
+               {"R2", &v.rolling.R2, true}},
+              false, warnings);
+
+  const YAML::Node sensors = root["sensors"];
+  const struct {
+    const char* section;
+    std::vector<NumberField> fields;
+  } sensor_sections[] = {
+      {"imu",
+       {{"sd_accel", &v.sensors.imu_sd_accel_mps2, true},
+        {"sd_gyro", &v.sensors.imu_sd_gyro_radps, true}}},
+      {"wheels", {{"sd_omega", &v.sensors.wheels_sd_omega_radps, true}}},
+      {"gps", {{"sd_xy", &v.sensors.gps_sd_xy_m, true}, {"sd_v", &v.sensors.gps_sd_v_mps, true}}},
+  };
+  for (const auto& section : sensor_sections) {
+    const YAML::Node node = sensors ? sensors[section.section] : YAML::Node();
+    const std::string name = std::string("sensors.") + section.section;
+    if (!node || node.IsNull()) {
+      v.defaulted_keys.push_back(name);
+      continue;
+    }
+    ReadNumbers(path, node, name + ".", section.fields, false, warnings);
+  }
+  return v;
+}
+
+ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
+  ModelConfig m = DefaultModelConfig(vehicle);
+  const YAML::Node root = LoadYaml(path);
+  if (root.IsNull()) return m;  // an empty file changes nothing
+  if (!root.IsMap()) throw InputError(path, 1, "", "", "expected a mapping at the top level");
+
+  ProcessNoiseConfig& q = m.process;
+  WeakConstraintConfig& wc = m.weak_constraints;
+  ImmobilizationConfig& im = m.immobilization;
+  double init_samples = m.offset_init_samples;
+  const std::vector<std::pair<std::string, std::vector<NumberField>>> sections = {
+      {"tire", {{"C1", &m.tire.C1, false}, {"At", &m.tire.At, false}, {"C2", &m.tire.C2, false}}},
+      {"rolling",
+       {{"R1", &m.rolling.R1, false},
+        {"A_roll", &m.rolling.A_roll, false},
+        {"R2", &m.rolling.R2, false}}},
+      {"process_noise",
+       {{"v_bx", &q.v_bx_mps2_per_sqrt_hz, false},
+        {"a_dist", &q.a_dist_mps3_per_sqrt_hz, false},
+        {"omega", &q.omega_radps2_per_sqrt_hz, false},
+        {"yaw_rate", &q.yaw_rate_radps2_per_sqrt_hz, false},
+        {"accel_bias_sd", &q.accel_bias_sd_mps2, false},
+        {"accel_bias_tau", &q.accel_bias_tau_s, false},
+        {"gyro_bias_sd", &q.gyro_bias_sd_radps, false},
+        {"gyro_bias_tau", &q.gyro_bias_tau_s, false}}},
+      {"measurement_noise",
+       {{"imu_sd_accel", &m.measurement.imu_sd_accel_mps2, false},
+        {"imu_sd_gyro", &m.measurement.imu_sd_gyro_radps, false},
+        {"wheels_sd_omega", &m.measurement.wheels_sd_omega_radps, false},
+        {"gps_sd_xy", &m.measurement.gps_sd_xy_m, false},
+        {"gps_sd_v", &m.measurement.gps_sd_v_mps, false}}},
+      {"weak_constraints",
+       {{"sd", &wc.sd_mps2, false},
+        {"min_slip_rate", &wc.min_slip_rate_per_s, false},
+        {"slip_threshold", &wc.slip_threshold, false},
+        {"decay_alpha", &wc.decay_alpha, false},
+        {"stop_time", &wc.stop_time_s, false},
+        {"max_v_bx", &wc.max_v_bx_mps, false},
+        {"max_accel_bias", &wc.max_accel_bias_mps2, false},
+        {"max_a_dist", &wc.max_a_dist_mps2, false},
+        {"max_gyro_bias", &wc.max_gyro_bias_radps, false},
+        {"max_v_bx_rate", &wc.max_v_bx_rate_mps2, false},
+        {"max_accel_bias_rate", &wc.max_accel_bias_rate_mps3, false}}},
+      {"immobilization",
+       {{"ema_samples", &im.ema_samples, false},
+        {"slip_threshold", &im.slip_threshold, false},
+        {"low_speed_threshold_add", &im.low_speed_threshold_add, false},
+        {"low_speed", &im.low_speed_mps, false}}},
+      {"offsets",
+       {{"init_samples", &init_samples, false}, {"ema_samples", &m.offset_ema_samples, false}}},
+  };
+  for (const auto& entry : root) {
+    const std::string key = entry.first.as<std::string>();
+    if (key == "gravity") {
+      m.gravity_mps2 = ReadNumber(path, entry.second, key);
+      continue;
+    }
+    if (key == "effects") {
+      if (!entry.second.IsSequence()) Fail(path, entry.second, key, "", "expected a list of names");
+      m.effects.clear();
+      for (const auto& effect : entry.second) m.effects.push_back(effect.as<std::string>());
+      continue;
+    }
+    bool known = false;
+    for (const auto& section : sections) {
+      if (section.first != key) continue;
+      ReadNumbers(path, entry.second, key + ".", section.second, true, nullptr);
+      known = true;
+    }
+    if (!known) Fail(path, entry.first, key, "", "unknown key");
+  }
+  m.offset_init_samples = static_cast<int>(init_samples);
+  std::string error;
+  if (!m.IsValid(&error)) throw InputError(path, 0, "", "", "invalid model: " + error);
+  return m;
+}
+
+void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  e << YAML::Key << "name" << YAML::Value << v.name;
+  e << YAML::Key << "type" << YAML::Value << VehicleTypeName(v.type);
+  e << YAML::Key << "mass" << YAML::Value << v.mass_kg;
+  e << YAML::Key << "yaw_inertia" << YAML::Value << v.yaw_inertia_kgm2;
+  e << YAML::Key << "wheel_radius" << YAML::Value << v.wheel_radius_m;
+  e << YAML::Key << "track_width" << YAML::Value << v.track_width_m;
+  if (v.type == VehicleType::kDiffDriveCastor) {
+    e << YAML::Key << "cg_to_front" << YAML::Value << v.cg_to_front_m;
+    e << YAML::Key << "cg_to_rear" << YAML::Value << v.cg_to_rear_m;
+  }
+  e << YAML::Key << "cg_height" << YAML::Value << v.cg_height_m;
+  if (v.type == VehicleType::kRockerBogie6) {
+    e << YAML::Key << "axle_spacing" << YAML::Value << v.axle_spacing_m;
+  }
+  e << YAML::Key << "tire" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  e << YAML::Key << "C1" << YAML::Value << v.tire.C1 << YAML::Key << "At" << YAML::Value
+    << v.tire.At << YAML::Key << "C2" << YAML::Value << v.tire.C2 << YAML::EndMap;
+  e << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  e << YAML::Key << "R1" << YAML::Value << v.rolling.R1 << YAML::Key << "A_roll" << YAML::Value
+    << v.rolling.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling.R2 << YAML::EndMap;
+  e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
+  e << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
+    << "sd_accel" << YAML::Value << v.sensors.imu_sd_accel_mps2 << YAML::Key << "sd_gyro"
+    << YAML::Value << v.sensors.imu_sd_gyro_radps << YAML::EndMap;
+  e << YAML::Key << "wheels" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
+    << "sd_omega" << YAML::Value << v.sensors.wheels_sd_omega_radps << YAML::EndMap;
+  e << YAML::Key << "gps" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "sd_xy"
+    << YAML::Value << v.sensors.gps_sd_xy_m << YAML::Key << "sd_v" << YAML::Value
+    << v.sensors.gps_sd_v_mps << YAML::EndMap;
+  e << YAML::EndMap << YAML::EndMap;
+  out << e.c_str() << "\n";
+}
+
+void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
+  const ProcessNoiseConfig& q = m.process;
+  const WeakConstraintConfig& wc = m.weak_constraints;
+  const ImmobilizationConfig& im = m.immobilization;
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  e << YAML::Key << "gravity" << YAML::Value << m.gravity_mps2;
+  auto section = [&e](const char* name,
+                      const std::vector<std::pair<const char*, double>>& fields) {
+    e << YAML::Key << name << YAML::Value << YAML::BeginMap;
+    for (const auto& field : fields) e << YAML::Key << field.first << YAML::Value << field.second;
+    e << YAML::EndMap;
+  };
+  section("tire", {{"C1", m.tire.C1}, {"At", m.tire.At}, {"C2", m.tire.C2}});
+  section("rolling", {{"R1", m.rolling.R1}, {"A_roll", m.rolling.A_roll}, {"R2", m.rolling.R2}});
+  section("process_noise", {{"v_bx", q.v_bx_mps2_per_sqrt_hz},
+                            {"a_dist", q.a_dist_mps3_per_sqrt_hz},
+                            {"omega", q.omega_radps2_per_sqrt_hz},
+                            {"yaw_rate", q.yaw_rate_radps2_per_sqrt_hz},
+                            {"accel_bias_sd", q.accel_bias_sd_mps2},
+                            {"accel_bias_tau", q.accel_bias_tau_s},
+                            {"gyro_bias_sd", q.gyro_bias_sd_radps},
+                            {"gyro_bias_tau", q.gyro_bias_tau_s}});
+  section("measurement_noise", {{"imu_sd_accel", m.measurement.imu_sd_accel_mps2},
+                                {"imu_sd_gyro", m.measurement.imu_sd_gyro_radps},
+                                {"wheels_sd_omega", m.measurement.wheels_sd_omega_radps},
+                                {"gps_sd_xy", m.measurement.gps_sd_xy_m},
+                                {"gps_sd_v", m.measurement.gps_sd_v_mps}});
+  section("weak_constraints", {{"sd", wc.sd_mps2},
+                               {"min_slip_rate", wc.min_slip_rate_per_s},
+                               {"slip_threshold", wc.slip_threshold},
+                               {"decay_alpha", wc.decay_alpha},
+                               {"stop_time", wc.stop_time_s},
+                               {"max_v_bx", wc.max_v_bx_mps},
+                               {"max_accel_bias", wc.max_accel_bias_mps2},
+                               {"max_a_dist", wc.max_a_dist_mps2},
+                               {"max_gyro_bias", wc.max_gyro_bias_radps},
+                               {"max_v_bx_rate", wc.max_v_bx_rate_mps2},
+                               {"max_accel_bias_rate", wc.max_accel_bias_rate_mps3}});
+  section("immobilization", {{"ema_samples", im.ema_samples},
+                             {"slip_threshold", im.slip_threshold},
+                             {"low_speed_threshold_add", im.low_speed_threshold_add},
+                             {"low_speed", im.low_speed_mps}});
+  section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
+                      {"ema_samples", m.offset_ema_samples}});
+  e << YAML::Key << "effects" << YAML::Value << YAML::Flow << m.effects;
+  e << YAML::EndMap;
+  out << e.c_str() << "\n";
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,31 @@
+// All YAML of slipgraph is parsed here, and strictly.
+//
+// vehicle.yaml (shared/log-format.md) is a contract other programs write: a key the vehicle type
+// needs and that is missing is an error naming it; an unknown key is a warning (extensions are
+// allowed by the format). A model file is ours: every key is optional (it overrides the vehicle's
+// nominal values and the in-class defaults of ModelConfig), and an unknown key is an error.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "model/model_config.h"
+#include "model/vehicle.h"
+
+namespace slipgraph {
+
+// Throws InputError (file, line, column, key) on a missing needed key, a non-numeric value, an
+// unknown vehicle type or a non-positive physical dimension. Unknown keys and sensor sections
+// left to defaults are appended to `warnings`.
+Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warnings);
+
+// The vehicle's nominal values, then the in-class defaults, overridden by the keys of `path`.
+// Throws InputError on an unknown key or bad value, and when the result fails IsValid().
+ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle);
+
+void WriteVehicleYaml(const Vehicle& vehicle, std::ostream& out);
+// The effective configuration, in the model-file schema (loadable by ReadModelYaml).
+void WriteModelYaml(const ModelConfig& model, std::ostream& out);
+
+}  // namespace slipgraph

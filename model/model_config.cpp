@@ -1,0 +1,81 @@
+#include "model/model_config.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace slipgraph {
+namespace {
+
+// Appends "name must be positive (value)" when value <= 0 or not finite.
+bool CheckPositive(const char* name, double value, std::string* error) {
+  if (std::isfinite(value) && value > 0.0) return true;
+  std::ostringstream message;
+  message << name << " must be positive and finite (got " << value << ")";
+  *error = message.str();
+  return false;
+}
+
+}  // namespace
+
+bool ModelConfig::IsValid(std::string* error) const {
+  const struct {
+    const char* name;
+    double value;
+  } positive[] = {
+      {"gravity", gravity_mps2},
+      {"tire.C1", tire.C1},
+      {"tire.At", tire.At},
+      {"rolling.A_roll", rolling.A_roll},
+      {"process.v_bx", process.v_bx_mps2_per_sqrt_hz},
+      {"process.a_dist", process.a_dist_mps3_per_sqrt_hz},
+      {"process.omega", process.omega_radps2_per_sqrt_hz},
+      {"process.yaw_rate", process.yaw_rate_radps2_per_sqrt_hz},
+      {"process.accel_bias_sd", process.accel_bias_sd_mps2},
+      {"process.accel_bias_tau", process.accel_bias_tau_s},
+      {"process.gyro_bias_sd", process.gyro_bias_sd_radps},
+      {"process.gyro_bias_tau", process.gyro_bias_tau_s},
+      {"measurement.imu_sd_accel", measurement.imu_sd_accel_mps2},
+      {"measurement.imu_sd_gyro", measurement.imu_sd_gyro_radps},
+      {"measurement.wheels_sd_omega", measurement.wheels_sd_omega_radps},
+      {"measurement.gps_sd_v", measurement.gps_sd_v_mps},
+      {"measurement.gps_sd_xy", measurement.gps_sd_xy_m},
+      {"weak_constraints.sd", weak_constraints.sd_mps2},
+      {"weak_constraints.stop_time", weak_constraints.stop_time_s},
+      {"weak_constraints.max_v_bx", weak_constraints.max_v_bx_mps},
+      {"weak_constraints.max_accel_bias", weak_constraints.max_accel_bias_mps2},
+      {"weak_constraints.max_a_dist", weak_constraints.max_a_dist_mps2},
+      {"weak_constraints.max_gyro_bias", weak_constraints.max_gyro_bias_radps},
+      {"weak_constraints.max_v_bx_rate", weak_constraints.max_v_bx_rate_mps2},
+      {"weak_constraints.max_accel_bias_rate", weak_constraints.max_accel_bias_rate_mps3},
+      {"immobilization.ema_samples", immobilization.ema_samples},
+      {"immobilization.slip_threshold", immobilization.slip_threshold},
+      {"immobilization.low_speed", immobilization.low_speed_mps},
+      {"offset_ema_samples", offset_ema_samples},
+  };
+  for (const auto& field : positive) {
+    if (!CheckPositive(field.name, field.value, error)) return false;
+  }
+  if (rolling.R1 < 0.0 || rolling.R2 < 0.0) {
+    *error = "rolling.R1 and rolling.R2 must be non-negative";
+    return false;
+  }
+  if (!(weak_constraints.decay_alpha > 0.0 && weak_constraints.decay_alpha < 1.0)) {
+    *error = "weak_constraints.decay_alpha must lie in (0, 1)";
+    return false;
+  }
+  if (offset_init_samples < 1) {
+    *error = "offset_init_samples must be at least 1";
+    return false;
+  }
+  return true;
+}
+
+ModelConfig DefaultModelConfig(const Vehicle& vehicle) {
+  ModelConfig config;
+  config.tire = vehicle.tire;
+  config.rolling = vehicle.rolling;
+  config.measurement = vehicle.sensors;
+  return config;
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,59 @@
+#include "io/csv_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "io/input_error.h"
+#include "tests/test_log_files.h"
+
+namespace slipgraph {
+namespace {
+
+std::string WriteCsv(const std::string& text) {
+  const std::string dir = testing::FreshDirectory("csv");
+  testing::WriteText(dir, "f.csv", text);
+  return dir + "/f.csv";
+}
+
+TEST(CsvReader, SkipsCommentsAndBlankLinesAndHandlesCrlfAndSpaces) {
+  CsvReader r(WriteCsv("# a comment\n\nt, b ,a\r\n# mid comment\n1, 2 ,+3\r\n\n4,5,6\n"),
+              {{"a", true}, {"t", true}, {"z", false}});
+  ASSERT_TRUE(r.Next());
+  EXPECT_EQ(r.line(), 5);
+  EXPECT_EQ(r.Number(0), 3.0);
+  EXPECT_EQ(r.Number(1), 1.0);
+  EXPECT_FALSE(r.Has(2));
+  EXPECT_TRUE(std::isnan(r.Number(2)));
+  ASSERT_TRUE(r.Next());
+  EXPECT_EQ(r.line(), 7);
+  EXPECT_EQ(r.Number(0), 6.0);
+  EXPECT_FALSE(r.Next());
+  EXPECT_EQ(r.header(), (std::vector<std::string>{"t", "b", "a"}));
+}
+
+TEST(CsvReader, ShortRowIsAnErrorNamingTheColumn) {
+  CsvReader r(WriteCsv("t,a,b\n1,2\n"), {{"t", true}, {"b", true}});
+  ASSERT_TRUE(r.Next());
+  EXPECT_EQ(r.Number(0), 1.0);
+  try {
+    r.Number(1);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.column(), "b");
+  }
+}
+
+TEST(CsvReader, TrailingGarbageIsNotANumber) {
+  CsvReader r(WriteCsv("t\n1.5x\n"), {{"t", true}});
+  ASSERT_TRUE(r.Next());
+  EXPECT_THROW(r.Number(0), InputError);
+}
+
+TEST(CsvReader, EmptyFileHasNoHeader) {
+  EXPECT_THROW(CsvReader(WriteCsv("# only a comment\n"), {{"t", true}}), InputError);
+}
+
+}  // namespace
+}  // namespace slipgraph

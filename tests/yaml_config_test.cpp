@@ -1,0 +1,106 @@
+#include "io/yaml_config.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "io/input_error.h"
+#include "tests/test_log_files.h"
+
+namespace slipgraph {
+namespace {
+
+Vehicle LagrVehicle() {
+  const std::string dir = testing::FreshDirectory("vehicle");
+  testing::WriteText(dir, "vehicle.yaml", testing::kLagrVehicleYaml);
+  std::vector<std::string> warnings;
+  return ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+}
+
+std::string WriteModel(const std::string& text) {
+  const std::string dir = testing::FreshDirectory("model");
+  testing::WriteText(dir, "model.yaml", text);
+  return dir + "/model.yaml";
+}
+
+TEST(YamlConfig, ModelFileOverridesVehicleAndDefaults) {
+  const Vehicle vehicle = LagrVehicle();
+  const ModelConfig m = ReadModelYaml(
+      WriteModel("tire: {C1: 0.64}\nprocess_noise:\n  a_dist: 3.0\neffects: [quadratic_drag]\n"),
+      vehicle);
+  EXPECT_DOUBLE_EQ(m.tire.C1, 0.64);   // overridden
+  EXPECT_DOUBLE_EQ(m.tire.At, 20.0);   // from vehicle.yaml
+  EXPECT_DOUBLE_EQ(m.process.a_dist_mps3_per_sqrt_hz, 3.0);
+  EXPECT_DOUBLE_EQ(m.process.accel_bias_tau_s, ProcessNoiseConfig().accel_bias_tau_s);
+  EXPECT_DOUBLE_EQ(m.measurement.gps_sd_v_mps, 0.1);  // from vehicle.yaml sensors
+  EXPECT_EQ(m.effects, std::vector<std::string>{"quadratic_drag"});
+}
+
+TEST(YamlConfig, UnknownModelKeyIsAnErrorNamingIt) {
+  try {
+    ReadModelYaml(WriteModel("tire: {C1: 0.6}\nprocess_noise:\n  a_distt: 3.0\n"), LagrVehicle());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.column(), "process_noise.a_distt");
+    EXPECT_EQ(e.line(), 3);
+  }
+  EXPECT_THROW(ReadModelYaml(WriteModel("tyre: {C1: 0.6}\n"), LagrVehicle()), InputError);
+}
+
+TEST(YamlConfig, InvalidModelValueIsRejected) {
+  EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {decay_alpha: 1.5}\n"), LagrVehicle()),
+               InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("tire: {C1: -1}\n"), LagrVehicle()), InputError);
+}
+
+TEST(YamlConfig, WrittenModelReadsBackTheSame) {
+  ModelConfig m = DefaultModelConfig(LagrVehicle());
+  m.tire.C2 = -0.02;
+  m.weak_constraints.decay_alpha = 0.7;
+  m.effects = {"quadratic_drag", "imu_mounting_pitch"};
+  std::ostringstream out;
+  WriteModelYaml(m, out);
+  const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
+  EXPECT_DOUBLE_EQ(back.tire.C2, -0.02);
+  EXPECT_DOUBLE_EQ(back.weak_constraints.decay_alpha, 0.7);
+  EXPECT_EQ(back.effects, m.effects);
+  EXPECT_EQ(back.offset_init_samples, m.offset_init_samples);
+}
+
+TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
+  const std::string dir = testing::FreshDirectory("vehicle");
+  testing::WriteText(dir, "vehicle.yaml",
+                     "type: skid_steer\nmass: 50\nyaw_inertia: 3\nwheel_radius: 0.1\n"
+                     "track_width: 0.5\ncg_height: 0.2\ncolour: red\n"
+                     "tire: {C1: 0.8, At: 20, C2: 0.05}\nrolling: {R1: 0.03, A_roll: 20, R2: 0.01}\n");
+  std::vector<std::string> warnings;
+  const Vehicle v = ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+  EXPECT_EQ(v.type, VehicleType::kSkidSteer);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("colour"), std::string::npos);
+  EXPECT_EQ(v.defaulted_keys.size(), 3u);
+}
+
+TEST(YamlConfig, NonPositiveDimensionIsRejected) {
+  std::string yaml = testing::kLagrVehicleYaml;
+  yaml.replace(yaml.find("wheel_radius: 0.25"), 18, "wheel_radius: 0.0");
+  const std::string dir = testing::FreshDirectory("vehicle");
+  testing::WriteText(dir, "vehicle.yaml", yaml);
+  std::vector<std::string> warnings;
+  EXPECT_THROW(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings), InputError);
+}
+
+TEST(YamlConfig, SyntaxErrorNamesTheLine) {
+  const std::string dir = testing::FreshDirectory("vehicle");
+  testing::WriteText(dir, "vehicle.yaml", "type: skid_steer\nmass: [1, 2\n");
+  std::vector<std::string> warnings;
+  try {
+    ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_GT(e.line(), 0);
+  }
+}
+
+}  // namespace
+}  // namespace slipgraph
