@@ -11,5 +11,6 @@ namespace slipgraph {
 std::string DefaultLogPath();
 
 void RegisterInfoCommand(CLI::App* app, int* status);
+void RegisterSimulateCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int status = 0;
   slipgraph::RegisterInfoCommand(&app, &status);
+  slipgraph::RegisterSimulateCommand(&app, &status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

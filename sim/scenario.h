@@ -1,0 +1,89 @@
+// A simulation scenario: the vehicle the user believes in (written to vehicle.yaml), the true
+// course, the driving commands, hold-back events, sensors and the effects switched on.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/vehicle.h"
+#include "sim/effects.h"
+#include "sim/terrain.h"
+
+namespace slipgraph {
+namespace sim {
+
+// Drive toward (v, yaw rate) for duration_s; the command ramps at the actuation limits.
+struct CommandSegment {
+  double duration_s = 1.0;
+  double v_mps = 0.0;
+  double yaw_rate_radps = 0.0;
+};
+
+// Someone holds the robot back with a spring scale (a stiff, damped tether anchored where the
+// robot is at t_start_s) until t_end_s. The tether only pulls backwards.
+struct HoldBack {
+  double t_start_s = 0.0;
+  double t_end_s = 0.0;
+};
+
+// Wheel-speed controllers and drive limits (diff_drive_castor).
+struct Actuation {
+  double accel_limit_mps2 = 0.8;        // command ramp
+  double yaw_accel_limit_radps2 = 2.0;  // command ramp
+  double torque_limit_nm = 60.0;        // per driven wheel motor
+  double wheel_inertia_kgm2 = 0.4;      // wheel + reflected motor inertia
+  double kp_nm_per_radps = 15.0;        // PI wheel-speed controller
+  double ki_nm_per_rad = 60.0;
+  double tether_stiffness_npm = 2000.0;
+  double tether_damping_nspm = 800.0;
+};
+
+struct SensorSpec {
+  double imu_rate_hz = 100.0;
+  double wheel_rate_hz = 100.0;
+  double gps_rate_hz = 1.0;       // 0: no gps.csv
+  double attitude_rate_hz = 100.0;  // 0: no attitude.csv
+  double pose_rate_hz = 0.0;      // 0: no pose.csv
+  double command_rate_hz = 10.0;  // 0: no commands.csv
+  double truth_rate_hz = 100.0;
+  int encoder_counts_per_rev = 4096;  // 0: no quantization
+  double sd_accel_mps2 = 0.05;
+  double sd_gyro_radps = 0.005;
+  double accel_offset_max_mps2 = 0.1;  // constant offset c_ax ~ U(-max, max)
+  double gyro_offset_max_radps = 0.01;
+  double accel_bias_sd_mps2 = 0.02;    // walking bias, Gauss-Markov
+  double accel_bias_tau_s = 300.0;
+  double gyro_bias_sd_radps = 0.002;
+  double gyro_bias_tau_s = 300.0;
+  double sd_omega_radps = 0.02;        // encoder speed noise on top of quantization
+  double gps_sd_xy_m = 0.5;
+  double gps_sd_z_m = 1.0;
+  double gps_sd_v_mps = 0.1;
+  double attitude_sd_rad = 0.002;
+  double attitude_sd_yaw_rad = 0.01;
+  double pose_sd_xy_m = 0.02;
+  double pose_sd_yaw_rad = 0.005;
+};
+
+struct Scenario {
+  std::string name;
+  Vehicle vehicle;  // nominal: what vehicle.yaml says; the truth may differ through effects
+  Course course;
+  double rest_start_s = 3.0;  // at rest before the first command (IMU offset initialisation)
+  std::vector<CommandSegment> commands;
+  std::vector<HoldBack> holdbacks;
+  Actuation actuation;
+  SensorSpec sensors;
+  EffectSet effects;
+  double sim_step_s = 0.0005;  // internal integration step
+
+  double duration_s() const {
+    double total = rest_start_s;
+    for (const CommandSegment& c : commands) total += c.duration_s;
+    return total;
+  }
+};
+
+}  // namespace sim
+}  // namespace slipgraph

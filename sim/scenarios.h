@@ -1,0 +1,36 @@
+// Named scenarios and suites for `slipgraph simulate --scenario NAME`:
+//   ward21            21 LAGR runs (Ward & Iagnemma Sec. III): ~120 m over mulch, gravel, mud
+//                     and grass at 0.1-1 m/s with 20 hold-back events; a suite (run_01..run_21)
+//   ward21/NN         one run of it (NN = 01..21)
+//   fig5              the paper's Fig. 5: 1 m/s on grass, then held back (325 N) for 4 s
+//   hidden            one log per catalogue effect with only that effect on, plus `none`
+//   hidden/EFFECT     one of them (hidden/none: no effect)
+// Every scenario is a pure function of (name, seed): the same inputs give the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/scenario.h"
+
+namespace slipgraph {
+namespace sim {
+
+// The LAGR robot as its user believes it to be (vehicle.yaml of the simulated logs).
+Vehicle LagrVehicle();
+
+struct ScenarioRun {
+  std::string relative_directory;  // "" for a single log, else the log's folder in the suite
+  Scenario scenario;
+  uint64_t seed;
+};
+
+// Throws std::invalid_argument naming the scenario when it is unknown.
+std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed);
+
+// Names accepted by ExpandScenario, for --help.
+std::string ScenarioHelp();
+
+}  // namespace sim
+}  // namespace slipgraph

@@ -1,0 +1,167 @@
+#include "sim/sensor_models.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace slipgraph {
+namespace sim {
+namespace {
+
+constexpr double kGravity = 9.80665;
+
+// One step of a first-order Gauss-Markov process with stationary sd and correlation time tau.
+double GaussMarkovStep(double value, double sd, double tau_s, double dt_s, double unit_normal) {
+  const double decay = std::exp(-dt_s / tau_s);
+  return value * decay + sd * std::sqrt(1.0 - decay * decay) * unit_normal;
+}
+
+}  // namespace
+
+SensorSimulator::SensorSimulator(const SensorSpec& spec, const EffectSet& effects,
+                                 int wheel_count, double step_s, std::mt19937_64* rng,
+                                 DriveLog* log)
+    : spec_(spec),
+      effects_(effects),
+      wheel_count_(wheel_count),
+      step_s_(step_s),
+      rng_(rng),
+      log_(log) {
+  imu_period_ = Period(spec.imu_rate_hz);
+  wheel_period_ = Period(spec.wheel_rate_hz);
+  gps_period_ = Period(spec.gps_rate_hz);
+  attitude_period_ = Period(spec.attitude_rate_hz);
+  pose_period_ = Period(spec.pose_rate_hz);
+  command_period_ = Period(spec.command_rate_hz);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int i = 0; i < 3; ++i) {
+    imu_errors_.accel_offset_mps2[i] = spec.accel_offset_max_mps2 * unit(*rng_);
+    imu_errors_.gyro_offset_radps[i] = spec.gyro_offset_max_radps * unit(*rng_);
+    accel_bias_[i] = spec.accel_bias_sd_mps2 * normal_(*rng_);
+    gyro_bias_[i] = spec.gyro_bias_sd_radps * normal_(*rng_);
+  }
+  if (attitude_period_ > 0) log_->present_files.push_back("attitude.csv");
+  if (gps_period_ > 0) log_->present_files.push_back("gps.csv");
+  if (pose_period_ > 0) log_->present_files.push_back("pose.csv");
+  if (command_period_ > 0) log_->present_files.push_back("commands.csv");
+}
+
+int64_t SensorSimulator::Period(double rate_hz) const {
+  if (rate_hz <= 0.0) return 0;
+  const double steps = 1.0 / (rate_hz * step_s_);
+  const int64_t period = std::llround(steps);
+  if (period < 1 || std::abs(steps - period) > 1e-6) {
+    throw std::invalid_argument("sensor rate " + std::to_string(rate_hz) +
+                                " Hz is not a whole number of simulation steps");
+  }
+  return period;
+}
+
+double SensorSimulator::Normal(double sd) { return sd * normal_(*rng_); }
+
+void SensorSimulator::Observe(const KinematicState& s, int64_t step) {
+  if (imu_period_ > 0 && step % imu_period_ == 0) EmitImu(s);
+  if (wheel_period_ > 0 && step % wheel_period_ == 0) EmitWheels(s);
+  if (gps_period_ > 0 && step % gps_period_ == 0) EmitGps(s);
+  if (attitude_period_ > 0 && step % attitude_period_ == 0) {
+    log_->attitude.push_back({s.t, s.roll + Normal(spec_.attitude_sd_rad),
+                              s.pitch + Normal(spec_.attitude_sd_rad),
+                              s.yaw + Normal(spec_.attitude_sd_yaw_rad), spec_.attitude_sd_rad,
+                              spec_.attitude_sd_rad, spec_.attitude_sd_yaw_rad});
+  }
+  if (pose_period_ > 0 && step % pose_period_ == 0) {
+    log_->pose.push_back({s.t, s.x + Normal(spec_.pose_sd_xy_m), s.y + Normal(spec_.pose_sd_xy_m),
+                          s.z + Normal(spec_.pose_sd_xy_m), s.roll + Normal(spec_.attitude_sd_rad),
+                          s.pitch + Normal(spec_.attitude_sd_rad),
+                          s.yaw + Normal(spec_.pose_sd_yaw_rad), spec_.pose_sd_xy_m,
+                          spec_.pose_sd_xy_m, spec_.pose_sd_yaw_rad});
+  }
+  if (command_period_ > 0 && step % command_period_ == 0) {
+    log_->commands.push_back({s.t, s.command_v_mps, s.command_yaw_rate_radps});
+  }
+}
+
+void SensorSimulator::EmitImu(const KinematicState& s) {
+  const double dt = imu_period_ * step_s_;
+  for (int i = 0; i < 3; ++i) {
+    accel_bias_[i] = GaussMarkovStep(accel_bias_[i], spec_.accel_bias_sd_mps2,
+                                     spec_.accel_bias_tau_s, dt, normal_(*rng_));
+    gyro_bias_[i] = GaussMarkovStep(gyro_bias_[i], spec_.gyro_bias_sd_radps,
+                                    spec_.gyro_bias_tau_s, dt, normal_(*rng_));
+  }
+  // Specific force in the body frame: f = a - g_world expressed in body axes (REP-103, z up).
+  const double cp = std::cos(s.pitch), sp = std::sin(s.pitch);
+  const double cr = std::cos(s.roll), sr = std::sin(s.roll);
+  double f[3] = {s.a_bx - kGravity * sp, s.v_bx * s.yaw_rate + kGravity * sr * cp,
+                 kGravity * cr * cp};
+  double w[3] = {s.roll_rate, s.pitch_rate, s.yaw_rate};
+  // imu_mounting_pitch: sensor axes pitched nose-down by delta about body y.
+  const double delta = EffectValue(effects_, "imu_mounting_pitch");
+  if (delta != 0.0) {
+    const double cd = std::cos(delta), sd = std::sin(delta);
+    const double fx = f[0] * cd - f[2] * sd, fz = f[0] * sd + f[2] * cd;
+    f[0] = fx, f[2] = fz;
+    const double wx = w[0] * cd - w[2] * sd, wz = w[0] * sd + w[2] * cd;
+    w[0] = wx, w[2] = wz;
+  }
+  ImuSample imu;
+  // clock_offset: the IMU's stamps are late by the offset.
+  imu.t = s.t + EffectValue(effects_, "clock_offset");
+  double* out_f[3] = {&imu.ax, &imu.ay, &imu.az};
+  double* out_w[3] = {&imu.gx, &imu.gy, &imu.gz};
+  for (int i = 0; i < 3; ++i) {
+    *out_f[i] = f[i] + imu_errors_.accel_offset_mps2[i] + accel_bias_[i] + Normal(spec_.sd_accel_mps2);
+    *out_w[i] = w[i] + imu_errors_.gyro_offset_radps[i] + gyro_bias_[i] + Normal(spec_.sd_gyro_radps);
+  }
+  log_->imu.push_back(imu);
+}
+
+void SensorSimulator::EmitWheels(const KinematicState& s) {
+  const double dt = wheel_period_ * step_s_;
+  WheelSample sample;
+  sample.t = s.t;
+  const int counts_per_rev = spec_.encoder_counts_per_rev;
+  for (int w = 0; w < wheel_count_; ++w) {
+    double omega = s.omega_radps[w];
+    if (counts_per_rev > 0) {
+      const int64_t counts =
+          static_cast<int64_t>(std::floor(s.wheel_angle_rad[w] * counts_per_rev / (2.0 * M_PI)));
+      omega = have_last_counts_
+                  ? (counts - last_counts_[w]) * 2.0 * M_PI / counts_per_rev / dt
+                  : s.omega_radps[w];
+      last_counts_[w] = counts;
+    }
+    sample.omega_radps[w] = omega + Normal(spec_.sd_omega_radps);
+  }
+  have_last_counts_ = true;
+  log_->wheels.push_back(sample);
+}
+
+void SensorSimulator::EmitGps(const KinematicState& s) {
+  GpsSample gps;
+  gps.t = s.t;
+  gps.x = s.x + Normal(spec_.gps_sd_xy_m);
+  gps.y = s.y + Normal(spec_.gps_sd_xy_m);
+  gps.z = s.z + Normal(spec_.gps_sd_z_m);
+  const double cy = std::cos(s.yaw), sy = std::sin(s.yaw);
+  double vx = s.v_bx * cy - s.v_by * sy;
+  double vy = s.v_bx * sy + s.v_by * cy;
+  double vz = -s.v_bx * std::sin(s.pitch);
+  if (EffectValue(effects_, "gps_velocity_averaging") != 0.0 && last_gps_t_ >= 0.0) {
+    // Mean velocity over the previous interval: the true position difference.
+    const double dt = s.t - last_gps_t_;
+    vx = (s.x - last_gps_x_) / dt;
+    vy = (s.y - last_gps_y_) / dt;
+    vz = (s.z - last_gps_z_) / dt;
+  }
+  last_gps_x_ = s.x, last_gps_y_ = s.y, last_gps_z_ = s.z, last_gps_t_ = s.t;
+  gps.vx = vx + Normal(spec_.gps_sd_v_mps);
+  gps.vy = vy + Normal(spec_.gps_sd_v_mps);
+  gps.vz = vz + Normal(spec_.gps_sd_v_mps);
+  gps.sd_xy = spec_.gps_sd_xy_m;
+  gps.sd_z = spec_.gps_sd_z_m;
+  gps.sd_v = spec_.gps_sd_v_mps;
+  log_->gps.push_back(gps);
+}
+
+}  // namespace sim
+}  // namespace slipgraph

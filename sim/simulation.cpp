@@ -1,0 +1,129 @@
+#include "sim/simulation.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "io/input_error.h"
+#include "io/log_writer.h"
+#include "sim/diff_drive_sim.h"
+
+namespace slipgraph {
+namespace sim {
+
+SimResult Simulate(const Scenario& scenario, uint64_t seed) {
+  switch (scenario.vehicle.type) {
+    case VehicleType::kDiffDriveCastor:
+      return SimulateDiffDrive(scenario, seed);
+    default:
+      throw std::invalid_argument(std::string("no simulator for vehicle type ") +
+                                  VehicleTypeName(scenario.vehicle.type) + " yet");
+  }
+}
+
+namespace {
+
+void EmitTire(YAML::Emitter& e, const TireParams& tire) {
+  e << YAML::Flow << YAML::BeginMap << YAML::Key << "C1" << YAML::Value << tire.C1 << YAML::Key
+    << "At" << YAML::Value << tire.At << YAML::Key << "C2" << YAML::Value << tire.C2
+    << YAML::EndMap;
+}
+
+void EmitRolling(YAML::Emitter& e, const RollingParams& rolling) {
+  e << YAML::Flow << YAML::BeginMap << YAML::Key << "R1" << YAML::Value << rolling.R1
+    << YAML::Key << "A_roll" << YAML::Value << rolling.A_roll << YAML::Key << "R2" << YAML::Value
+    << rolling.R2 << YAML::EndMap;
+}
+
+}  // namespace
+
+void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& result,
+                     const std::string& directory) {
+  WriteDriveLog(result.log, directory);
+  YAML::Emitter e;
+  e << YAML::Comment("Everything that was true in this simulation. Estimators never read it.");
+  e << YAML::BeginMap;
+  e << YAML::Key << "scenario" << YAML::Value << scenario.name;
+  e << YAML::Key << "seed" << YAML::Value << seed;
+  e << YAML::Key << "duration_s" << YAML::Value << scenario.duration_s();
+  e << YAML::Key << "sim_step_s" << YAML::Value << scenario.sim_step_s;
+  e << YAML::Key << "effects" << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, value] : scenario.effects) e << YAML::Key << name << YAML::Value << value;
+  e << YAML::EndMap;
+  e << YAML::Key << "true_wheel_radius_m" << YAML::Value << result.true_wheel_radius_m;
+  e << YAML::Key << "imu_accel_offset_mps2" << YAML::Value << YAML::Flow
+    << std::vector<double>(result.imu_errors.accel_offset_mps2,
+                           result.imu_errors.accel_offset_mps2 + 3);
+  e << YAML::Key << "imu_gyro_offset_radps" << YAML::Value << YAML::Flow
+    << std::vector<double>(result.imu_errors.gyro_offset_radps,
+                           result.imu_errors.gyro_offset_radps + 3);
+  e << YAML::Key << "terrain_patches" << YAML::Value << YAML::BeginSeq;
+  for (const TerrainPatch& patch : scenario.course.patches) {
+    e << YAML::BeginMap << YAML::Key << "s_start_m" << YAML::Value << patch.s_start_m;
+    e << YAML::Key << "terrain" << YAML::Value << patch.terrain.name;
+    e << YAML::Key << "tire" << YAML::Value;
+    EmitTire(e, patch.terrain.tire);
+    e << YAML::Key << "rolling" << YAML::Value;
+    EmitRolling(e, patch.terrain.rolling);
+    e << YAML::Key << "soft" << YAML::Value << patch.terrain.soft << YAML::EndMap;
+  }
+  e << YAML::EndSeq;
+  e << YAML::Key << "hills" << YAML::Value << YAML::BeginSeq;
+  for (const Hill& hill : scenario.course.hills) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "s_start_m" << YAML::Value
+      << hill.s_start_m << YAML::Key << "length_m" << YAML::Value << hill.length_m << YAML::Key
+      << "peak_grade_rad" << YAML::Value << hill.peak_grade_rad << YAML::Key
+      << "peak_cross_slope_rad" << YAML::Value << hill.peak_cross_slope_rad << YAML::EndMap;
+  }
+  e << YAML::EndSeq;
+  e << YAML::Key << "holdbacks" << YAML::Value << YAML::BeginSeq;
+  for (const HoldBack& hold : scenario.holdbacks) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "t_start_s" << YAML::Value
+      << hold.t_start_s << YAML::Key << "t_end_s" << YAML::Value << hold.t_end_s
+      << YAML::EndMap;
+  }
+  e << YAML::EndSeq;
+  const Actuation& a = scenario.actuation;
+  e << YAML::Key << "actuation" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  e << YAML::Key << "torque_limit_nm" << YAML::Value << a.torque_limit_nm;
+  e << YAML::Key << "wheel_inertia_kgm2" << YAML::Value << a.wheel_inertia_kgm2;
+  e << YAML::Key << "kp" << YAML::Value << a.kp_nm_per_radps;
+  e << YAML::Key << "ki" << YAML::Value << a.ki_nm_per_rad;
+  e << YAML::Key << "tether_stiffness_npm" << YAML::Value << a.tether_stiffness_npm;
+  e << YAML::Key << "tether_damping_nspm" << YAML::Value << a.tether_damping_nspm;
+  e << YAML::EndMap;
+  const SensorSpec& s = scenario.sensors;
+  e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
+  const std::pair<const char*, double> sensor_fields[] = {
+      {"imu_rate_hz", s.imu_rate_hz},
+      {"wheel_rate_hz", s.wheel_rate_hz},
+      {"gps_rate_hz", s.gps_rate_hz},
+      {"attitude_rate_hz", s.attitude_rate_hz},
+      {"pose_rate_hz", s.pose_rate_hz},
+      {"encoder_counts_per_rev", static_cast<double>(s.encoder_counts_per_rev)},
+      {"sd_accel_mps2", s.sd_accel_mps2},
+      {"sd_gyro_radps", s.sd_gyro_radps},
+      {"accel_bias_sd_mps2", s.accel_bias_sd_mps2},
+      {"accel_bias_tau_s", s.accel_bias_tau_s},
+      {"gyro_bias_sd_radps", s.gyro_bias_sd_radps},
+      {"gyro_bias_tau_s", s.gyro_bias_tau_s},
+      {"sd_omega_radps", s.sd_omega_radps},
+      {"gps_sd_xy_m", s.gps_sd_xy_m},
+      {"gps_sd_v_mps", s.gps_sd_v_mps},
+      {"attitude_sd_rad", s.attitude_sd_rad},
+      {"pose_sd_xy_m", s.pose_sd_xy_m},
+      {"pose_sd_yaw_rad", s.pose_sd_yaw_rad},
+  };
+  for (const auto& [key, value] : sensor_fields) e << YAML::Key << key << YAML::Value << value;
+  e << YAML::EndMap;
+  e << YAML::EndMap;
+  const std::string path = (std::filesystem::path(directory) / "sim.yaml").string();
+  std::ofstream out(path);
+  if (!out) throw InputError(path, 0, "", "", "cannot open file for writing");
+  out << e.c_str() << "\n";
+}
+
+}  // namespace sim
+}  // namespace slipgraph

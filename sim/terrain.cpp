@@ -1,0 +1,69 @@
+#include "sim/terrain.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace slipgraph {
+namespace sim {
+namespace {
+
+// Raised-cosine bump shape in [0, 1] over [0, 1], zero with zero slope at both ends.
+double Bump(double u) {
+  if (u <= 0.0 || u >= 1.0) return 0.0;
+  return 0.5 * (1.0 - std::cos(2.0 * M_PI * u));
+}
+
+}  // namespace
+
+const std::vector<TerrainType>& TerrainCatalogue() {
+  // Coefficients chosen around the LAGR nominal (C1 0.55, At 15, C2 0.05); grass is set so that
+  // the LAGR robot held back with its wheels spinning at 1 m/s pulls 325 N (Ward Sec. III-B).
+  static const std::vector<TerrainType> kCatalogue = {
+      {"asphalt", {0.85, 30.0, 0.02}, {0.015, 20.0, 0.005}, false},
+      {"gravel", {0.60, 15.0, 0.05}, {0.040, 20.0, 0.010}, false},
+      {"grass", {0.42, 20.0, 0.0435}, {0.050, 20.0, 0.020}, false},
+      {"mulch", {0.50, 10.0, 0.08}, {0.070, 15.0, 0.020}, true},
+      {"mud", {0.38, 8.0, 0.10}, {0.090, 10.0, 0.030}, true},
+      {"soft_dirt", {0.55, 12.0, 0.06}, {0.060, 15.0, 0.020}, true},
+      {"loose_rock", {0.65, 18.0, 0.03}, {0.050, 20.0, 0.010}, false},
+  };
+  return kCatalogue;
+}
+
+const TerrainType& FindTerrain(const std::string& name) {
+  for (const TerrainType& terrain : TerrainCatalogue()) {
+    if (terrain.name == name) return terrain;
+  }
+  throw std::invalid_argument("unknown terrain '" + name + "'");
+}
+
+const TerrainPatch& Course::PatchAt(double s_m) const {
+  size_t index = 0;
+  for (size_t i = 1; i < patches.size(); ++i) {
+    if (patches[i].s_start_m <= s_m) index = i;
+  }
+  return patches.at(index);
+}
+
+double Course::DistanceIntoPatch(double s_m) const {
+  return s_m - PatchAt(s_m).s_start_m;
+}
+
+double Course::GradeRad(double s_m) const {
+  double grade = 0.0;
+  for (const Hill& hill : hills) {
+    grade += hill.peak_grade_rad * Bump((s_m - hill.s_start_m) / hill.length_m);
+  }
+  return grade;
+}
+
+double Course::CrossSlopeRad(double s_m) const {
+  double cross = 0.0;
+  for (const Hill& hill : hills) {
+    cross += hill.peak_cross_slope_rad * Bump((s_m - hill.s_start_m) / hill.length_m);
+  }
+  return cross;
+}
+
+}  // namespace sim
+}  // namespace slipgraph

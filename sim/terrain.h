@@ -1,0 +1,54 @@
+// Terrain the simulated vehicle drives over: soil/tire patches and slopes, both as functions of
+// the distance travelled along the path (s, m), so a course is independent of the steering.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/vehicle.h"
+
+namespace slipgraph {
+namespace sim {
+
+struct TerrainType {
+  std::string name;
+  TireParams tire;        // true traction/braking coefficients on this soil (eq. 8)
+  RollingParams rolling;  // true rolling resistance (eq. 9)
+  bool soft = false;      // compaction possible (sinkage_resistance effect)
+};
+
+// grass, mulch, gravel (loose gravel over hard soil), mud, asphalt, soft_dirt, loose_rock.
+const std::vector<TerrainType>& TerrainCatalogue();
+// Throws std::invalid_argument for an unknown name (a programmer error in a scenario).
+const TerrainType& FindTerrain(const std::string& name);
+
+struct TerrainPatch {
+  double s_start_m = 0.0;  // the patch extends to the next patch's start
+  TerrainType terrain;
+};
+
+// A smooth hill along the path: grade angle rises and falls as a raised cosine from s_start_m
+// over length_m, peaking at peak_grade_rad (uphill positive, Ward's phi), with a cross slope
+// (roll, right side down positive) scaled the same way.
+struct Hill {
+  double s_start_m = 0.0;
+  double length_m = 1.0;
+  double peak_grade_rad = 0.0;
+  double peak_cross_slope_rad = 0.0;
+};
+
+struct Course {
+  std::vector<TerrainPatch> patches;  // sorted by s_start_m; the first should start at 0
+  std::vector<Hill> hills;
+
+  // The patch in force at path distance s (the first patch before any start).
+  const TerrainPatch& PatchAt(double s_m) const;
+  // Grade angle (uphill positive) and cross slope at s.
+  double GradeRad(double s_m) const;
+  double CrossSlopeRad(double s_m) const;
+  // Distance into the current patch (for effects that build up, e.g. sinkage).
+  double DistanceIntoPatch(double s_m) const;
+};
+
+}  // namespace sim
+}  // namespace slipgraph

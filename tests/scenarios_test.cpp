@@ -1,0 +1,98 @@
+#include "sim/scenarios.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/log_reader.h"
+#include "sim/simulation.h"
+#include "tests/test_log_files.h"
+
+namespace slipgraph {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+std::string SimulateTo(const std::string& name, uint64_t seed, const std::string& tag) {
+  const std::string dir = testing::FreshDirectory(tag);
+  const sim::ScenarioRun run = sim::ExpandScenario(name, seed).at(0);
+  sim::WriteSimulation(run.scenario, run.seed, sim::Simulate(run.scenario, run.seed), dir);
+  return dir;
+}
+
+TEST(Scenarios, SameSeedGivesTheSameBytesAndAnotherSeedDoesNot) {
+  const std::string a = SimulateTo("ward21/03", 1, "a");
+  const std::string b = SimulateTo("ward21/03", 1, "b");
+  const std::string c = SimulateTo("ward21/03", 2, "c");
+  for (const char* file : {"imu.csv", "wheels.csv", "gps.csv", "truth.csv", "events.csv",
+                           "vehicle.yaml", "sim.yaml"}) {
+    EXPECT_EQ(Slurp(fs::path(a) / file), Slurp(fs::path(b) / file)) << file;
+  }
+  EXPECT_NE(Slurp(fs::path(a) / "imu.csv"), Slurp(fs::path(c) / "imu.csv"));
+}
+
+TEST(Scenarios, Ward21HasTwentyHoldBacksOverAbout120Metres) {
+  const std::vector<sim::ScenarioRun> runs = sim::ExpandScenario("ward21", 1);
+  ASSERT_EQ(runs.size(), 21u);
+  int holdbacks = 0, events = 0;
+  double distance = 0.0;
+  for (const sim::ScenarioRun& run : runs) {
+    holdbacks += static_cast<int>(run.scenario.holdbacks.size());
+    const sim::SimResult r = sim::Simulate(run.scenario, run.seed);
+    events += static_cast<int>(r.log.events.size());
+    for (size_t i = 1; i < r.log.truth.size(); ++i) {
+      distance += std::hypot(r.log.truth[i].x - r.log.truth[i - 1].x,
+                             r.log.truth[i].y - r.log.truth[i - 1].y);
+    }
+  }
+  EXPECT_EQ(holdbacks, 20);
+  EXPECT_EQ(events, 20);  // each hold-back immobilizes the robot, nothing else does
+  EXPECT_NEAR(distance, 120.0, 15.0);
+}
+
+TEST(Scenarios, EveryScenarioWritesALogThatReadsBackCleanly) {
+  std::vector<std::string> names = {"fig5", "ward21/21", "hidden/none", "hidden/corrugation"};
+  for (const sim::EffectInfo& effect : sim::EffectCatalogue()) {
+    names.push_back("hidden/" + effect.name);
+  }
+  for (const std::string& name : names) {
+    std::string tag = name;
+    for (char& ch : tag) ch = ch == '/' ? '_' : ch;
+    const std::string dir = SimulateTo(name, 5, tag);
+    const DriveLog log = ReadDriveLog(dir);
+    EXPECT_TRUE(log.warnings.empty()) << name;
+    EXPECT_FALSE(log.imu.empty()) << name;
+    EXPECT_EQ(log.truth.size(), log.wheels.size()) << name;
+    EXPECT_TRUE(fs::exists(fs::path(dir) / "sim.yaml")) << name;
+  }
+}
+
+TEST(Scenarios, HiddenSuiteHasOneLogPerEffectAndNone) {
+  const std::vector<sim::ScenarioRun> runs = sim::ExpandScenario("hidden", 1);
+  EXPECT_EQ(runs.size(), sim::EffectCatalogue().size() + 1);
+  EXPECT_EQ(runs[0].relative_directory, "none");
+  EXPECT_TRUE(runs[0].scenario.effects.empty());
+  for (size_t i = 1; i < runs.size(); ++i) EXPECT_EQ(runs[i].scenario.effects.size(), 1u);
+}
+
+TEST(Scenarios, UnknownScenarioIsNamed) {
+  try {
+    sim::ExpandScenario("moon_landing", 1);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("moon_landing"), std::string::npos);
+  }
+  EXPECT_THROW(sim::ExpandScenario("ward21/22", 1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace slipgraph

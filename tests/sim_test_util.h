@@ -1,0 +1,45 @@
+// Small helpers for simulator tests: a flat single-terrain LAGR scenario and truth lookups.
+#pragma once
+
+#include <cmath>
+#include <functional>
+
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+
+namespace slipgraph {
+namespace testing {
+
+inline sim::Scenario FlatLagrScenario(const std::string& terrain, double speed_mps,
+                                      double drive_s) {
+  sim::Scenario sc;
+  sc.name = "test";
+  sc.vehicle = sim::LagrVehicle();
+  sc.course.patches = {{0.0, sim::FindTerrain(terrain)}};
+  sc.rest_start_s = 2.0;
+  sc.commands = {{drive_s, speed_mps, 0.0}};
+  return sc;
+}
+
+// Mean of f(truth sample) over t in [t0, t1].
+inline double MeanTruth(const DriveLog& log, double t0, double t1,
+                        const std::function<double(const TruthSample&)>& f) {
+  double sum = 0.0;
+  int n = 0;
+  for (const TruthSample& s : log.truth) {
+    if (s.t >= t0 && s.t <= t1) sum += f(s), ++n;
+  }
+  return n > 0 ? sum / n : std::nan("");
+}
+
+// Root of a monotonic increasing g on [lo, hi] by bisection.
+inline double Bisect(const std::function<double(double)>& g, double lo, double hi) {
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) > 0.0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace testing
+}  // namespace slipgraph
