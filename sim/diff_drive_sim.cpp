@@ -8,6 +8,7 @@
 #include "factors/rolling_resistance.h"
 #include "factors/smooth_math.h"
 #include "factors/traction.h"
+#include "sim/command_schedule.h"
 #include "sim/sensor_models.h"
 
 namespace slipgraph {
@@ -24,16 +25,6 @@ constexpr double kSinkageBuildUpM = 0.5;
 constexpr double kCorrugationWavelengthM = 0.8;
 // Smoothing rate of sign(v) in the effect forces, 1/(m/s).
 constexpr double kEffectSignRate = 20.0;
-
-double MoveToward(double value, double target, double max_step) {
-  return value + std::clamp(target - value, -max_step, max_step);
-}
-
-// Slip of a wheel, i = 1 - v/(r w) when driving, -(1 - r w / v) when braking (eqs. 6-7).
-double WheelSlip(double surface_speed_mps, double v_fwd_mps) {
-  const double scale = std::max({std::abs(surface_speed_mps), std::abs(v_fwd_mps), 1e-3});
-  return (surface_speed_mps - v_fwd_mps) / scale;
-}
 
 class EventTracker {
  public:
@@ -70,7 +61,6 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
   const double r_nominal = veh.wheel_radius_m;
   const double r_true = r_nominal * (1.0 + EffectValue(fx, "wheel_radius_error"));
   result.true_wheel_radius_m = r_true;
-  const bool castor = veh.type == VehicleType::kDiffDriveCastor;
   const double duration = sc.duration_s();
 
   SensorSimulator sensors(sc.sensors, fx, 2, dt, &rng, &log);
@@ -80,7 +70,8 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
 
   KinematicState state;
   double s = 0.0;  // distance travelled along the path
-  double v_cmd = 0.0, w_cmd = 0.0, a_prev = 0.0;
+  CommandSchedule commands(sc);
+  double a_prev = 0.0;
   double integral[2] = {0.0, 0.0};
   double previous_roll = 0.0, previous_pitch = 0.0;
   int active_hold = -1;
@@ -92,20 +83,8 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
   const double steps_per_s = std::round(1.0 / dt);
   for (int64_t k = 0; k <= steps; ++k) {
     const double t = k / steps_per_s;
-    // Command in force: rest, then the segments in order.
-    double target_v = 0.0, target_w = 0.0;
-    double segment_end = sc.rest_start_s;
-    if (t >= sc.rest_start_s) {
-      for (const CommandSegment& segment : sc.commands) {
-        segment_end += segment.duration_s;
-        if (t < segment_end) {
-          target_v = segment.v_mps, target_w = segment.yaw_rate_radps;
-          break;
-        }
-      }
-    }
-    v_cmd = MoveToward(v_cmd, target_v, act.accel_limit_mps2 * dt);
-    w_cmd = MoveToward(w_cmd, target_w, act.yaw_accel_limit_radps2 * dt);
+    commands.Step(t, dt);
+    const double v_cmd = commands.v_mps(), w_cmd = commands.yaw_rate_radps();
 
     // Terrain under the vehicle.
     TerrainType terrain = sc.course.PatchAt(s).terrain;
@@ -119,19 +98,12 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     tire.C1 *= std::max(0.05, 1.0 - EffectValue(fx, "slope_slip") * std::abs(grade));
 
     // Normal forces (eqs. 3-5), plus load transfer under acceleration when switched on.
-    double n_front[2], n_rear_each;
-    if (castor) {
-      const auto n = DiffDriveCastorNormalForcesN(weight, cross, grade, veh.cg_to_front_m,
-                                                  veh.cg_to_rear_m, c, veh.cg_height_m);
-      const double transfer = EffectValue(fx, "load_transfer") * m * a_prev * veh.cg_height_m /
-                              (veh.cg_to_front_m + veh.cg_to_rear_m) / 2.0;
-      n_front[0] = n.front_left_n - transfer, n_front[1] = n.front_right_n - transfer;
-      n_rear_each = n.rear_each_n + transfer;
-    } else {
-      const auto n = SideTotalNormalForcesN(weight, cross, grade, c, veh.cg_height_m);
-      n_front[0] = n.left_n, n_front[1] = n.right_n;
-      n_rear_each = 0.0;
-    }
+    const auto n = DiffDriveCastorNormalForcesN(weight, cross, grade, veh.cg_to_front_m,
+                                                veh.cg_to_rear_m, c, veh.cg_height_m);
+    const double transfer = EffectValue(fx, "load_transfer") * m * a_prev * veh.cg_height_m /
+                            (veh.cg_to_front_m + veh.cg_to_rear_m) / 2.0;
+    const double n_front[2] = {n.front_left_n - transfer, n.front_right_n - transfer};
+    const double n_rear_each = n.rear_each_n + transfer;
 
     // Tire forces on each side (0 = left, 1 = right).
     const double v = state.v_bx, yaw_rate = state.yaw_rate;
@@ -219,7 +191,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
       truth.slip.fill(kMissing);
       truth.sinkage.fill(kMissing);
       for (int side = 0; side < 2; ++side) {
-        truth.slip[side] = WheelSlip(r_true * state.omega_radps[side], v_fwd[side]);
+        truth.slip[side] = TrueWheelSlip(r_true * state.omega_radps[side], v_fwd[side]);
       }
       log.truth.push_back(truth);
     }

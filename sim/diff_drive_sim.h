@@ -12,7 +12,7 @@
 namespace slipgraph {
 namespace sim {
 
-// Requires scenario.vehicle.type == kDiffDriveCastor (or kSkidSteer driven the same way).
+// Requires scenario.vehicle.type == kDiffDriveCastor.
 SimResult SimulateDiffDrive(const Scenario& scenario, uint64_t seed);
 
 }  // namespace sim

@@ -1,5 +1,6 @@
 #include "sim/scenarios.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 #include <stdexcept>
@@ -11,7 +12,7 @@ namespace {
 // A terrain with exactly the nominal coefficients the user believes (hidden-effect logs: the
 // only model error is the hidden effect).
 TerrainType NominalTerrain(const Vehicle& vehicle, bool soft) {
-  return {soft ? "nominal_soft" : "nominal", vehicle.tire, vehicle.rolling, soft};
+  return {soft ? "nominal_soft" : "nominal", vehicle.tire, vehicle.rolling, soft, IpdSlip{}};
 }
 
 uint64_t RunSeed(uint64_t seed, uint64_t run) { return seed * 1000003ULL + run; }
@@ -84,7 +85,71 @@ Scenario HiddenEffect(const std::string& effect) {
   return sc;
 }
 
+// Rogers-Marcovitz et al. Sec. III: 35 minutes of varied driving (up to 1.7 m/s and 3 rad/s)
+// over soft dirt, asphalt, loose rock and grass, with terrain boundaries and slopes.
+Scenario Ipd35(uint64_t seed) {
+  std::mt19937_64 rng(RunSeed(seed, 35));
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Scenario sc;
+  sc.name = "ipd35";
+  sc.vehicle = TrackedVehicle();
+  sc.sim_step_s = 0.001;
+  sc.actuation.accel_limit_mps2 = 1.5;
+  sc.actuation.yaw_accel_limit_radps2 = 4.0;
+  sc.sensors.gps_rate_hz = 0.0;  // post-processed GNSS/INS pose instead
+  sc.sensors.pose_rate_hz = 10.0;
+  sc.sensors.encoder_counts_per_rev = 2048;
+  sc.sensors.sd_accel_mps2 = 0.01;  // tactical-grade IMU
+  sc.sensors.sd_gyro_radps = 0.0005;
+  sc.sensors.accel_offset_max_mps2 = 0.02;
+  sc.sensors.gyro_offset_max_radps = 0.001;
+  sc.sensors.accel_bias_sd_mps2 = 0.002;
+  sc.sensors.gyro_bias_sd_radps = 0.0002;
+  sc.sensors.pose_sd_xy_m = 0.02;
+  sc.sensors.pose_sd_yaw_rad = 0.005;
+  static const char* const kTerrains[] = {"soft_dirt", "asphalt", "loose_rock", "grass"};
+  // Terrain patches of 150-350 m, cycling, over the ~2 km driven.
+  double s = 0.0;
+  for (int i = 0; s < 4000.0; ++i) {
+    sc.course.patches.push_back({s, FindTerrain(kTerrains[i % 4])});
+    s += 150.0 + 200.0 * u(rng);
+  }
+  for (double h = 20.0; h < 4000.0; h += 25.0 + 30.0 * u(rng)) {
+    sc.course.hills.push_back(
+        {h, 8.0 + 12.0 * u(rng), 0.24 * (u(rng) - 0.5), 0.16 * (u(rng) - 0.5)});
+  }
+  sc.rest_start_s = 3.0;
+  double total = sc.rest_start_s;
+  while (total < 35.0 * 60.0) {
+    CommandSegment segment;
+    segment.duration_s = 2.0 + 4.0 * u(rng);
+    segment.v_mps = 0.2 + 1.5 * u(rng);
+    // Track speeds stay within 1.7 m/s: |v| + c/2 |w| <= 1.7 + margin for sharp turns.
+    const double max_w = std::min(3.0, (2.0 - segment.v_mps) / (0.5 * sc.vehicle.track_width_m));
+    segment.yaw_rate_radps = max_w * (2.0 * u(rng) - 1.0) * (u(rng) < 0.2 ? 0.1 : 1.0);
+    sc.commands.push_back(segment);
+    total += segment.duration_s;
+  }
+  sc.commands.push_back({2.0, 0.0, 0.0});
+  return sc;
+}
+
 }  // namespace
+
+Vehicle TrackedVehicle() {
+  Vehicle v;
+  v.name = "tracked";
+  v.type = VehicleType::kSkidSteer;
+  v.mass_kg = 300.0;
+  v.yaw_inertia_kgm2 = 40.0;
+  v.wheel_radius_m = 0.15;
+  v.track_width_m = 0.8;
+  v.cg_height_m = 0.35;
+  v.tire = {0.6, 15.0, 0.05};
+  v.rolling = {0.05, 20.0, 0.015};
+  v.sensors = {0.01, 0.0005, 0.03, 0.02, 0.05};
+  return v;
+}
 
 Vehicle LagrVehicle() {
   Vehicle v;
@@ -117,6 +182,8 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
     runs.push_back({"", Ward21Run(run, seed), RunSeed(seed, run)});
   } else if (name == "fig5") {
     runs.push_back({"", Fig5(seed), seed});
+  } else if (name == "ipd35") {
+    runs.push_back({"", Ipd35(seed), RunSeed(seed, 35)});
   } else if (name == "hidden") {
     runs.push_back({"none", HiddenEffect("none"), seed});
     for (const EffectInfo& effect : EffectCatalogue()) {
@@ -131,7 +198,7 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
 }
 
 std::string ScenarioHelp() {
-  return "scenarios: ward21, ward21/NN (01..21), fig5, hidden, hidden/EFFECT, hidden/none";
+  return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, hidden, hidden/EFFECT, hidden/none";
 }
 
 }  // namespace sim

@@ -3,6 +3,8 @@
 //                     and grass at 0.1-1 m/s with 20 hold-back events; a suite (run_01..run_21)
 //   ward21/NN         one run of it (NN = 01..21)
 //   fig5              the paper's Fig. 5: 1 m/s on grass, then held back (325 N) for 4 s
+//   ipd35             tracked skid-steer robot, 35 min over soft dirt, asphalt, loose rock and
+//                     grass with terrain boundaries (Rogers-Marcovitz et al. Sec. III)
 //   hidden            one log per catalogue effect with only that effect on, plus `none`
 //   hidden/EFFECT     one of them (hidden/none: no effect)
 // Every scenario is a pure function of (name, seed): the same inputs give the same bytes.
@@ -19,6 +21,8 @@ namespace sim {
 
 // The LAGR robot as its user believes it to be (vehicle.yaml of the simulated logs).
 Vehicle LagrVehicle();
+// The tracked skid-steer robot of the ipd35 suite.
+Vehicle TrackedVehicle();
 
 struct ScenarioRun {
   std::string relative_directory;  // "" for a single log, else the log's folder in the suite

@@ -91,7 +91,8 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   // Specific force in the body frame: f = a - g_world expressed in body axes (REP-103, z up).
   const double cp = std::cos(s.pitch), sp = std::sin(s.pitch);
   const double cr = std::cos(s.roll), sr = std::sin(s.roll);
-  double f[3] = {s.a_bx - kGravity * sp, s.v_bx * s.yaw_rate + kGravity * sr * cp,
+  double f[3] = {s.a_bx - s.v_by * s.yaw_rate - kGravity * sp,
+                 s.a_by + s.v_bx * s.yaw_rate + kGravity * sr * cp,
                  kGravity * cr * cp};
   double w[3] = {s.roll_rate, s.pitch_rate, s.yaw_rate};
   // imu_mounting_pitch: sensor axes pitched nose-down by delta about body y.

@@ -22,6 +22,7 @@ struct KinematicState {
   double roll_rate = 0.0, pitch_rate = 0.0;
   double v_bx = 0.0, v_by = 0.0, yaw_rate = 0.0;
   double a_bx = 0.0;  // dv_bx/dt
+  double a_by = 0.0;  // dv_by/dt
   std::array<double, kMaxWheels> wheel_angle_rad{};
   std::array<double, kMaxWheels> omega_radps{};
   double command_v_mps = 0.0;

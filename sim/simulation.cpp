@@ -9,6 +9,7 @@
 #include "io/input_error.h"
 #include "io/log_writer.h"
 #include "sim/diff_drive_sim.h"
+#include "sim/skid_steer_sim.h"
 
 namespace slipgraph {
 namespace sim {
@@ -17,6 +18,8 @@ SimResult Simulate(const Scenario& scenario, uint64_t seed) {
   switch (scenario.vehicle.type) {
     case VehicleType::kDiffDriveCastor:
       return SimulateDiffDrive(scenario, seed);
+    case VehicleType::kSkidSteer:
+      return SimulateSkidSteer(scenario, seed);
     default:
       throw std::invalid_argument(std::string("no simulator for vehicle type ") +
                                   VehicleTypeName(scenario.vehicle.type) + " yet");

@@ -2,6 +2,7 @@
 // the distance travelled along the path (s, m), so a course is independent of the steering.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -10,11 +11,19 @@
 namespace slipgraph {
 namespace sim {
 
+// Rogers-Marcovitz et al.'s generative slip model on this terrain: slip velocities
+// u_s = C(u_n, g) alpha + w, w white with spectral densities q (eqs. 14, 16-17).
+struct IpdSlip {
+  std::array<double, 13> alpha{};       // factors/ipd_kinematics.h for the layout
+  std::array<double, 3> q_density{};    // (m/s)^2/Hz, (m/s)^2/Hz, (rad/s)^2/Hz
+};
+
 struct TerrainType {
   std::string name;
   TireParams tire;        // true traction/braking coefficients on this soil (eq. 8)
   RollingParams rolling;  // true rolling resistance (eq. 9)
   bool soft = false;      // compaction possible (sinkage_resistance effect)
+  IpdSlip ipd;            // tracked vehicle slip on this soil
 };
 
 // grass, mulch, gravel (loose gravel over hard soil), mud, asphalt, soft_dirt, loose_rock.
