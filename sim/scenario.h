@@ -66,6 +66,24 @@ struct SensorSpec {
   double pose_sd_yaw_rad = 0.005;
 };
 
+// The articulated 6-wheel rover of Wilcox: per-side terrain profiles, sinkage, slip, and the
+// articulation and look-ahead ranging sensors.
+struct RockerSpec {
+  double roughness_rms_m = 0.01;    // RMS of each side's synthetic terrain profile y(x)
+  double slip_mean = 0.2;           // true slip: advance = rim motion x (1 - slip)
+  double slip_sd = 0.02;            // cycle-to-cycle variation of the slip
+  double cycle_rate_hz = 1.0;       // articulation and range sampling
+  double articulation_sd_m = 0.00004;  // 0.04 mm (Wilcox Sec. 3)
+  double range_sd_m = 0.002;           // 2 mm
+  double range_first_m = 0.02;      // first sensed point ahead of the front wheel
+  double range_spacing_m = 0.02;    // spacing of sensed points
+  int range_points = 30;            // per side and cycle
+  double base_sinkage_m = 0.003;    // sinkage everywhere
+  double soft_sinkage_m = 0.015;    // extra sinkage at the centre of soft patches
+  double soft_patch_every_m = 2.0;  // a soft patch (raised cosine, 0.6 m long) this often
+  double left_extra_sinkage_m = 0.0;  // > 0: the left side sinks more (breaks the L/R check)
+};
+
 struct Scenario {
   std::string name;
   Vehicle vehicle;  // nominal: what vehicle.yaml says; the truth may differ through effects
@@ -76,6 +94,7 @@ struct Scenario {
   Actuation actuation;
   SensorSpec sensors;
   EffectSet effects;
+  RockerSpec rocker;           // rocker_bogie6 only
   double sim_step_s = 0.0005;  // internal integration step
 
   double duration_s() const {

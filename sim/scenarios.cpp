@@ -134,7 +134,47 @@ Scenario Ipd35(uint64_t seed) {
   return sc;
 }
 
+// Wilcox Fig. 4: the rover drives 5 m straight at a rim speed of 6.25 cm/s with 20 % slip (about
+// 5 cm of advance per 1 Hz cycle) over terrain of the given RMS roughness.
+Scenario WilcoxRun(double roughness_m, double left_extra_sinkage_m, const std::string& name) {
+  Scenario sc;
+  sc.name = name;
+  sc.vehicle = RockerVehicle();
+  sc.sim_step_s = 0.01;
+  sc.course.patches = {{0.0, NominalTerrain(sc.vehicle, true)}};
+  sc.rest_start_s = 3.0;
+  sc.commands = {{100.0, 0.0625, 0.0}};
+  sc.actuation.accel_limit_mps2 = 0.1;
+  sc.rocker.roughness_rms_m = roughness_m;
+  sc.rocker.left_extra_sinkage_m = left_extra_sinkage_m;
+  SensorSpec& s = sc.sensors;
+  s.imu_rate_hz = 50.0, s.wheel_rate_hz = 10.0, s.attitude_rate_hz = 10.0;
+  s.truth_rate_hz = 10.0, s.command_rate_hz = 1.0, s.gps_rate_hz = 0.0;
+  s.encoder_counts_per_rev = 0;  // geared wheel speed from motor encoders: no coarse quanta
+  s.sd_omega_radps = 0.002;
+  return sc;
+}
+
+const double kWilcoxRoughnessCm[] = {0.25, 0.5, 1.0, 2.0, 4.0};
+constexpr int kWilcoxRunsPerRoughness = 8;
+
 }  // namespace
+
+Vehicle RockerVehicle() {
+  Vehicle v;
+  v.name = "rover";
+  v.type = VehicleType::kRockerBogie6;
+  v.mass_kg = 11.5;
+  v.yaw_inertia_kgm2 = 0.5;
+  v.wheel_radius_m = 0.065;
+  v.track_width_m = 0.45;
+  v.cg_height_m = 0.2;
+  v.axle_spacing_m = 0.24;
+  v.tire = {0.6, 15.0, 0.05};
+  v.rolling = {0.08, 20.0, 0.05};
+  v.sensors = {0.02, 0.002, 0.005, 0.5, 0.1};
+  return v;
+}
 
 Vehicle TrackedVehicle() {
   Vehicle v;
@@ -184,6 +224,33 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
     runs.push_back({"", Fig5(seed), seed});
   } else if (name == "ipd35") {
     runs.push_back({"", Ipd35(seed), RunSeed(seed, 35)});
+  } else if (name == "wilcox") {
+    for (double roughness_cm : kWilcoxRoughnessCm) {
+      for (int run = 1; run <= kWilcoxRunsPerRoughness; ++run) {
+        char dir[48];
+        std::snprintf(dir, sizeof(dir), "r%gcm_run%02d", roughness_cm, run);
+        const uint64_t run_seed = RunSeed(seed, static_cast<uint64_t>(roughness_cm * 100) * 100 + run);
+        runs.push_back({dir, WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir),
+                        run_seed});
+      }
+    }
+  } else if (name == "wilcox_lr") {
+    // Left/right consistency: 2 cm roughness, half the runs with 1 cm more sinkage on the left
+    // in the soft patches (the same-ruts assumption then fails on one side).
+    for (int run = 1; run <= 4; ++run) {
+      for (bool asymmetric : {false, true}) {
+        char dir[48];
+        std::snprintf(dir, sizeof(dir), "%s_run%02d", asymmetric ? "asym" : "sym", run);
+        runs.push_back({dir,
+                        WilcoxRun(0.02, asymmetric ? 0.01 : 0.0, std::string("wilcox_lr/") + dir),
+                        RunSeed(seed, 900 + run)});
+      }
+    }
+  } else if (name.rfind("wilcox/", 0) == 0) {
+    // wilcox/<roughness cm>, e.g. wilcox/1: one run of the suite.
+    const double roughness_cm = std::atof(name.c_str() + 7);
+    if (!(roughness_cm > 0.0)) throw std::invalid_argument("wilcox/<roughness in cm>: '" + name + "'");
+    runs.push_back({"", WilcoxRun(roughness_cm / 100.0, 0.0, name), RunSeed(seed, 777)});
   } else if (name == "hidden") {
     runs.push_back({"none", HiddenEffect("none"), seed});
     for (const EffectInfo& effect : EffectCatalogue()) {
@@ -198,7 +265,8 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
 }
 
 std::string ScenarioHelp() {
-  return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, hidden, hidden/EFFECT, hidden/none";
+  return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, wilcox, wilcox/ROUGHNESS_CM, "
+         "wilcox_lr, hidden, hidden/EFFECT, hidden/none";
 }
 
 }  // namespace sim

@@ -5,6 +5,9 @@
 //   fig5              the paper's Fig. 5: 1 m/s on grass, then held back (325 N) for 4 s
 //   ipd35             tracked skid-steer robot, 35 min over soft dirt, asphalt, loose rock and
 //                     grass with terrain boundaries (Rogers-Marcovitz et al. Sec. III)
+//   wilcox            articulated rover, roughness 0.25-4 cm RMS at 20 % slip, 8 runs each
+//                     (Wilcox Fig. 4); wilcox/R: one run at R cm
+//   wilcox_lr         4 runs with equal sinkage on both sides, 4 with more on the left
 //   hidden            one log per catalogue effect with only that effect on, plus `none`
 //   hidden/EFFECT     one of them (hidden/none: no effect)
 // Every scenario is a pure function of (name, seed): the same inputs give the same bytes.
@@ -21,6 +24,8 @@ namespace sim {
 
 // The LAGR robot as its user believes it to be (vehicle.yaml of the simulated logs).
 Vehicle LagrVehicle();
+// The 6-wheel rocker-bogie rover of the wilcox suites (Sojourner-like).
+Vehicle RockerVehicle();
 // The tracked skid-steer robot of the ipd35 suite.
 Vehicle TrackedVehicle();
 

@@ -9,6 +9,7 @@
 #include "io/input_error.h"
 #include "io/log_writer.h"
 #include "sim/diff_drive_sim.h"
+#include "sim/rocker_bogie_sim.h"
 #include "sim/skid_steer_sim.h"
 
 namespace slipgraph {
@@ -20,10 +21,10 @@ SimResult Simulate(const Scenario& scenario, uint64_t seed) {
       return SimulateDiffDrive(scenario, seed);
     case VehicleType::kSkidSteer:
       return SimulateSkidSteer(scenario, seed);
-    default:
-      throw std::invalid_argument(std::string("no simulator for vehicle type ") +
-                                  VehicleTypeName(scenario.vehicle.type) + " yet");
+    case VehicleType::kRockerBogie6:
+      return SimulateRockerBogie(scenario, seed);
   }
+  throw std::invalid_argument("unknown vehicle type");
 }
 
 namespace {
@@ -88,6 +89,36 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
       << YAML::EndMap;
   }
   e << YAML::EndSeq;
+  if (scenario.vehicle.type == VehicleType::kRockerBogie6) {
+    const RockerSpec& r = scenario.rocker;
+    e << YAML::Key << "rocker" << YAML::Value << YAML::BeginMap;
+    const std::pair<const char*, double> rocker_fields[] = {
+        {"roughness_rms_m", r.roughness_rms_m},
+        {"slip_mean", r.slip_mean},
+        {"slip_sd", r.slip_sd},
+        {"cycle_rate_hz", r.cycle_rate_hz},
+        {"articulation_sd_m", r.articulation_sd_m},
+        {"range_sd_m", r.range_sd_m},
+        {"range_first_m", r.range_first_m},
+        {"range_spacing_m", r.range_spacing_m},
+        {"range_points", static_cast<double>(r.range_points)},
+        {"base_sinkage_m", r.base_sinkage_m},
+        {"soft_sinkage_m", r.soft_sinkage_m},
+        {"soft_patch_every_m", r.soft_patch_every_m},
+        {"left_extra_sinkage_m", r.left_extra_sinkage_m},
+    };
+    for (const auto& [key, value] : rocker_fields) e << YAML::Key << key << YAML::Value << value;
+    const char* const side_names[] = {"left_profile", "right_profile"};
+    for (size_t side = 0; side < result.profiles.size() && side < 2; ++side) {
+      const TerrainProfile& p = result.profiles[side];
+      e << YAML::Key << side_names[side] << YAML::Value << YAML::BeginMap;
+      e << YAML::Key << "wavelength_m" << YAML::Value << YAML::Flow << p.wavelength_m;
+      e << YAML::Key << "amplitude_m" << YAML::Value << YAML::Flow << p.amplitude_m;
+      e << YAML::Key << "phase_rad" << YAML::Value << YAML::Flow << p.phase_rad;
+      e << YAML::EndMap;
+    }
+    e << YAML::EndMap;
+  }
   const Actuation& a = scenario.actuation;
   e << YAML::Key << "actuation" << YAML::Value << YAML::Flow << YAML::BeginMap;
   e << YAML::Key << "torque_limit_nm" << YAML::Value << a.torque_limit_nm;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "io/drive_log.h"
 #include "sim/scenario.h"
@@ -16,6 +17,7 @@ struct SimResult {
   DriveLog log;  // vehicle.yaml (nominal), sensor files, truth.csv, events.csv
   ImuErrors imu_errors;
   double true_wheel_radius_m = 0.0;
+  std::vector<TerrainProfile> profiles;  // rocker_bogie6: left and right terrain profiles
 };
 
 // Deterministic: the same scenario and seed give the same log, bit for bit.

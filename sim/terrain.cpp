@@ -1,6 +1,8 @@
 #include "sim/terrain.h"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 namespace slipgraph {
@@ -12,6 +14,12 @@ double Bump(double u) {
   if (u <= 0.0 || u >= 1.0) return 0.0;
   return 0.5 * (1.0 - std::cos(2.0 * M_PI * u));
 }
+
+constexpr int kWavelengths = 20;
+constexpr double kLongestWavelengthM = 1.9;
+constexpr double kWavelengthRatio = 1.3;
+
+double Sinc(double x) { return std::abs(x) < 1e-12 ? 1.0 : std::sin(M_PI * x) / (M_PI * x); }
 
 }  // namespace
 
@@ -72,6 +80,46 @@ double Course::CrossSlopeRad(double s_m) const {
     cross += hill.peak_cross_slope_rad * Bump((s_m - hill.s_start_m) / hill.length_m);
   }
   return cross;
+}
+
+double TerrainProfile::Elevation(double x_m) const {
+  double y = 0.0;
+  for (size_t k = 0; k < wavelength_m.size(); ++k) {
+    y += amplitude_m[k] * std::sin(2.0 * M_PI * x_m / wavelength_m[k] + phase_rad[k]);
+  }
+  return y;
+}
+
+double TerrainProfile::WheelElevation(double x_m, double patch_m) const {
+  double y = 0.0;
+  for (size_t k = 0; k < wavelength_m.size(); ++k) {
+    y += amplitude_m[k] * Sinc(patch_m / wavelength_m[k]) *
+         std::sin(2.0 * M_PI * x_m / wavelength_m[k] + phase_rad[k]);
+  }
+  return y;
+}
+
+TerrainProfile MakeTerrainProfile(double roughness_rms_m, double length_m, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  TerrainProfile p;
+  for (int k = 0; k < kWavelengths; ++k) {
+    const double lambda = kLongestWavelengthM / std::pow(kWavelengthRatio, kWavelengths - 1 - k);
+    p.wavelength_m.push_back(lambda);
+    p.amplitude_m.push_back(lambda * u(rng));  // uniform up to a multiple of the wavelength
+    p.phase_rad.push_back(2.0 * M_PI * u(rng));
+  }
+  // Scale to the requested RMS over the course (1 mm sampling).
+  double sum = 0.0, sum_sq = 0.0;
+  const int n = std::max(1000, static_cast<int>(length_m / 0.001));
+  for (int i = 0; i < n; ++i) {
+    const double y = p.Elevation(length_m * i / n);
+    sum += y, sum_sq += y * y;
+  }
+  const double mean = sum / n;
+  const double rms = std::sqrt(std::max(sum_sq / n - mean * mean, 1e-30));
+  for (double& a : p.amplitude_m) a *= roughness_rms_m / rms;
+  return p;
 }
 
 }  // namespace sim

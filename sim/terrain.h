@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,19 @@ struct Course {
   // Distance into the current patch (for effects that build up, e.g. sinkage).
   double DistanceIntoPatch(double s_m) const;
 };
+
+// One side's synthetic terrain profile for the articulated rover (Wilcox Sec. 3):
+// y(x) = sum_k a_k sin(2 pi x / lambda_k + phase_k).
+struct TerrainProfile {
+  std::vector<double> wavelength_m, amplitude_m, phase_rad;
+  // Raw elevation, and the elevation averaged over a contact patch of length patch_m.
+  double Elevation(double x_m) const;
+  double WheelElevation(double x_m, double patch_m) const;
+};
+
+// 20 wavelengths from 1.3 cm to 1.9 m, each 30 % longer than the last, amplitude uniform up to
+// the wavelength, random phase; scaled so the RMS over [0, length_m] is roughness_rms_m.
+TerrainProfile MakeTerrainProfile(double roughness_rms_m, double length_m, uint64_t seed);
 
 }  // namespace sim
 }  // namespace slipgraph

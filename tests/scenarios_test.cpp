@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 
@@ -60,7 +61,7 @@ TEST(Scenarios, Ward21HasTwentyHoldBacksOverAbout120Metres) {
 }
 
 TEST(Scenarios, EveryScenarioWritesALogThatReadsBackCleanly) {
-  std::vector<std::string> names = {"fig5", "ward21/21", "hidden/none", "hidden/corrugation"};
+  std::vector<std::string> names = {"fig5", "ward21/21", "wilcox/0.5", "hidden/none"};
   for (const sim::EffectInfo& effect : sim::EffectCatalogue()) {
     names.push_back("hidden/" + effect.name);
   }
@@ -82,6 +83,39 @@ TEST(Scenarios, HiddenSuiteHasOneLogPerEffectAndNone) {
   EXPECT_EQ(runs[0].relative_directory, "none");
   EXPECT_TRUE(runs[0].scenario.effects.empty());
   for (size_t i = 1; i < runs.size(); ++i) EXPECT_EQ(runs[i].scenario.effects.size(), 1u);
+}
+
+TEST(Scenarios, WilcoxSuitesCoverTheRoughnessSweepAndTheLeftRightCheck) {
+  const std::vector<sim::ScenarioRun> runs = sim::ExpandScenario("wilcox", 1);
+  ASSERT_EQ(runs.size(), 40u);  // 5 roughness levels x 8 runs
+  EXPECT_EQ(runs.front().relative_directory, "r0.25cm_run01");
+  EXPECT_DOUBLE_EQ(runs.back().scenario.rocker.roughness_rms_m, 0.04);
+  for (const sim::ScenarioRun& run : runs) {
+    EXPECT_DOUBLE_EQ(run.scenario.rocker.slip_mean, 0.2);
+    EXPECT_EQ(run.scenario.vehicle.type, VehicleType::kRockerBogie6);
+  }
+  const std::vector<sim::ScenarioRun> lr = sim::ExpandScenario("wilcox_lr", 1);
+  int asymmetric = 0;
+  for (const sim::ScenarioRun& run : lr) asymmetric += run.scenario.rocker.left_extra_sinkage_m > 0;
+  EXPECT_EQ(asymmetric, 4);
+  EXPECT_EQ(lr.size(), 8u);
+}
+
+TEST(Scenarios, Ipd35IsThirtyFiveMinutesOfTrackedDrivingOverFourTerrains) {
+  const sim::Scenario sc = sim::ExpandScenario("ipd35", 1).at(0).scenario;
+  EXPECT_EQ(sc.vehicle.type, VehicleType::kSkidSteer);
+  EXPECT_NEAR(sc.duration_s(), 35.0 * 60.0, 10.0);
+  std::set<std::string> terrains;
+  for (const sim::TerrainPatch& patch : sc.course.patches) terrains.insert(patch.terrain.name);
+  EXPECT_EQ(terrains, (std::set<std::string>{"asphalt", "grass", "loose_rock", "soft_dirt"}));
+  double max_v = 0.0, max_w = 0.0;
+  for (const sim::CommandSegment& c : sc.commands) {
+    max_v = std::max(max_v, c.v_mps), max_w = std::max(max_w, std::abs(c.yaw_rate_radps));
+  }
+  EXPECT_LE(max_v, 1.7);
+  EXPECT_GT(max_v, 1.5);
+  EXPECT_LE(max_w, 3.0);
+  EXPECT_GT(max_w, 2.0);
 }
 
 TEST(Scenarios, UnknownScenarioIsNamed) {
