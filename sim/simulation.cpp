@@ -15,7 +15,24 @@
 namespace slipgraph {
 namespace sim {
 
+bool EffectSupported(VehicleType type, const std::string& effect) {
+  if (type == VehicleType::kDiffDriveCastor) return FindEffect(effect) != nullptr;
+  // The kinematic simulators have no force balance: only sensor-side and geometric effects.
+  static const char* const kKinematic[] = {"wheel_radius_error", "imu_mounting_pitch",
+                                           "clock_offset", "gps_velocity_averaging"};
+  for (const char* name : kKinematic) {
+    if (effect == name) return type == VehicleType::kSkidSteer || effect != "gps_velocity_averaging";
+  }
+  return false;
+}
+
 SimResult Simulate(const Scenario& scenario, uint64_t seed) {
+  for (const auto& [effect, value] : scenario.effects) {
+    if (!EffectSupported(scenario.vehicle.type, effect)) {
+      throw std::invalid_argument("effect '" + effect + "' is not simulated for " +
+                                  VehicleTypeName(scenario.vehicle.type) + " vehicles");
+    }
+  }
   switch (scenario.vehicle.type) {
     case VehicleType::kDiffDriveCastor:
       return SimulateDiffDrive(scenario, seed);

@@ -20,7 +20,12 @@ struct SimResult {
   std::vector<TerrainProfile> profiles;  // rocker_bogie6: left and right terrain profiles
 };
 
-// Deterministic: the same scenario and seed give the same log, bit for bit.
+// Whether the simulator of a vehicle type applies `effect` (the kinematic skid-steer and rocker
+// simulators apply only the sensor-side and geometric effects).
+bool EffectSupported(VehicleType type, const std::string& effect);
+
+// Deterministic: the same scenario and seed give the same log, bit for bit. Throws
+// std::invalid_argument for an effect the vehicle's simulator does not apply.
 SimResult Simulate(const Scenario& scenario, uint64_t seed);
 
 // Writes the log and sim.yaml (every true parameter and effect; no estimator reads it) to

@@ -118,6 +118,15 @@ TEST(Scenarios, Ipd35IsThirtyFiveMinutesOfTrackedDrivingOverFourTerrains) {
   EXPECT_GT(max_w, 2.0);
 }
 
+TEST(Scenarios, AnEffectAVehicleSimulatorCannotApplyIsAnError) {
+  sim::Scenario sc = sim::ExpandScenario("wilcox/1", 1).at(0).scenario;
+  sc.effects["quadratic_drag"] = 40.0;
+  EXPECT_THROW(sim::Simulate(sc, 1), std::invalid_argument);
+  EXPECT_TRUE(sim::EffectSupported(VehicleType::kSkidSteer, "gps_velocity_averaging"));
+  EXPECT_FALSE(sim::EffectSupported(VehicleType::kRockerBogie6, "gps_velocity_averaging"));
+  EXPECT_TRUE(sim::EffectSupported(VehicleType::kDiffDriveCastor, "corrugation"));
+}
+
 TEST(Scenarios, UnknownScenarioIsNamed) {
   try {
     sim::ExpandScenario("moon_landing", 1);
