@@ -12,5 +12,7 @@ std::string DefaultLogPath();
 
 void RegisterInfoCommand(CLI::App* app, int* status);
 void RegisterSimulateCommand(CLI::App* app, int* status);
+void RegisterFilterCommand(CLI::App* app, int* status);
+void RegisterEvaluateCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

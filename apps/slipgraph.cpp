@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   int status = 0;
   slipgraph::RegisterInfoCommand(&app, &status);
   slipgraph::RegisterSimulateCommand(&app, &status);
+  slipgraph::RegisterFilterCommand(&app, &status);
+  slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

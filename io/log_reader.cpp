@@ -1,5 +1,6 @@
 #include "io/log_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -100,6 +101,23 @@ std::vector<CsvColumn> Columns(std::initializer_list<const char*> required,
 
 bool IsLogDirectory(const std::string& directory) {
   return fs::exists(fs::path(directory) / "vehicle.yaml");
+}
+
+std::vector<std::string> ListLogs(const std::string& path) {
+  if (IsLogDirectory(path)) return {path};
+  std::vector<std::string> logs;
+  if (fs::is_directory(path)) {
+    for (const auto& entry : fs::directory_iterator(path)) {
+      if (entry.is_directory() && IsLogDirectory(entry.path().string())) {
+        logs.push_back(entry.path().string());
+      }
+    }
+  }
+  std::sort(logs.begin(), logs.end());
+  if (logs.empty()) {
+    throw InputError(path, 0, "", "", "neither a log (no vehicle.yaml) nor a suite of logs");
+  }
+  return logs;
 }
 
 DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/drive_log.h"
 
@@ -21,5 +22,9 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options =
 
 // True when `directory` holds a log (has vehicle.yaml); a suite is a directory of such.
 bool IsLogDirectory(const std::string& directory);
+
+// The logs at `path`: itself when it is a log, else its sub-directories that are logs, sorted.
+// Throws InputError when there are none.
+std::vector<std::string> ListLogs(const std::string& path);
 
 }  // namespace slipgraph

@@ -14,7 +14,7 @@ namespace slipgraph {
 // Continuous-time process noise of Ward & Iagnemma eq. (10), as white-noise densities.
 struct ProcessNoiseConfig {
   double v_bx_mps2_per_sqrt_hz = 0.3;      // w1: unmodelled longitudinal acceleration
-  double a_dist_mps3_per_sqrt_hz = 1.5;    // w3: random walk of the disturbance acceleration
+  double a_dist_mps3_per_sqrt_hz = 5.0;    // w3: random walk of the disturbance acceleration
   double omega_radps2_per_sqrt_hz = 10.0;  // w4, w5: wheel acceleration (controller neglected)
   double yaw_rate_radps2_per_sqrt_hz = 1.0;  // w6: unmodelled yaw acceleration
   double accel_bias_sd_mps2 = 0.02;        // sigma_abx: stationary sd of the walking bias b_ax
@@ -29,7 +29,7 @@ struct WeakConstraintConfig {
   double sd_mps2 = 0.05;                 // sigma of each pseudo-measurement on a_dist / biases
   double min_slip_rate_per_s = 0.05;     // WC2 min_delta_i: slow slip growth, per second
   double slip_threshold = 0.3;           // WC2 thresh_i: WC2 applies only below this EMA slip
-  double decay_alpha = 0.9;              // WC2 alpha, 0 < alpha < 1
+  double decay_alpha = 0.995;            // WC2 alpha, 0 < alpha < 1, applied per filter cycle
   double stop_time_s = 1.0;              // WC4 t_stop: wheels at rest this long
   double max_v_bx_mps = 3.0;             // WC5 bound on |v_bx|
   double max_accel_bias_mps2 = 0.5;      // WC5 bound on |b_ax|

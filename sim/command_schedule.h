@@ -42,12 +42,5 @@ class CommandSchedule {
   double yaw_rate_radps_ = 0.0;
 };
 
-// Slip of a wheel or track: i = 1 - v/(r w) when driving, -(1 - r w / v) when braking (Ward &
-// Iagnemma eqs. 6-7), as one bounded expression.
-inline double TrueWheelSlip(double surface_speed_mps, double v_fwd_mps) {
-  const double scale = std::max({std::abs(surface_speed_mps), std::abs(v_fwd_mps), 1e-3});
-  return (surface_speed_mps - v_fwd_mps) / scale;
-}
-
 }  // namespace sim
 }  // namespace slipgraph

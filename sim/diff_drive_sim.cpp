@@ -8,6 +8,7 @@
 #include "factors/rolling_resistance.h"
 #include "factors/smooth_math.h"
 #include "factors/traction.h"
+#include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
 #include "sim/sensor_models.h"
 
@@ -191,7 +192,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
       truth.slip.fill(kMissing);
       truth.sinkage.fill(kMissing);
       for (int side = 0; side < 2; ++side) {
-        truth.slip[side] = TrueWheelSlip(r_true * state.omega_radps[side], v_fwd[side]);
+        truth.slip[side] = SlipRatio(r_true * state.omega_radps[side], v_fwd[side]);
       }
       log.truth.push_back(truth);
     }

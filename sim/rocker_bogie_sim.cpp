@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
 #include "sim/sensor_models.h"
 
@@ -122,7 +123,7 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
       for (int side = 0; side < 2; ++side) {
         for (int w = 0; w < 3; ++w) {
           const int column = side * 3 + (2 - w);
-          truth.slip[column] = TrueWheelSlip(r_true * omega, v);
+          truth.slip[column] = SlipRatio(r_true * omega, v);
           truth.sinkage[column] = Sinkage(spec, x_rear + w * axle, side == 0);
         }
       }

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "factors/ipd_kinematics.h"
+#include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
 #include "sim/sensor_models.h"
 
@@ -99,7 +100,7 @@ SimResult SimulateSkidSteer(const Scenario& sc, uint64_t seed) {
       truth.sinkage.fill(kMissing);
       for (int side = 0; side < 2; ++side) {
         const double v_fwd = u[0] + (side == 0 ? -0.5 : 0.5) * c * u[2];
-        truth.slip[side] = TrueWheelSlip(r_true * state.omega_radps[side], v_fwd);
+        truth.slip[side] = SlipRatio(r_true * state.omega_radps[side], v_fwd);
       }
       log.truth.push_back(truth);
     }

@@ -1,0 +1,70 @@
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "evaluation/evaluation.h"
+#include "io/input_error.h"
+#include "io/log_reader.h"
+
+namespace slipgraph {
+namespace {
+
+void PrintEvaluation(const Evaluation& ev, std::ostream& out) {
+  out << std::fixed << std::setprecision(4) << ev.name << ": " << ev.samples
+      << " samples, velocity RMSE " << ev.velocity_rmse << " m/s, disturbance RMSE "
+      << ev.disturbance_rmse << " m/s^2, immobilized " << ev.detected() << "/" << ev.events.size()
+      << " detected, mean delay " << ev.mean_detection_delay_s() << " s, false immobilized "
+      << ev.false_immobilized_samples << " samples (" << 100.0 * ev.false_immobilized_fraction()
+      << " %)\n";
+}
+
+}  // namespace
+
+void RegisterEvaluateCommand(CLI::App* app, int* status) {
+  struct Options {
+    std::string log;
+    std::string estimates;
+    bool json = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app->add_subcommand(
+      "evaluate", "Score estimates against the log's truth.csv and events.csv");
+  cmd->add_option("LOG", options->log, "Log or suite directory")->required();
+  cmd->add_option("ESTIMATES", options->estimates,
+                  "Estimate CSV (a suite: the directory of <log>.csv files)")
+      ->required();
+  cmd->add_flag("--json", options->json, "Print one JSON object instead of text");
+  cmd->callback([options, status]() {
+    namespace fs = std::filesystem;
+    const std::vector<std::string> logs = ListLogs(options->log);
+    const bool suite = !IsLogDirectory(options->log);
+    std::vector<Evaluation> runs;
+    for (const std::string& log_dir : logs) {
+      const std::string file =
+          suite ? (fs::path(options->estimates) / (fs::path(log_dir).filename().string() + ".csv"))
+                      .string()
+                : options->estimates;
+      runs.push_back(Evaluate(ReadDriveLog(log_dir), ReadNumericTable(file)));
+      runs.back().name = log_dir;
+    }
+    const Evaluation total = suite ? Combine(runs, options->log) : runs.front();
+    if (options->json) {
+      nlohmann::json out = ToJson(total);
+      if (suite) {
+        out["runs"] = nlohmann::json::array();
+        for (const Evaluation& run : runs) out["runs"].push_back(ToJson(run));
+      }
+      std::cout << out.dump(2) << "\n";
+    } else {
+      if (suite) {
+        for (const Evaluation& run : runs) PrintEvaluation(run, std::cout);
+        std::cout << "total ";
+      }
+      PrintEvaluation(total, std::cout);
+    }
+    *status = 0;
+  });
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,152 @@
+#include "evaluation/evaluation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/input_error.h"
+
+namespace slipgraph {
+namespace {
+
+// Truth interpolated linearly in time (truth is dense; clamps at the ends).
+class TruthTrack {
+ public:
+  explicit TruthTrack(const std::vector<TruthSample>& truth) : truth_(truth) {}
+  template <typename Field>
+  double At(double t, Field field) const {
+    auto it = std::lower_bound(truth_.begin(), truth_.end(), t,
+                               [](const TruthSample& s, double value) { return s.t < value; });
+    if (it == truth_.begin()) return field(truth_.front());
+    if (it == truth_.end()) return field(truth_.back());
+    const TruthSample& b = *it;
+    const TruthSample& a = *(it - 1);
+    const double u = (t - a.t) / (b.t - a.t);
+    return (1.0 - u) * field(a) + u * field(b);
+  }
+
+ private:
+  const std::vector<TruthSample>& truth_;
+};
+
+const std::vector<double>& Column(const NumericTable& table, const std::string& name) {
+  const auto it = table.columns.find(name);
+  if (it == table.columns.end()) {
+    throw InputError("estimates", 1, name, "", "required column is missing");
+  }
+  return it->second;
+}
+
+}  // namespace
+
+int Evaluation::detected() const {
+  return static_cast<int>(std::count_if(events.begin(), events.end(),
+                                        [](const EventScore& e) { return e.detected; }));
+}
+
+double Evaluation::mean_detection_delay_s() const {
+  double sum = 0.0;
+  int n = 0;
+  for (const EventScore& e : events) {
+    if (e.detected) sum += e.delay_s, ++n;
+  }
+  return n > 0 ? sum / n : std::nan("");
+}
+
+double Evaluation::false_immobilized_fraction() const {
+  return samples > 0 ? static_cast<double>(false_immobilized_samples) / samples : 0.0;
+}
+
+Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
+                    const EvaluationOptions& options) {
+  if (log.truth.empty()) {
+    throw InputError(log.directory + "/truth.csv", 0, "", "", "evaluation needs truth.csv");
+  }
+  Evaluation ev;
+  ev.name = log.directory;
+  const std::vector<double>& t = Column(estimates, "t");
+  const std::vector<double>& v = Column(estimates, "v_bx");
+  const std::vector<double>& flag = Column(estimates, "immobilized");
+  const auto a_dist_it = estimates.columns.find("a_dist");
+  const std::vector<double>* a_dist =
+      a_dist_it == estimates.columns.end() ? nullptr : &a_dist_it->second;
+  const TruthTrack truth(log.truth);
+  std::vector<Event> immobilized;
+  for (const Event& e : log.events) {
+    if (e.label == "immobilized") immobilized.push_back(e);
+  }
+  for (const Event& e : immobilized) ev.events.push_back({e.t_start, e.t_end, false, 0.0});
+
+  for (size_t i = 0; i < t.size(); ++i) {
+    ++ev.samples;
+    const double dv = v[i] - truth.At(t[i], [](const TruthSample& s) { return s.vx; });
+    ev.velocity_sq_sum += dv * dv;
+    if (a_dist != nullptr && std::isfinite(log.truth.front().a_dist)) {
+      const double da =
+          (*a_dist)[i] - truth.At(t[i], [](const TruthSample& s) { return s.a_dist; });
+      if (std::isfinite(da)) ev.disturbance_sq_sum += da * da, ++ev.disturbance_samples;
+    }
+    if (flag[i] < 0.5) continue;
+    bool near_event = false;
+    for (EventScore& e : ev.events) {
+      if (t[i] >= e.t_start - options.detection_early_s && t[i] <= e.t_end && !e.detected) {
+        e.detected = true;
+        e.delay_s = t[i] - e.t_start;
+      }
+      near_event = near_event || (t[i] >= e.t_start - options.false_grace_before_s &&
+                                  t[i] <= e.t_end + options.false_grace_after_s);
+    }
+    const double truth_flag = truth.At(t[i], [](const TruthSample& s) {
+      return std::isfinite(s.immobilized) ? s.immobilized : 0.0;
+    });
+    if (!near_event && truth_flag < 0.5) ++ev.false_immobilized_samples;
+  }
+  ev.velocity_rmse = ev.samples > 0 ? std::sqrt(ev.velocity_sq_sum / ev.samples) : std::nan("");
+  ev.disturbance_rmse = ev.disturbance_samples > 0
+                            ? std::sqrt(ev.disturbance_sq_sum / ev.disturbance_samples)
+                            : std::nan("");
+  return ev;
+}
+
+Evaluation Combine(const std::vector<Evaluation>& runs, const std::string& name) {
+  Evaluation total;
+  total.name = name;
+  for (const Evaluation& run : runs) {
+    total.samples += run.samples;
+    total.velocity_sq_sum += run.velocity_sq_sum;
+    total.disturbance_sq_sum += run.disturbance_sq_sum;
+    total.disturbance_samples += run.disturbance_samples;
+    total.false_immobilized_samples += run.false_immobilized_samples;
+    total.events.insert(total.events.end(), run.events.begin(), run.events.end());
+  }
+  total.velocity_rmse =
+      total.samples > 0 ? std::sqrt(total.velocity_sq_sum / total.samples) : std::nan("");
+  total.disturbance_rmse = total.disturbance_samples > 0
+                               ? std::sqrt(total.disturbance_sq_sum / total.disturbance_samples)
+                               : std::nan("");
+  return total;
+}
+
+nlohmann::json ToJson(const Evaluation& ev) {
+  const auto number = [](double value) -> nlohmann::json {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+  };
+  nlohmann::json events = nlohmann::json::array();
+  for (const EventScore& e : ev.events) {
+    events.push_back({{"t_start", e.t_start},
+                      {"t_end", e.t_end},
+                      {"detected", e.detected},
+                      {"delay_s", e.detected ? number(e.delay_s) : nlohmann::json(nullptr)}});
+  }
+  return {{"name", ev.name},
+          {"samples", ev.samples},
+          {"velocity_rmse", number(ev.velocity_rmse)},
+          {"disturbance_rmse", number(ev.disturbance_rmse)},
+          {"events", ev.events.size()},
+          {"detected", ev.detected()},
+          {"mean_detection_delay_s", number(ev.mean_detection_delay_s())},
+          {"false_immobilized_samples", ev.false_immobilized_samples},
+          {"false_immobilized_fraction", ev.false_immobilized_fraction()},
+          {"event_details", events}};
+}
+
+}  // namespace slipgraph

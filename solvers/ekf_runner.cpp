@@ -1,0 +1,108 @@
+#include "solvers/ekf_runner.h"
+
+#include <sstream>
+
+#include "io/estimate_file.h"
+#include "io/measurement_stream.h"
+
+namespace slipgraph {
+
+FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
+                    const FilterRunOptions& options) {
+  FilterResult result;
+  WardEkf ekf(log.vehicle, model, options.ekf);
+  StreamSelection selection;
+  selection.Set(Stream::kGps, options.use_gps);
+  selection.Set(Stream::kAttitude, options.use_attitude);
+  for (Stream s : {Stream::kImu, Stream::kWheels, Stream::kAttitude, Stream::kGps}) {
+    if (!selection.Uses(s)) continue;
+    const bool present = (s == Stream::kImu && !log.imu.empty()) ||
+                         (s == Stream::kWheels && !log.wheels.empty()) ||
+                         (s == Stream::kAttitude && !log.attitude.empty()) ||
+                         (s == Stream::kGps && !log.gps.empty());
+    if (present) result.streams_used.push_back(StreamName(s));
+  }
+  if (log.attitude.empty() || !options.use_attitude) {
+    result.notes.push_back("no attitude: ground taken as flat (roll = pitch = 0)");
+  }
+  if (log.gps.empty() || !options.use_gps) result.notes.push_back("no GNSS velocity used");
+  for (Stream s : {Stream::kPose, Stream::kArticulation, Stream::kRange, Stream::kCommands}) {
+    selection.Set(s, false);
+  }
+  result.estimates.reserve(log.wheels.size());
+  for (const StreamEntry& entry : MergeStreams(log, selection)) {
+    switch (entry.stream) {
+      case Stream::kImu:
+        ekf.AddImu(log.imu[entry.index]);
+        break;
+      case Stream::kAttitude:
+        ekf.AddAttitude(log.attitude[entry.index]);
+        break;
+      case Stream::kGps:
+        ekf.AddGps(log.gps[entry.index]);
+        break;
+      case Stream::kWheels: {
+        const WheelSample& w = log.wheels[entry.index];
+        const SideSpeeds sides = DrivenSideSpeeds(w, log.vehicle.type);
+        ekf.AddWheels(w.t, sides.left_radps, sides.right_radps);
+        result.estimates.push_back(ekf.Estimate());
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  result.stats = ekf.stats();
+  if (result.stats.gps.used == 0 && result.stats.gps.rejected > 0) {
+    result.notes.push_back("every GNSS fix was rejected by the gate");
+  }
+  return result;
+}
+
+void WriteEkfEstimates(const FilterResult& result, const std::string& path) {
+  std::vector<EstimateColumn> columns = {{"v_bx", true},       {"b_ax", true},
+                                         {"a_dist", true},     {"omega_left", true},
+                                         {"omega_right", true}, {"yaw_rate", true},
+                                         {"b_gz", true},       {"slip_left", false},
+                                         {"slip_right", false}, {"slip_ema", false},
+                                         {"immobilized", false}, {"accel_offset", false},
+                                         {"gyro_offset", false}};
+  EstimateWriter writer(path, columns);
+  std::vector<double> values(columns.size()), sds(columns.size(), 0.0);
+  for (const EkfEstimate& e : result.estimates) {
+    for (int i = 0; i < ward::kStateSize; ++i) values[i] = e.x[i], sds[i] = e.sd[i];
+    values[7] = e.slip.slip_left;
+    values[8] = e.slip.slip_right;
+    values[9] = e.slip.slip_ema;
+    values[10] = e.slip.immobilized ? 1.0 : 0.0;
+    values[11] = e.accel_offset_mps2;
+    values[12] = e.gyro_offset_radps;
+    writer.Write(e.t, values, sds);
+  }
+}
+
+std::string DescribeFilterRun(const FilterResult& result) {
+  std::ostringstream out;
+  out << "streams used:";
+  for (const std::string& s : result.streams_used) out << " " << s;
+  out << "\n";
+  const auto line = [&out](const char* name, const StreamCounters& c) {
+    out << "  " << name << ": " << c.used << " used, " << c.rejected << " rejected by the gate, "
+        << c.forced << " re-admitted, " << c.dropped_components << " NaN components dropped\n";
+  };
+  line("imu", result.stats.imu);
+  line("wheels", result.stats.wheels);
+  line("gps", result.stats.gps);
+  line("attitude", result.stats.attitude);
+  out << "  weak constraints applied:";
+  for (int i = 0; i < kWeakConstraintCount; ++i) {
+    out << " " << WeakConstraintName(static_cast<WeakConstraint>(i)) << "="
+        << result.stats.weak_constraints[i];
+  }
+  out << "\n  IMU samples for offset initialisation: " << result.stats.offset_init_samples
+      << ", late measurements: " << result.stats.late_measurements << "\n";
+  for (const std::string& note : result.notes) out << "  note: " << note << "\n";
+  return out.str();
+}
+
+}  // namespace slipgraph

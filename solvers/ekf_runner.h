@@ -1,0 +1,37 @@
+// Runs the Ward EKF over a whole drive log: the streams merged in time order, one estimate per
+// wheel cycle, and an account of which streams were used and what was rejected.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/drive_log.h"
+#include "model/model_config.h"
+#include "solvers/ward_ekf.h"
+
+namespace slipgraph {
+
+struct FilterRunOptions {
+  bool use_gps = true;        // --no-gps clears it
+  bool use_attitude = true;   // without attitude.csv the ground is taken as flat (and said so)
+  EkfOptions ekf;
+};
+
+struct FilterResult {
+  std::vector<EkfEstimate> estimates;  // one per wheel sample, after its cycle
+  EkfStats stats;
+  std::vector<std::string> streams_used;
+  std::vector<std::string> notes;  // assumptions and problems, one line each
+};
+
+FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
+                    const FilterRunOptions& options = {});
+
+// Estimate file: t, v_bx, b_ax, a_dist, omega_left, omega_right, yaw_rate, b_gz (each with
+// sd_), slip_left, slip_right, slip_ema, immobilized, accel_offset, gyro_offset.
+void WriteEkfEstimates(const FilterResult& result, const std::string& path);
+
+// One paragraph for the terminal: streams used, counts, rejections, weak constraints.
+std::string DescribeFilterRun(const FilterResult& result);
+
+}  // namespace slipgraph

@@ -1,0 +1,40 @@
+// Ward & Iagnemma Sec. III-E: the robot is immobilized when the EMA (eq. 12) of the mean slip of
+// the driven wheels exceeds a threshold. The threshold rises at low wheel speed, where encoder
+// noise makes slip noisy, and nothing is flagged while braking (v_bx > r w) or when the encoder
+// data is stale (missing encoder data is never reported as immobilization).
+#pragma once
+
+#include "model/model_config.h"
+#include "solvers/ema.h"
+
+namespace slipgraph {
+
+struct SlipEstimate {
+  double slip_left = 0.0;   // slip ratio of the left driven wheel/side (factors/slip_ratio.h)
+  double slip_right = 0.0;
+  double slip_ema = 0.0;    // EMA of the mean of the two
+  double threshold = 0.0;   // the speed-dependent threshold in force
+  bool braking = false;
+  bool immobilized = false;
+};
+
+class ImmobilizationDetector {
+ public:
+  ImmobilizationDetector(const ImmobilizationConfig& config, double wheel_radius_m,
+                         double track_width_m);
+
+  // One filter cycle: the estimated v_bx, yaw rate and wheel speeds. encoders_fresh false
+  // (encoder data missing) holds the EMA and never flags.
+  const SlipEstimate& Update(double v_bx_mps, double yaw_rate_radps, double omega_left_radps,
+                             double omega_right_radps, bool encoders_fresh);
+  const SlipEstimate& latest() const { return latest_; }
+
+ private:
+  ImmobilizationConfig config_;
+  double wheel_radius_m_;
+  double track_width_m_;
+  ExponentialMovingAverage ema_;
+  SlipEstimate latest_;
+};
+
+}  // namespace slipgraph

@@ -1,0 +1,298 @@
+#include "solvers/ward_ekf.h"
+
+#include <ceres/jet.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "factors/frames.h"
+#include "factors/ward_dynamics.h"
+#include "factors/ward_measurement.h"
+
+namespace slipgraph {
+namespace {
+
+using namespace ward;  // NOLINT: state and measurement indices
+
+bool IsFinite(double value) { return std::isfinite(value); }
+
+}  // namespace
+
+bool EkfOptions::IsValid(std::string* error) const {
+  if (!(wheels_gate_chi2 > 0.0 && gps_gate_chi2 > 0.0 && imu_gate_chi2 > 0.0)) {
+    *error = "gates must be positive";
+    return false;
+  }
+  if (imu_max_consecutive_rejections < 0 || wheels_max_consecutive_rejections < 0 ||
+      gps_max_consecutive_rejections < 0 || !(encoder_timeout_s > 0.0) ||
+      !(wheel_still_radps > 0.0)) {
+    *error = "max_consecutive_rejections, encoder_timeout and wheel_still must be positive";
+    return false;
+  }
+  for (double sd : initial_sd) {
+    if (!(sd > 0.0)) {
+      *error = "initial_sd entries must be positive";
+      return false;
+    }
+  }
+  return true;
+}
+
+WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOptions& options)
+    : params_(MakeParams(vehicle, model)),
+      model_(model),
+      options_(options),
+      offsets_(model.offset_init_samples, model.offset_ema_samples),
+      detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m) {
+  for (int i = 0; i < kStateSize; ++i) P_(i, i) = options.initial_sd[i] * options.initial_sd[i];
+}
+
+void WardEkf::Begin(double t) {
+  if (!started_) {
+    started_ = true;
+    t_ = t;
+    return;
+  }
+  if (t < t_) {
+    ++stats_.late_measurements;
+    return;
+  }
+  PredictTo(t);
+}
+
+void WardEkf::PredictTo(double t) {
+  const double dt = t - t_;
+  if (dt <= 0.0) return;
+  using Jet = ceres::Jet<double, kStateSize>;
+  Jet x_jet[kStateSize], next[kStateSize];
+  for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
+  const Attitude<Jet> attitude{Jet(roll_rad_), Jet(pitch_rad_)};
+  Propagate(x_jet, attitude, params_, dt, next);
+  StateMatrix A;
+  for (int r = 0; r < kStateSize; ++r) {
+    x_(r) = next[r].a;
+    A.row(r) = next[r].v.transpose();
+  }
+  // Discrete process noise of eq. (10): white-noise densities times dt, Gauss-Markov biases
+  // with their exact discrete variance.
+  const ProcessNoiseConfig& q = model_.process;
+  StateVector q_diag;
+  q_diag(kVbx) = q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz * dt;
+  q_diag(kAccelBias) = q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 *
+                       (1.0 - std::exp(-2.0 * dt / q.accel_bias_tau_s));
+  q_diag(kAdist) = q.a_dist_mps3_per_sqrt_hz * q.a_dist_mps3_per_sqrt_hz * dt;
+  q_diag(kOmegaLeft) = q_diag(kOmegaRight) =
+      q.omega_radps2_per_sqrt_hz * q.omega_radps2_per_sqrt_hz * dt;
+  q_diag(kYawRate) = q.yaw_rate_radps2_per_sqrt_hz * q.yaw_rate_radps2_per_sqrt_hz * dt;
+  q_diag(kGyroBias) = q.gyro_bias_sd_radps * q.gyro_bias_sd_radps *
+                      (1.0 - std::exp(-2.0 * dt / q.gyro_bias_tau_s));
+  P_ = A * P_ * A.transpose();
+  P_.diagonal() += q_diag;
+  t_ = t;
+}
+
+bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r,
+                     double gate_chi2, int max_consecutive_rejections,
+                     StreamCounters* counters, int* consecutive_rejections) {
+  const int m = static_cast<int>(nu.size());
+  if (m == 0) return false;
+  using RowSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
+  const Eigen::Matrix<double, Eigen::Dynamic, kStateSize, 0, kMaxRows, kStateSize> HP = H * P_;
+  RowSquare S = HP * H.transpose();
+  S.diagonal() += r;
+  const Eigen::LDLT<RowSquare> ldlt(S);
+  const double mahalanobis = nu.dot(ldlt.solve(nu));
+  if (std::isinf(gate_chi2) == false && mahalanobis > gate_chi2) {
+    if (consecutive_rejections == nullptr ||
+        ++*consecutive_rejections <= max_consecutive_rejections) {
+      ++counters->rejected;
+      return false;
+    }
+    ++counters->forced;
+  }
+  if (consecutive_rejections != nullptr) *consecutive_rejections = 0;
+  // K = P H^T S^-1; Joseph form P = (I - K H) P (I - K H)^T + K R K^T.
+  const Eigen::Matrix<double, kStateSize, Eigen::Dynamic, 0, kStateSize, kMaxRows> K =
+      ldlt.solve(HP).transpose();
+  x_ += K * nu;
+  const StateMatrix I_KH = StateMatrix::Identity() - K * H;
+  P_ = I_KH * P_ * I_KH.transpose() + K * r.asDiagonal() * K.transpose();
+  ++counters->used;
+  return true;
+}
+
+double WardEkf::GravityAlongX() const {
+  return params_.gravity_mps2 * std::sin(WardPitchUphillRad(pitch_rad_));
+}
+
+void WardEkf::AddAttitude(const AttitudeSample& attitude) {
+  if (!IsFinite(attitude.roll) || !IsFinite(attitude.pitch)) {
+    ++stats_.attitude.dropped_components;
+    return;
+  }
+  roll_rad_ = attitude.roll;
+  pitch_rad_ = attitude.pitch;
+  if (IsFinite(attitude.yaw)) yaw_rad_ = attitude.yaw;
+  have_attitude_ = true;
+  ++stats_.attitude.used;
+}
+
+void WardEkf::AddImu(const ImuSample& imu) {
+  Begin(imu.t);
+  const bool at_rest = t_ - wheels_stopped_since_ >= model_.weak_constraints.stop_time_s;
+  const bool ax_ok = IsFinite(imu.ax), gz_ok = IsFinite(imu.gz);
+  if (!offsets_.ready()) {
+    if (ax_ok && gz_ok) {
+      offsets_.Add(imu.ax, imu.gz, GravityAlongX(), at_rest);
+      ++stats_.offset_init_samples;
+    }
+    return;
+  }
+  if (ax_ok && gz_ok) offsets_.Add(imu.ax, imu.gz, GravityAlongX(), at_rest);
+  stats_.imu.dropped_components += (ax_ok ? 0 : 1) + (gz_ok ? 0 : 1);
+
+  using Jet = ceres::Jet<double, kStateSize>;
+  Jet x_jet[kStateSize], z[kMeasurementSize];
+  for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
+  PredictMeasurements(x_jet, Attitude<Jet>{Jet(roll_rad_), Jet(pitch_rad_)},
+                      ImuOffsets<Jet>{Jet(offsets_.accel_x_mps2()), Jet(offsets_.gyro_z_radps())},
+                      params_, z);
+  RowVector nu(0), r(0);
+  RowMatrix H(0, kStateSize);
+  const auto add_row = [&](int index, double measured, double variance) {
+    const int row = static_cast<int>(nu.size());
+    nu.conservativeResize(row + 1);
+    r.conservativeResize(row + 1);
+    H.conservativeResize(row + 1, Eigen::NoChange);
+    nu(row) = measured - z[index].a;
+    H.row(row) = z[index].v.transpose();
+    r(row) = variance;
+  };
+  const SensorNoise& noise = model_.measurement;
+  if (ax_ok) add_row(kZAccelX, imu.ax, noise.imu_sd_accel_mps2 * noise.imu_sd_accel_mps2);
+  if (gz_ok) add_row(kZYawRate, imu.gz, noise.imu_sd_gyro_radps * noise.imu_sd_gyro_radps);
+  Update(nu, H, r, options_.imu_gate_chi2, options_.imu_max_consecutive_rejections, &stats_.imu,
+         &imu_rejections_);
+}
+
+void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
+  const bool left_ok = IsFinite(omega_left), right_ok = IsFinite(omega_right);
+  if (!wheels_initialised_ && left_ok && right_ok) {
+    if (!started_) Begin(t);
+    x_(kOmegaLeft) = omega_left;
+    x_(kOmegaRight) = omega_right;
+    wheels_initialised_ = true;
+  }
+  Begin(t);
+  stats_.wheels.dropped_components += (left_ok ? 0 : 1) + (right_ok ? 0 : 1);
+  RowVector nu(0), r(0);
+  RowMatrix H(0, kStateSize);
+  const double variance =
+      model_.measurement.wheels_sd_omega_radps * model_.measurement.wheels_sd_omega_radps;
+  const auto add_row = [&](int index, double measured) {
+    const int row = static_cast<int>(nu.size());
+    nu.conservativeResize(row + 1);
+    r.conservativeResize(row + 1);
+    H.conservativeResize(row + 1, Eigen::NoChange);
+    nu(row) = measured - x_(index);
+    H.row(row).setZero();
+    H(row, index) = 1.0;
+    r(row) = variance;
+  };
+  if (left_ok) add_row(kOmegaLeft, omega_left);
+  if (right_ok) add_row(kOmegaRight, omega_right);
+  Update(nu, H, r, options_.wheels_gate_chi2, options_.wheels_max_consecutive_rejections,
+         &stats_.wheels, &wheel_rejections_);
+
+  if (left_ok && right_ok) {
+    last_wheels_t_ = t_;
+    const bool still = std::abs(omega_left) < options_.wheel_still_radps &&
+                       std::abs(omega_right) < options_.wheel_still_radps;
+    if (!still) {
+      wheels_stopped_since_ = 1e300;
+    } else if (wheels_stopped_since_ > t_) {
+      wheels_stopped_since_ = t_;
+    }
+  }
+  const double dt_cycle = have_previous_cycle_ ? t_ - t_previous_cycle_ : 0.0;
+  if (offsets_.ready()) ApplyWeakConstraints(dt_cycle);
+  const bool fresh = t_ - last_wheels_t_ <= options_.encoder_timeout_s;
+  previous_slip_ema_ = detector_.latest().slip_ema;
+  detector_.Update(x_(kVbx), x_(kYawRate), x_(kOmegaLeft), x_(kOmegaRight), fresh);
+  x_previous_cycle_ = x_;
+  t_previous_cycle_ = t_;
+  have_previous_cycle_ = true;
+}
+
+void WardEkf::ApplyWeakConstraints(double dt_cycle) {
+  WeakConstraintInputs in;
+  in.dt_s = dt_cycle;
+  const double wheel_sum = x_(kOmegaLeft) + x_(kOmegaRight);
+  in.vel_dir = std::abs(wheel_sum) < 2.0 * options_.wheel_still_radps ? 0.0
+               : wheel_sum > 0.0                                       ? 1.0
+                                                                       : -1.0;
+  in.slip_ema = detector_.latest().slip_ema;
+  in.slip_ema_rate_per_s =
+      dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;
+  in.wheels_stopped_s = std::max(0.0, t_ - wheels_stopped_since_);
+  in.f_tire_mps2 = ComputeTireForces(x_.data(), CurrentAttitude(), params_).f_tire_mps2;
+  in.gravity_along_x_mps2 = GravityAlongX();
+  pseudo_.clear();
+  const StateVector x_prior = x_;
+  CollectWeakConstraints(x_prior.data(), x_previous_cycle_.data(), in, model_.weak_constraints,
+                         &pseudo_);
+  const double variance = model_.weak_constraints.sd_mps2 * model_.weak_constraints.sd_mps2;
+  StreamCounters unused;
+  for (const PseudoMeasurement& p : pseudo_) {
+    RowVector nu(1), r(1);
+    RowMatrix H = RowMatrix::Zero(1, kStateSize);
+    nu(0) = p.z - x_(p.state_index);
+    H(0, p.state_index) = 1.0;
+    r(0) = variance;
+    Update(nu, H, r, std::numeric_limits<double>::infinity(), 0, &unused, nullptr);
+    ++stats_.weak_constraints[static_cast<int>(p.constraint)];
+  }
+}
+
+void WardEkf::AddGps(const GpsSample& gps) {
+  Begin(gps.t);
+  if (!IsFinite(gps.vx) || !IsFinite(gps.vy) || !IsFinite(gps.vz)) {
+    ++stats_.gps.dropped_components;
+    return;
+  }
+  // GNSS velocity along body x (eq. 11): world velocity dotted with the body x axis.
+  double along;
+  if (have_attitude_) {
+    const double cp = std::cos(pitch_rad_);
+    along = gps.vx * std::cos(yaw_rad_) * cp + gps.vy * std::sin(yaw_rad_) * cp -
+            gps.vz * std::sin(pitch_rad_);
+  } else {
+    // No heading: the horizontal speed, signed by the direction the wheels drive.
+    const double sign = x_(kOmegaLeft) + x_(kOmegaRight) >= 0.0 ? 1.0 : -1.0;
+    along = sign * std::hypot(gps.vx, gps.vy);
+  }
+  const double sd = IsFinite(gps.sd_v) && gps.sd_v > 0.0 ? gps.sd_v : model_.measurement.gps_sd_v_mps;
+  RowVector nu(1), r(1);
+  RowMatrix H = RowMatrix::Zero(1, kStateSize);
+  nu(0) = along - x_(kVbx);
+  H(0, kVbx) = 1.0;
+  r(0) = sd * sd;
+  Update(nu, H, r, options_.gps_gate_chi2, options_.gps_max_consecutive_rejections, &stats_.gps,
+         &gps_rejections_);
+}
+
+EkfEstimate WardEkf::Estimate() const {
+  EkfEstimate e;
+  e.t = t_;
+  for (int i = 0; i < kStateSize; ++i) {
+    e.x[i] = x_(i);
+    e.sd[i] = std::sqrt(std::max(0.0, P_(i, i)));
+  }
+  e.slip = detector_.latest();
+  e.accel_offset_mps2 = offsets_.accel_x_mps2();
+  e.gyro_offset_radps = offsets_.gyro_z_radps();
+  e.offsets_ready = offsets_.ready();
+  return e;
+}
+
+}  // namespace slipgraph

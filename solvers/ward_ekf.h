@@ -1,0 +1,134 @@
+// The streaming EKF of Ward & Iagnemma (Sec. III): state [v_bx, b_ax, a_dist, w_l, w_r,
+// yaw_rate, b_gz], process model eq. (10) discretized with the shared RK4 step
+// (factors/ward_dynamics.h), measurement model eq. (11), Joseph-form covariance update, constant
+// IMU offsets by mean-then-EMA (eq. 12), the six weak constraints of Table I as pseudo-
+// measurements, and the slip-EMA immobilization detector. Jacobians by automatic differentiation
+// of the same templated physics.
+//
+// Streaming: push measurements in time order (AddImu, AddWheels, ...); each does constant work.
+// Any subset of streams works. A NaN component is dropped alone (as robot_localization does);
+// process noise scales with the gap; innovations are gated and every rejection is counted; a
+// stream whose measurements are all being rejected is re-admitted after a bounded run of
+// rejections (a filter that silently rejects every GNSS fix is a known failure).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "factors/ward_state.h"
+#include "io/drive_log.h"
+#include "model/model_config.h"
+#include "solvers/immobilization_detector.h"
+#include "solvers/imu_offsets.h"
+#include "solvers/weak_constraints.h"
+
+namespace slipgraph {
+
+struct EkfOptions {
+  // Innovation gates as chi-square thresholds on the Mahalanobis distance (per update);
+  // infinity disables a gate. The IMU is not gated by default: the accelerometer is what first
+  // sees a hold-back, and gating it would hide exactly the events the filter exists to find.
+  double imu_gate_chi2 = std::numeric_limits<double>::infinity();
+  double wheels_gate_chi2 = 18.4;  // 2 dof, 99.99 %
+  double gps_gate_chi2 = 15.1;     // 1 dof, 99.99 %
+  // After this many consecutive rejections a stream's next measurement is accepted (and counted
+  // as re-admitted): 1 for 1 Hz GNSS means a second inconsistent fix in a row is believed.
+  int imu_max_consecutive_rejections = 10;
+  int wheels_max_consecutive_rejections = 10;
+  int gps_max_consecutive_rejections = 1;
+  double encoder_timeout_s = 0.25;     // older encoder data: no immobilization flag
+  double wheel_still_radps = 0.05;     // |w| below this reads as a stopped wheel
+  // Initial standard deviations of the state (the wheel speeds start at their first reading).
+  std::array<double, ward::kStateSize> initial_sd = {0.2, 0.02, 0.5, 1.0, 1.0, 0.1, 0.002};
+
+  bool IsValid(std::string* error) const;
+};
+
+struct StreamCounters {
+  long used = 0;                // measurements applied
+  long rejected = 0;            // gated out
+  long forced = 0;              // accepted after max_consecutive_rejections
+  long dropped_components = 0;  // NaN fields left out
+};
+
+struct EkfStats {
+  StreamCounters imu, wheels, gps, attitude;
+  std::array<long, kWeakConstraintCount> weak_constraints{};  // applications per constraint
+  long late_measurements = 0;  // stamped before the filter's time: applied at the filter time
+  long offset_init_samples = 0;
+};
+
+struct EkfEstimate {
+  double t = 0.0;
+  std::array<double, ward::kStateSize> x{};
+  std::array<double, ward::kStateSize> sd{};
+  SlipEstimate slip;
+  double accel_offset_mps2 = 0.0;  // c_ax
+  double gyro_offset_radps = 0.0;  // c_gz
+  bool offsets_ready = false;
+};
+
+class WardEkf {
+ public:
+  WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOptions& options = {});
+
+  void AddImu(const ImuSample& imu);
+  // Driven left/right side speeds (io/measurement_stream DrivenSideSpeeds). One filter cycle:
+  // the update, then the weak constraints and the immobilization detector.
+  void AddWheels(double t, double omega_left_radps, double omega_right_radps);
+  void AddGps(const GpsSample& gps);
+  void AddAttitude(const AttitudeSample& attitude);
+
+  EkfEstimate Estimate() const;
+  const EkfStats& stats() const { return stats_; }
+  bool started() const { return started_; }
+
+ private:
+  using StateVector = Eigen::Matrix<double, ward::kStateSize, 1>;
+  using StateMatrix = Eigen::Matrix<double, ward::kStateSize, ward::kStateSize>;
+  static constexpr int kMaxRows = 5;
+  using RowMatrix =
+      Eigen::Matrix<double, Eigen::Dynamic, ward::kStateSize, Eigen::RowMajor, kMaxRows,
+                    ward::kStateSize>;
+  using RowVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
+
+  // Starts the filter clock at t on the first measurement; returns false for a stamp before
+  // the filter time (then the measurement is applied at the filter time and counted as late).
+  void Begin(double t);
+  void PredictTo(double t);
+  // Kalman update with innovation nu, Jacobian H and diagonal noise variances r; gated with
+  // `gate_chi2`. Returns false when gated out.
+  bool Update(const RowVector& nu, const RowMatrix& H, const RowVector& r, double gate_chi2,
+              int max_consecutive_rejections, StreamCounters* counters,
+              int* consecutive_rejections);
+  void ApplyWeakConstraints(double dt_cycle);
+  double GravityAlongX() const;  // g sin(phi) at the current attitude
+  ward::Attitude<double> CurrentAttitude() const { return {roll_rad_, pitch_rad_}; }
+
+  ward::Params params_;
+  ModelConfig model_;
+  EkfOptions options_;
+  StateVector x_ = StateVector::Zero();
+  StateMatrix P_ = StateMatrix::Zero();
+  double t_ = 0.0;
+  bool started_ = false;
+  bool wheels_initialised_ = false;
+  double roll_rad_ = 0.0, pitch_rad_ = 0.0, yaw_rad_ = 0.0;
+  bool have_attitude_ = false;
+  ImuOffsetEstimator offsets_;
+  ImmobilizationDetector detector_;
+  StateVector x_previous_cycle_ = StateVector::Zero();
+  double t_previous_cycle_ = 0.0;
+  bool have_previous_cycle_ = false;
+  double previous_slip_ema_ = 0.0;
+  double last_wheels_t_ = -1e300;
+  double wheels_stopped_since_ = 1e300;  // time both wheels first read still, 1e300: moving
+  int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
+  EkfStats stats_;
+  std::vector<PseudoMeasurement> pseudo_;  // reused buffer
+};
+
+}  // namespace slipgraph
