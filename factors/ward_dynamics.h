@@ -97,31 +97,41 @@ inline void StateDerivative(const T* x, const Attitude<T>& attitude, const Param
   x_dot[kGyroBias] = -x[kGyroBias] / p.gyro_bias_tau_s;
 }
 
-// Discrete propagation over dt with classical RK4 on sub-steps no longer than max_substep_s.
-// The tire law is stiff (d v' / d v ~ -g C1 At, about -150 1/s for the LAGR values), so forward
-// Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78. The EKF and the dynamics factor
-// both call this, so filter and smoother share one discretization.
-template <typename T>
-inline void Propagate(const T* x, const Attitude<T>& attitude, const Params& p, double dt_s,
-                      T* x_next, double max_substep_s = 0.01) {
+// Discrete propagation over dt with classical RK4 on sub-steps no longer than max_substep_s,
+// for any continuous derivative `derivative(const T* x, T* x_dot)`.
+template <typename T, typename Derivative>
+inline void PropagateWith(const T* x, const Derivative& derivative, double dt_s, T* x_next,
+                          double max_substep_s = 0.01) {
   const int substeps = dt_s > max_substep_s ? static_cast<int>(std::ceil(dt_s / max_substep_s)) : 1;
   const double h = dt_s / substeps;
   T state[kStateSize], k1[kStateSize], k2[kStateSize], k3[kStateSize], k4[kStateSize],
       tmp[kStateSize];
   for (int i = 0; i < kStateSize; ++i) state[i] = x[i];
   for (int step = 0; step < substeps; ++step) {
-    StateDerivative(state, attitude, p, k1);
+    derivative(state, k1);
     for (int i = 0; i < kStateSize; ++i) tmp[i] = state[i] + 0.5 * h * k1[i];
-    StateDerivative(tmp, attitude, p, k2);
+    derivative(tmp, k2);
     for (int i = 0; i < kStateSize; ++i) tmp[i] = state[i] + 0.5 * h * k2[i];
-    StateDerivative(tmp, attitude, p, k3);
+    derivative(tmp, k3);
     for (int i = 0; i < kStateSize; ++i) tmp[i] = state[i] + h * k3[i];
-    StateDerivative(tmp, attitude, p, k4);
+    derivative(tmp, k4);
     for (int i = 0; i < kStateSize; ++i) {
       state[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     }
   }
   for (int i = 0; i < kStateSize; ++i) x_next[i] = state[i];
+}
+
+// Eq. (10) propagated over dt. The tire law is stiff (d v' / d v ~ -g C1 At, about -150 1/s for
+// the LAGR values), so forward Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78.
+// The EKF and the dynamics factor both call this, so filter and smoother share one
+// discretization.
+template <typename T>
+inline void Propagate(const T* x, const Attitude<T>& attitude, const Params& p, double dt_s,
+                      T* x_next, double max_substep_s = 0.01) {
+  PropagateWith(
+      x, [&](const T* state, T* x_dot) { StateDerivative(state, attitude, p, x_dot); }, dt_s,
+      x_next, max_substep_s);
 }
 
 }  // namespace ward

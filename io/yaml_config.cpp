@@ -156,6 +156,8 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
       {"process_noise",
        {{"v_bx", &q.v_bx_mps2_per_sqrt_hz, false},
         {"a_dist", &q.a_dist_mps3_per_sqrt_hz, false},
+        {"a_dist_max", &q.a_dist_max_mps3_per_sqrt_hz, false},
+        {"a_dist_adapt_samples", &q.a_dist_adapt_samples, false},
         {"omega", &q.omega_radps2_per_sqrt_hz, false},
         {"yaw_rate", &q.yaw_rate_radps2_per_sqrt_hz, false},
         {"accel_bias_sd", &q.accel_bias_sd_mps2, false},
@@ -169,7 +171,11 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
         {"gps_sd_xy", &m.measurement.gps_sd_xy_m, false},
         {"gps_sd_v", &m.measurement.gps_sd_v_mps, false}}},
       {"weak_constraints",
-       {{"sd", &wc.sd_mps2, false},
+       {{"sd_oppose_motion", &wc.sd_oppose_motion, false},
+        {"sd_act_quickly", &wc.sd_act_quickly, false},
+        {"sd_no_pull_back", &wc.sd_no_pull_back, false},
+        {"sd_at_rest", &wc.sd_at_rest, false},
+        {"sd_bound", &wc.sd_bound, false},
         {"min_slip_rate", &wc.min_slip_rate_per_s, false},
         {"slip_threshold", &wc.slip_threshold, false},
         {"decay_alpha", &wc.decay_alpha, false},
@@ -187,6 +193,11 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
         {"low_speed", &im.low_speed_mps, false}}},
       {"offsets",
        {{"init_samples", &init_samples, false}, {"ema_samples", &m.offset_ema_samples, false}}},
+      {"tire_uncertainty",
+       {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
+        {"slip_relative_sd", &m.tire_uncertainty.slip_relative_sd, false},
+        {"slip_floor", &m.tire_uncertainty.slip_floor_mps, false},
+        {"floor", &m.tire_uncertainty.floor_mps2, false}}},
   };
   for (const auto& entry : root) {
     const std::string key = entry.first.as<std::string>();
@@ -267,6 +278,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   section("rolling", {{"R1", m.rolling.R1}, {"A_roll", m.rolling.A_roll}, {"R2", m.rolling.R2}});
   section("process_noise", {{"v_bx", q.v_bx_mps2_per_sqrt_hz},
                             {"a_dist", q.a_dist_mps3_per_sqrt_hz},
+                            {"a_dist_max", q.a_dist_max_mps3_per_sqrt_hz},
+                            {"a_dist_adapt_samples", q.a_dist_adapt_samples},
                             {"omega", q.omega_radps2_per_sqrt_hz},
                             {"yaw_rate", q.yaw_rate_radps2_per_sqrt_hz},
                             {"accel_bias_sd", q.accel_bias_sd_mps2},
@@ -278,7 +291,11 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                                 {"wheels_sd_omega", m.measurement.wheels_sd_omega_radps},
                                 {"gps_sd_xy", m.measurement.gps_sd_xy_m},
                                 {"gps_sd_v", m.measurement.gps_sd_v_mps}});
-  section("weak_constraints", {{"sd", wc.sd_mps2},
+  section("weak_constraints", {{"sd_oppose_motion", wc.sd_oppose_motion},
+                               {"sd_act_quickly", wc.sd_act_quickly},
+                               {"sd_no_pull_back", wc.sd_no_pull_back},
+                               {"sd_at_rest", wc.sd_at_rest},
+                               {"sd_bound", wc.sd_bound},
                                {"min_slip_rate", wc.min_slip_rate_per_s},
                                {"slip_threshold", wc.slip_threshold},
                                {"decay_alpha", wc.decay_alpha},
@@ -295,6 +312,10 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                              {"low_speed", im.low_speed_mps}});
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
                       {"ema_samples", m.offset_ema_samples}});
+  section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
+                               {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},
+                               {"slip_floor", m.tire_uncertainty.slip_floor_mps},
+                               {"floor", m.tire_uncertainty.floor_mps2}});
   e << YAML::Key << "effects" << YAML::Value << YAML::Flow << m.effects;
   e << YAML::EndMap;
   out << e.c_str() << "\n";

@@ -28,6 +28,8 @@ bool ModelConfig::IsValid(std::string* error) const {
       {"rolling.A_roll", rolling.A_roll},
       {"process.v_bx", process.v_bx_mps2_per_sqrt_hz},
       {"process.a_dist", process.a_dist_mps3_per_sqrt_hz},
+      {"process.a_dist_max", process.a_dist_max_mps3_per_sqrt_hz},
+      {"process.a_dist_adapt_samples", process.a_dist_adapt_samples},
       {"process.omega", process.omega_radps2_per_sqrt_hz},
       {"process.yaw_rate", process.yaw_rate_radps2_per_sqrt_hz},
       {"process.accel_bias_sd", process.accel_bias_sd_mps2},
@@ -39,7 +41,11 @@ bool ModelConfig::IsValid(std::string* error) const {
       {"measurement.wheels_sd_omega", measurement.wheels_sd_omega_radps},
       {"measurement.gps_sd_v", measurement.gps_sd_v_mps},
       {"measurement.gps_sd_xy", measurement.gps_sd_xy_m},
-      {"weak_constraints.sd", weak_constraints.sd_mps2},
+      {"weak_constraints.sd_oppose_motion", weak_constraints.sd_oppose_motion},
+      {"weak_constraints.sd_act_quickly", weak_constraints.sd_act_quickly},
+      {"weak_constraints.sd_no_pull_back", weak_constraints.sd_no_pull_back},
+      {"weak_constraints.sd_at_rest", weak_constraints.sd_at_rest},
+      {"weak_constraints.sd_bound", weak_constraints.sd_bound},
       {"weak_constraints.stop_time", weak_constraints.stop_time_s},
       {"weak_constraints.max_v_bx", weak_constraints.max_v_bx_mps},
       {"weak_constraints.max_accel_bias", weak_constraints.max_accel_bias_mps2},
@@ -51,9 +57,15 @@ bool ModelConfig::IsValid(std::string* error) const {
       {"immobilization.slip_threshold", immobilization.slip_threshold},
       {"immobilization.low_speed", immobilization.low_speed_mps},
       {"offset_ema_samples", offset_ema_samples},
+      {"tire_uncertainty.relative_sd", tire_uncertainty.relative_sd},
+      {"tire_uncertainty.floor", tire_uncertainty.floor_mps2},
   };
   for (const auto& field : positive) {
     if (!CheckPositive(field.name, field.value, error)) return false;
+  }
+  if (tire_uncertainty.slip_relative_sd < 0.0 || tire_uncertainty.slip_floor_mps < 0.0) {
+    *error = "tire_uncertainty.slip_relative_sd and slip_floor must be non-negative";
+    return false;
   }
   if (rolling.R1 < 0.0 || rolling.R2 < 0.0) {
     *error = "rolling.R1 and rolling.R2 must be non-negative";

@@ -15,6 +15,12 @@ namespace slipgraph {
 struct ProcessNoiseConfig {
   double v_bx_mps2_per_sqrt_hz = 0.3;      // w1: unmodelled longitudinal acceleration
   double a_dist_mps3_per_sqrt_hz = 5.0;    // w3: random walk of the disturbance acceleration
+  // Adaptive w3 (innovation-based, beyond the paper): while the accelerometer's normalized
+  // innovations are large (a force the model lacks has appeared, e.g. a hold-back), the density
+  // of w3 grows up to this value; with the tire law's stiffness the disturbance and velocity
+  // would otherwise drift together along an unobservable direction in normal driving.
+  double a_dist_max_mps3_per_sqrt_hz = 40.0;
+  double a_dist_adapt_samples = 5.0;       // EMA length (accelerometer samples) of the NIS
   double omega_radps2_per_sqrt_hz = 10.0;  // w4, w5: wheel acceleration (controller neglected)
   double yaw_rate_radps2_per_sqrt_hz = 1.0;  // w6: unmodelled yaw acceleration
   double accel_bias_sd_mps2 = 0.02;        // sigma_abx: stationary sd of the walking bias b_ax
@@ -24,9 +30,16 @@ struct ProcessNoiseConfig {
 };
 
 // Ward & Iagnemma Table I. In the EKF these are pseudo-measurements applied under their
-// conditions; in the smoother, smooth soft priors with the same sigmas.
+// conditions; in the smoother, smooth soft priors with the same sigmas. The sigmas are
+// densities (unit x sqrt(s)): a constraint applied every cycle of length dt has variance
+// sd^2 / dt, so its strength per second does not depend on the filter's rate (applied at 100 Hz
+// with a plain 0.05 sigma, WC2 alone would pin a_dist to 5 mm/s^2 within a second).
 struct WeakConstraintConfig {
-  double sd_mps2 = 0.05;                 // sigma of each pseudo-measurement on a_dist / biases
+  double sd_oppose_motion = 0.1;  // WC1, m/s^2 sqrt(s)
+  double sd_act_quickly = 0.2;    // WC2, m/s^2 sqrt(s)
+  double sd_no_pull_back = 0.1;   // WC3, m/s^2 sqrt(s)
+  double sd_at_rest = 0.02;       // WC4, on a_dist and b_ax (m/s^2 sqrt(s)); b_gz uses sd/10 rad/s
+  double sd_bound = 0.05;         // WC5 and WC6, in the bounded state's unit x sqrt(s)
   double min_slip_rate_per_s = 0.05;     // WC2 min_delta_i: slow slip growth, per second
   double slip_threshold = 0.3;           // WC2 thresh_i: WC2 applies only below this EMA slip
   double decay_alpha = 0.995;            // WC2 alpha, 0 < alpha < 1, applied per filter cycle
@@ -48,8 +61,25 @@ struct ImmobilizationConfig {
   double low_speed_mps = 0.2;           // wheel surface speed below which the addition fades in
 };
 
+// How far the tire law (eqs. 8-9) with the nominal coefficients may be from the terrain's, as
+// the sd of the modelled traction acceleration:
+//   sd^2 = (relative_sd |traction|)^2 + sum_sides (d traction / d v_rel x
+//          (slip_relative_sd |v_rel| + slip_floor))^2 + floor^2
+// The first term is the uncertain saturation level (C1), the second the uncertain slip needed
+// for a given force (the low-slip slope C1 At varies by a factor of two between soils). Used
+// where the law ties the disturbance to the accelerometer (the accelerometer-driven EKF).
+// The defaults keep only the first and last terms: on the ward21 suites the slip terms let
+// v_bx drift more in normal driving than they help during hold-backs (docs/ekf.md).
+struct TireLawUncertainty {
+  double relative_sd = 0.3;       // fraction of the modelled traction
+  double slip_relative_sd = 0.0;  // fraction of the relative velocity v_rel
+  double slip_floor_mps = 0.0;    // m/s of v_rel
+  double floor_mps2 = 0.1;        // m/s^2
+};
+
 struct ModelConfig {
   double gravity_mps2 = 9.80665;
+  TireLawUncertainty tire_uncertainty;
   TireParams tire;        // from vehicle.yaml unless the model file overrides it
   RollingParams rolling;  // from vehicle.yaml unless the model file overrides it
   ProcessNoiseConfig process;

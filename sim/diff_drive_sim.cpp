@@ -17,8 +17,10 @@ namespace sim {
 namespace {
 
 constexpr double kGravity = 9.80665;
-// Truth labels: immobilized when the body is (nearly) still while the wheels turn.
-constexpr double kStillSpeedMps = 0.02;
+// Truth labels (Ward & Iagnemma's "complete stop with the wheels still spinning"): immobilized
+// when the body is stopped (below kStoppedSpeedMps) while the driven wheels turn (surface speed
+// above kTurningWheelSpeedMps) at least twice as fast as the body moves (slip of 50 % or more).
+constexpr double kStoppedSpeedMps = 0.03;
 constexpr double kTurningWheelSpeedMps = 0.05;
 constexpr double kMinEventS = 0.2;
 // Sinkage builds up over this distance into a soft patch.
@@ -70,7 +72,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
   const int64_t steps = std::llround(duration / dt);
 
   KinematicState state;
-  double s = 0.0;  // distance travelled along the path
+  double s = 0.0;  // signed distance along the path (the course is a function of it)
   CommandSchedule commands(sc);
   double a_prev = 0.0;
   double integral[2] = {0.0, 0.0};
@@ -179,8 +181,8 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     if (k % truth_period == 0) {
       const double surface_speed =
           0.5 * r_true * (std::abs(state.omega_radps[0]) + std::abs(state.omega_radps[1]));
-      const bool immobilized =
-          std::abs(v) < kStillSpeedMps && surface_speed > kTurningWheelSpeedMps;
+      const bool immobilized = surface_speed > kTurningWheelSpeedMps &&
+                               std::abs(v) < kStoppedSpeedMps && 2.0 * std::abs(v) < surface_speed;
       events.Update(t, immobilized, &log.events);
       TruthSample truth;
       truth.t = t;
@@ -209,7 +211,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     state.y += ground_speed * std::sin(state.yaw) * dt;
     state.z += state.v_bx * std::sin(grade) * dt;
     state.yaw += state.yaw_rate * dt;
-    s += std::abs(state.v_bx) * dt;
+    s += state.v_bx * dt;  // signed: reversing moves back along the path
     a_prev = a;
   }
   events.Finish(duration, &log.events);

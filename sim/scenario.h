@@ -35,8 +35,8 @@ struct Actuation {
   double wheel_inertia_kgm2 = 0.4;      // wheel + reflected motor inertia
   double kp_nm_per_radps = 15.0;        // PI wheel-speed controller
   double ki_nm_per_rad = 60.0;
-  double tether_stiffness_npm = 2000.0;
-  double tether_damping_nspm = 800.0;
+  double tether_stiffness_npm = 10000.0;  // a person leaning on a spring scale: stops the robot in ~0.2 s
+  double tether_damping_nspm = 2000.0;   // about critical for the LAGR mass
 };
 
 struct SensorSpec {

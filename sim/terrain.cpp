@@ -24,8 +24,8 @@ double Sinc(double x) { return std::abs(x) < 1e-12 ? 1.0 : std::sin(M_PI * x) / 
 }  // namespace
 
 const std::vector<TerrainType>& TerrainCatalogue() {
-  // Coefficients chosen around the LAGR nominal (C1 0.55, At 15, C2 0.05); grass is set so that
-  // the LAGR robot held back with its wheels spinning at 1 m/s pulls 325 N (Ward Sec. III-B).
+  // Coefficients of plausible soils for a 117 kg pneumatic-tire robot; grass is set so that the
+  // LAGR robot held back with its wheels spinning at 1 m/s pulls 325 N (Ward Sec. III-B).
   // Tracked-vehicle slip (alpha layout of factors/ipd_kinematics.h): forward slip grows with
   // speed and turning, the vehicle turns less than its tracks say (alpha[9] < 0), skids outward
   // in turns (alpha[6] < 0) and slides with gravity. Softer ground, more slip and more noise.

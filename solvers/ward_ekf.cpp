@@ -67,7 +67,21 @@ void WardEkf::PredictTo(double t) {
   Jet x_jet[kStateSize], next[kStateSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
   const Attitude<Jet> attitude{Jet(roll_rad_), Jet(pitch_rad_)};
-  Propagate(x_jet, attitude, params_, dt, next);
+  const bool accel_driven =
+      options_.velocity_model == VelocityModel::kAccelerometerDriven && have_accel_input_;
+  if (accel_driven) {
+    const double gravity_along_x = GravityAlongX();
+    const double specific_force = accel_input_mps2_ - offsets_.accel_x_mps2();
+    PropagateWith(
+        x_jet,
+        [&](const Jet* state, Jet* x_dot) {
+          StateDerivative(state, attitude, params_, x_dot);
+          x_dot[kVbx] = specific_force - state[kAccelBias] - gravity_along_x;
+        },
+        dt, next);
+  } else {
+    Propagate(x_jet, attitude, params_, dt, next);
+  }
   StateMatrix A;
   for (int r = 0; r < kStateSize; ++r) {
     x_(r) = next[r].a;
@@ -77,10 +91,16 @@ void WardEkf::PredictTo(double t) {
   // with their exact discrete variance.
   const ProcessNoiseConfig& q = model_.process;
   StateVector q_diag;
-  q_diag(kVbx) = q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz * dt;
+  // Accelerometer-driven: the input's white noise, sd per sample over the IMU interval.
+  const double accel_density_sq =
+      model_.measurement.imu_sd_accel_mps2 * model_.measurement.imu_sd_accel_mps2 * imu_period_s_;
+  q_diag(kVbx) = (accel_driven ? accel_density_sq : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz) * dt;
   q_diag(kAccelBias) = q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 *
                        (1.0 - std::exp(-2.0 * dt / q.accel_bias_tau_s));
-  q_diag(kAdist) = q.a_dist_mps3_per_sqrt_hz * q.a_dist_mps3_per_sqrt_hz * dt;
+  // Adaptive w3: the density scales with the recent accelerometer NIS (1 when consistent).
+  const double q_adist = std::min(q.a_dist_max_mps3_per_sqrt_hz,
+                                  q.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
+  q_diag(kAdist) = q_adist * q_adist * dt;
   q_diag(kOmegaLeft) = q_diag(kOmegaRight) =
       q.omega_radps2_per_sqrt_hz * q.omega_radps2_per_sqrt_hz * dt;
   q_diag(kYawRate) = q.yaw_rate_radps2_per_sqrt_hz * q.yaw_rate_radps2_per_sqrt_hz * dt;
@@ -139,6 +159,10 @@ void WardEkf::AddAttitude(const AttitudeSample& attitude) {
 
 void WardEkf::AddImu(const ImuSample& imu) {
   Begin(imu.t);
+  if (last_imu_t_ >= 0.0 && imu.t > last_imu_t_) {
+    imu_period_s_ += 0.05 * (imu.t - last_imu_t_ - imu_period_s_);  // slow average
+  }
+  last_imu_t_ = imu.t;
   const bool at_rest = t_ - wheels_stopped_since_ >= model_.weak_constraints.stop_time_s;
   const bool ax_ok = IsFinite(imu.ax), gz_ok = IsFinite(imu.gz);
   if (!offsets_.ready()) {
@@ -169,8 +193,35 @@ void WardEkf::AddImu(const ImuSample& imu) {
     r(row) = variance;
   };
   const SensorNoise& noise = model_.measurement;
-  if (ax_ok) add_row(kZAccelX, imu.ax, noise.imu_sd_accel_mps2 * noise.imu_sd_accel_mps2);
+  if (ax_ok) {
+    double variance = noise.imu_sd_accel_mps2 * noise.imu_sd_accel_mps2;
+    if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
+      // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's.
+      const TireLawUncertainty& u = model_.tire_uncertainty;
+      const TireForces<double> forces = ComputeTireForces(x_.data(), CurrentAttitude(), params_);
+      const double traction =
+          std::abs(forces.traction_left_n + forces.traction_right_n) / params_.mass_kg;
+      // d f / d w_side = r d f / d v_rel: the slope of the law at the current slip.
+      const double slope_left = std::abs(z[kZAccelX].v[kOmegaLeft]) / params_.wheel_radius_m;
+      const double slope_right = std::abs(z[kZAccelX].v[kOmegaRight]) / params_.wheel_radius_m;
+      const double slip_left =
+          slope_left * (u.slip_relative_sd * std::abs(forces.v_rel_left_mps) + u.slip_floor_mps);
+      const double slip_right = slope_right * (u.slip_relative_sd * std::abs(forces.v_rel_right_mps) +
+                                               u.slip_floor_mps);
+      variance += u.relative_sd * traction * u.relative_sd * traction + slip_left * slip_left +
+                  slip_right * slip_right + u.floor_mps2 * u.floor_mps2;
+    }
+    add_row(kZAccelX, imu.ax, variance);
+    // Normalized innovation squared of the accelerometer alone, for the adaptive w3.
+    const double s = H.row(0) * P_ * H.row(0).transpose() + r(0);
+    const double weight = 2.0 / (1.0 + model_.process.a_dist_adapt_samples);
+    accel_nis_ema_ += (nu(0) * nu(0) / s - accel_nis_ema_) * weight;
+  }
   if (gz_ok) add_row(kZYawRate, imu.gz, noise.imu_sd_gyro_radps * noise.imu_sd_gyro_radps);
+  if (ax_ok) {
+    accel_input_mps2_ = imu.ax;
+    have_accel_input_ = true;
+  }
   Update(nu, H, r, options_.imu_gate_chi2, options_.imu_max_consecutive_rejections, &stats_.imu,
          &imu_rejections_);
 }
@@ -241,14 +292,15 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
   const StateVector x_prior = x_;
   CollectWeakConstraints(x_prior.data(), x_previous_cycle_.data(), in, model_.weak_constraints,
                          &pseudo_);
-  const double variance = model_.weak_constraints.sd_mps2 * model_.weak_constraints.sd_mps2;
+  // Densities to per-cycle variances (the first cycle uses the nominal 100 Hz).
+  const double cycle_s = dt_cycle > 0.0 ? dt_cycle : 0.01;
   StreamCounters unused;
   for (const PseudoMeasurement& p : pseudo_) {
     RowVector nu(1), r(1);
     RowMatrix H = RowMatrix::Zero(1, kStateSize);
     nu(0) = p.z - x_(p.state_index);
     H(0, p.state_index) = 1.0;
-    r(0) = variance;
+    r(0) = p.density * p.density / cycle_s;
     Update(nu, H, r, std::numeric_limits<double>::infinity(), 0, &unused, nullptr);
     ++stats_.weak_constraints[static_cast<int>(p.constraint)];
   }

@@ -27,7 +27,17 @@
 
 namespace slipgraph {
 
+// How v_bx is propagated. kTireDynamics is eq. (10) as printed: v' = f_tire + a_dist - g sin(phi),
+// the accelerometer an eq. (11) measurement. kAccelerometerDriven integrates the accelerometer
+// (v' = a_x - c_ax - b_ax - g sin(phi), the strapdown form) and keeps eq. (11) as the measurement
+// that ties a_dist to the tire model, with the tire law's own uncertainty in its noise. The two are
+// the same equations; they differ in where the noise is. With a stiff tire law (d v'/d v of
+// order -100 1/s) and tire coefficients off by tens of percent, the first slaves v_bx to r w and
+// misses slow hold-backs (docs/ekf.md); the second keeps the accelerometer's integral.
+enum class VelocityModel { kTireDynamics, kAccelerometerDriven };
+
 struct EkfOptions {
+  VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   // Innovation gates as chi-square thresholds on the Mahalanobis distance (per update);
   // infinity disables a gate. The IMU is not gated by default: the accelerometer is what first
   // sees a hold-back, and gating it would hide exactly the events the filter exists to find.
@@ -40,7 +50,9 @@ struct EkfOptions {
   int wheels_max_consecutive_rejections = 10;
   int gps_max_consecutive_rejections = 1;
   double encoder_timeout_s = 0.25;     // older encoder data: no immobilization flag
-  double wheel_still_radps = 0.05;     // |w| below this reads as a stopped wheel
+  // |w| below this reads as a stopped wheel: 3 sd of the LAGR encoder noise at 100 Hz (0.05 rad/s),
+  // so that noise alone rarely restarts the at-rest timer of WC4.
+  double wheel_still_radps = 0.15;
   // Initial standard deviations of the state (the wheel speeds start at their first reading).
   std::array<double, ward::kStateSize> initial_sd = {0.2, 0.02, 0.5, 1.0, 1.0, 0.1, 0.002};
 
@@ -107,6 +119,15 @@ class WardEkf {
   void ApplyWeakConstraints(double dt_cycle);
   double GravityAlongX() const;  // g sin(phi) at the current attitude
   ward::Attitude<double> CurrentAttitude() const { return {roll_rad_, pitch_rad_}; }
+
+  // EMA of the accelerometer's normalized innovation squared, driving the adaptive w3.
+  double accel_nis_ema_ = 1.0;
+  // kAccelerometerDriven: the latest accelerometer x reading (held until the next) and the IMU
+  // sample interval, for the input noise.
+  double accel_input_mps2_ = 0.0;
+  bool have_accel_input_ = false;
+  double imu_period_s_ = 0.01;
+  double last_imu_t_ = -1.0;
 
   ward::Params params_;
   ModelConfig model_;

@@ -23,29 +23,29 @@ void CollectWeakConstraints(const double* x, const double* x_prev,
   const double a_dist = x[kAdist];
   // WC1: the disturbance only opposes motion.
   if (in.vel_dir != 0.0 && Sign(a_dist) == in.vel_dir) {
-    out->push_back({WeakConstraint::kOpposeMotion, kAdist, 0.0});
+    out->push_back({WeakConstraint::kOpposeMotion, kAdist, 0.0, c.sd_oppose_motion});
   }
   // WC2: a disturbance that grows slowly while slip stays small is decayed toward zero.
   if (in.slip_ema_rate_per_s > 0.0 && in.slip_ema_rate_per_s < c.min_slip_rate_per_s &&
       in.slip_ema < c.slip_threshold) {
-    out->push_back({WeakConstraint::kActQuickly, kAdist, c.decay_alpha * a_dist});
+    out->push_back({WeakConstraint::kActQuickly, kAdist, c.decay_alpha * a_dist, c.sd_act_quickly});
   }
   // WC3: the disturbance may stop the robot, not pull it backwards.
   if (in.vel_dir != 0.0 && Sign(x[kVbx]) == -in.vel_dir) {
     const double net_tire = in.f_tire_mps2 - in.gravity_along_x_mps2;
     if (Sign(net_tire) == -in.vel_dir) {
-      out->push_back({WeakConstraint::kNoPullBack, kAdist, 0.0});
+      out->push_back({WeakConstraint::kNoPullBack, kAdist, 0.0, c.sd_no_pull_back});
     } else {
       const double stopping = -net_tire;  // the disturbance that would just hold the robot
       const double z = in.vel_dir > 0.0 ? std::max(stopping, a_dist) : std::min(stopping, a_dist);
-      out->push_back({WeakConstraint::kNoPullBack, kAdist, z});
+      out->push_back({WeakConstraint::kNoPullBack, kAdist, z, c.sd_no_pull_back});
     }
   }
   // WC4: at rest long enough, the walking biases and the disturbance tend to zero.
   if (in.wheels_stopped_s >= c.stop_time_s) {
-    out->push_back({WeakConstraint::kAtRest, kAccelBias, 0.0});
-    out->push_back({WeakConstraint::kAtRest, kAdist, 0.0});
-    out->push_back({WeakConstraint::kAtRest, kGyroBias, 0.0});
+    out->push_back({WeakConstraint::kAtRest, kAccelBias, 0.0, c.sd_at_rest});
+    out->push_back({WeakConstraint::kAtRest, kAdist, 0.0, c.sd_at_rest});
+    out->push_back({WeakConstraint::kAtRest, kGyroBias, 0.0, 0.1 * c.sd_at_rest});
   }
   // WC5: magnitude bounds.
   const struct {
@@ -57,7 +57,7 @@ void CollectWeakConstraints(const double* x, const double* x_prev,
                 {kGyroBias, c.max_gyro_bias_radps}};
   for (const auto& b : bounds) {
     if (std::abs(x[b.index]) > b.bound) {
-      out->push_back({WeakConstraint::kBound, b.index, Sign(x[b.index]) * b.bound});
+      out->push_back({WeakConstraint::kBound, b.index, Sign(x[b.index]) * b.bound, c.sd_bound});
     }
   }
   // WC6: rate bounds.
@@ -69,8 +69,8 @@ void CollectWeakConstraints(const double* x, const double* x_prev,
     for (const auto& r : rates) {
       const double change = x[r.index] - x_prev[r.index];
       if (std::abs(change) / in.dt_s > r.max_rate) {
-        out->push_back(
-            {WeakConstraint::kRate, r.index, x_prev[r.index] + Sign(change) * r.max_rate * in.dt_s});
+        out->push_back({WeakConstraint::kRate, r.index,
+                        x_prev[r.index] + Sign(change) * r.max_rate * in.dt_s, c.sd_bound});
       }
     }
   }

@@ -28,7 +28,8 @@ const char* WeakConstraintName(WeakConstraint constraint);
 struct PseudoMeasurement {
   WeakConstraint constraint;
   int state_index;
-  double z;  // the value the state is pulled toward
+  double z;         // the value the state is pulled toward
+  double density;   // sigma density (unit x sqrt(s)): variance sigma^2 / dt per cycle of dt
 };
 
 // Everything the conditions look at, besides the a priori state.
