@@ -197,7 +197,8 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
        {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
         {"slip_relative_sd", &m.tire_uncertainty.slip_relative_sd, false},
         {"slip_floor", &m.tire_uncertainty.slip_floor_mps, false},
-        {"floor", &m.tire_uncertainty.floor_mps2, false}}},
+        {"floor", &m.tire_uncertainty.floor_mps2, false},
+        {"correlation_time", &m.tire_uncertainty.correlation_time_s, false}}},
   };
   for (const auto& entry : root) {
     const std::string key = entry.first.as<std::string>();
@@ -315,7 +316,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
                                {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},
                                {"slip_floor", m.tire_uncertainty.slip_floor_mps},
-                               {"floor", m.tire_uncertainty.floor_mps2}});
+                               {"floor", m.tire_uncertainty.floor_mps2},
+                               {"correlation_time", m.tire_uncertainty.correlation_time_s}});
   e << YAML::Key << "effects" << YAML::Value << YAML::Flow << m.effects;
   e << YAML::EndMap;
   out << e.c_str() << "\n";

@@ -75,6 +75,10 @@ struct TireLawUncertainty {
   double slip_relative_sd = 0.0;  // fraction of the relative velocity v_rel
   double slip_floor_mps = 0.0;    // m/s of v_rel
   double floor_mps2 = 0.1;        // m/s^2
+  // The law's error persists (it is the terrain's): treated as independent per sample it would
+  // accumulate 100 looks a second at 100 Hz. Its variance per sample of interval dt is therefore
+  // sd^2 x correlation_time / dt (0: independent per sample).
+  double correlation_time_s = 0.0;
 };
 
 struct ModelConfig {

@@ -208,8 +208,10 @@ void WardEkf::AddImu(const ImuSample& imu) {
           slope_left * (u.slip_relative_sd * std::abs(forces.v_rel_left_mps) + u.slip_floor_mps);
       const double slip_right = slope_right * (u.slip_relative_sd * std::abs(forces.v_rel_right_mps) +
                                                u.slip_floor_mps);
-      variance += u.relative_sd * traction * u.relative_sd * traction + slip_left * slip_left +
-                  slip_right * slip_right + u.floor_mps2 * u.floor_mps2;
+      const double law_variance = u.relative_sd * traction * u.relative_sd * traction +
+                                  slip_left * slip_left + slip_right * slip_right +
+                                  u.floor_mps2 * u.floor_mps2;
+      variance += law_variance * std::max(1.0, u.correlation_time_s / imu_period_s_);
     }
     add_row(kZAccelX, imu.ax, variance);
     // Normalized innovation squared of the accelerometer alone, for the adaptive w3.
@@ -341,6 +343,8 @@ EkfEstimate WardEkf::Estimate() const {
     e.sd[i] = std::sqrt(std::max(0.0, P_(i, i)));
   }
   e.slip = detector_.latest();
+  // Missing encoder data is never reported as immobilization.
+  if (t_ - last_wheels_t_ > options_.encoder_timeout_s) e.slip.immobilized = false;
   e.accel_offset_mps2 = offsets_.accel_x_mps2();
   e.gyro_offset_radps = offsets_.gyro_z_radps();
   e.offsets_ready = offsets_.ready();
