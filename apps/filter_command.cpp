@@ -3,6 +3,8 @@
 
 #include "apps/commands.h"
 #include "io/log_reader.h"
+#include "evaluation/evaluation.h"
+#include "io/estimate_file.h"
 #include "io/yaml_config.h"
 #include "solvers/ekf_runner.h"
 
@@ -52,6 +54,15 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
       std::cerr << "filter: " << log_dir << " -> " << file << " (" << result.estimates.size()
                 << " estimates)\n"
                 << DescribeFilterRun(result);
+      if (!log.truth.empty()) {
+        // The log has truth (a simulated log): say how the estimates compare, as `evaluate` would.
+        const Evaluation ev = Evaluate(log, ReadNumericTable(file));
+        std::cout << log_dir << " against truth: velocity RMSE " << ev.velocity_rmse
+                  << " m/s, disturbance RMSE " << ev.disturbance_rmse << " m/s^2, immobilized "
+                  << ev.detected() << "/" << ev.events.size() << " detected (mean delay "
+                  << ev.mean_detection_delay_s() << " s), false immobilized "
+                  << 100.0 * ev.false_immobilized_fraction() << " % of samples\n";
+      }
     }
     *status = 0;
   });

@@ -1,0 +1,96 @@
+// The EKF on the ward21 suite (Ward & Iagnemma Sec. III): detection, delay and false-alarm
+// figures with and without GNSS, and the paper's Table II (each tire coefficient at +-20 %).
+// Simulates the suite in memory. Run: build/bench/ward21_report [--seed N] [--tire-dynamics]
+// (--tire-dynamics: the paper's propagation of v_bx through the tire law, for comparison).
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "evaluation/evaluation.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+namespace {
+
+NumericTable AsTable(const FilterResult& result) {
+  NumericTable table;
+  for (const EkfEstimate& e : result.estimates) {
+    table.columns["t"].push_back(e.t);
+    table.columns["v_bx"].push_back(e.x[ward::kVbx]);
+    table.columns["a_dist"].push_back(e.x[ward::kAdist]);
+    table.columns["immobilized"].push_back(e.slip.immobilized ? 1.0 : 0.0);
+  }
+  return table;
+}
+
+VelocityModel g_velocity_model = VelocityModel::kAccelerometerDriven;
+
+Evaluation RunSuite(const std::vector<DriveLog>& logs, bool gps,
+                    const std::function<void(ModelConfig*)>& change) {
+  std::vector<Evaluation> runs;
+  for (const DriveLog& log : logs) {
+    ModelConfig model = DefaultModelConfig(log.vehicle);
+    change(&model);
+    FilterRunOptions options;
+    options.use_gps = gps;
+    options.ekf.velocity_model = g_velocity_model;
+    runs.push_back(Evaluate(log, AsTable(RunEkf(log, model, options))));
+  }
+  return Combine(runs, "ward21");
+}
+
+void Print(const char* label, const Evaluation& ev) {
+  std::printf("| %-22s | %2d/%-2zu | %6.3f | %5.3f %% (%ld) | %6.3f | %6.3f |\n", label,
+              ev.detected(), ev.events.size(), ev.mean_detection_delay_s(),
+              100.0 * ev.false_immobilized_fraction(), ev.false_immobilized_samples,
+              ev.velocity_rmse, ev.disturbance_rmse);
+}
+
+}  // namespace
+}  // namespace slipgraph
+
+int main(int argc, char** argv) {
+  using namespace slipgraph;  // NOLINT
+  uint64_t seed = 1;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--seed") == 0) seed = std::strtoull(argv[i + 1], nullptr, 10);
+  }
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--tire-dynamics") == 0) {
+      g_velocity_model = VelocityModel::kTireDynamics;
+    }
+  }
+  std::vector<DriveLog> logs;
+  for (const sim::ScenarioRun& run : sim::ExpandScenario("ward21", seed)) {
+    logs.push_back(sim::Simulate(run.scenario, run.seed).log);
+  }
+  std::printf("ward21, seed %llu\n\n", static_cast<unsigned long long>(seed));
+  std::printf("| %-22s | det.  | delay s | false immobilized | v RMSE | a_dist RMSE |\n", "case");
+  std::printf("|---|---|---|---|---|---|\n");
+  const auto nominal = [](ModelConfig*) {};
+  Print("nominal, GNSS", RunSuite(logs, true, nominal));
+  Print("nominal, no GNSS", RunSuite(logs, false, nominal));
+  const struct {
+    const char* name;
+    std::function<double&(ModelConfig*)> field;
+  } parameters[] = {
+      {"C1", [](ModelConfig* m) -> double& { return m->tire.C1; }},
+      {"At", [](ModelConfig* m) -> double& { return m->tire.At; }},
+      {"R1", [](ModelConfig* m) -> double& { return m->rolling.R1; }},
+      {"R2", [](ModelConfig* m) -> double& { return m->rolling.R2; }},
+      {"A_roll", [](ModelConfig* m) -> double& { return m->rolling.A_roll; }},
+  };
+  for (const auto& p : parameters) {
+    for (double factor : {1.2, 0.8}) {
+      const std::string label = std::string(p.name) + (factor > 1.0 ? " +20 %" : " -20 %") + ", GNSS";
+      Print(label.c_str(),
+            RunSuite(logs, true, [&](ModelConfig* m) { p.field(m) *= factor; }));
+    }
+  }
+  return 0;
+}
