@@ -13,11 +13,18 @@
 
 namespace slipgraph {
 
+// The force per newton of normal load, -(R1 sign(v)(1 - exp(-A_roll |v|)) + R2 v): the law is
+// linear in N, so wheels sharing a forward speed share this factor.
 template <typename T>
-inline T RollingResistanceForceN(const T& normal_force_n, const T& v_fwd_mps,
+inline T RollingResistancePerNewton(const T& v_fwd_mps, const RollingParams& rolling) {
+  return -(rolling.R1 * SignedSaturation(v_fwd_mps, rolling.A_roll) + rolling.R2 * v_fwd_mps);
+}
+
+// N and T may differ (e.g. a double normal force from measured attitude and a Jet velocity).
+template <typename N, typename T>
+inline T RollingResistanceForceN(const N& normal_force_n, const T& v_fwd_mps,
                                  const RollingParams& rolling) {
-  return -normal_force_n *
-         (rolling.R1 * SignedSaturation(v_fwd_mps, rolling.A_roll) + rolling.R2 * v_fwd_mps);
+  return normal_force_n * RollingResistancePerNewton(v_fwd_mps, rolling);
 }
 
 }  // namespace slipgraph

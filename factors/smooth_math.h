@@ -2,12 +2,14 @@
 //
 // The force laws contain sign(v) (1 - exp(-A |v|)). Written literally, a ceres::Jet evaluated at
 // exactly v = 0 gets derivative 0 (sign(0) = 0 and 1 - exp(0) = 0 kill both product-rule terms),
-// while the true derivative there is A. SignedSaturation rewrites the term as
+// while the true derivative there is A. SignedSaturation computes the same function as
 //   A v phi(A |v|),   phi(x) = (1 - exp(-x)) / x,   phi(0) = 1,
-// which is the same function, analytic in v, with a Taylor branch for phi near x = 0 (as Sophus
-// switches to a Taylor series near zero rotation) so that the value and every derivative stay
-// finite and exact at v = 0.
+// analytic in v, with a Taylor branch for phi near x = 0 (as Sophus switches to a Taylor series
+// near zero rotation), and gives Jets the exact derivative A exp(-A |v|) directly (one exp, no
+// chain of Jet operations: it sits in the filter's inner loop).
 #pragma once
+
+#include <ceres/jet.h>
 
 #include <cmath>
 
@@ -24,10 +26,15 @@ inline T OneMinusExpOverX(const T& x) {
 }
 
 // sign(v) (1 - exp(-rate |v|)), smooth at v = 0 with slope `rate` there. rate > 0 (1/units of v).
-template <typename T>
-inline T SignedSaturation(const T& v, double rate) {
-  using std::abs;
-  return rate * v * OneMinusExpOverX(T(rate * abs(v)));
+inline double SignedSaturation(double v, double rate) {
+  return rate * v * OneMinusExpOverX(rate * std::abs(v));
+}
+
+// The Jet version: value as above, derivative rate exp(-rate |v|) times v's derivative.
+template <typename S, int N>
+inline ceres::Jet<S, N> SignedSaturation(const ceres::Jet<S, N>& v, double rate) {
+  const S x = rate * std::abs(v.a);
+  return ceres::Jet<S, N>(rate * v.a * OneMinusExpOverX(x), v.v * (rate * std::exp(-x)));
 }
 
 }  // namespace slipgraph

@@ -13,8 +13,9 @@
 
 namespace slipgraph {
 
-template <typename T>
-inline T TractionForceN(const T& normal_force_n, const T& v_rel_mps, const TireParams& tire) {
+// N and T may differ (e.g. a double normal force from measured attitude and a Jet velocity).
+template <typename N, typename T>
+inline T TractionForceN(const N& normal_force_n, const T& v_rel_mps, const TireParams& tire) {
   return normal_force_n * (tire.C1 * SignedSaturation(v_rel_mps, tire.At) + tire.C2 * v_rel_mps);
 }
 

@@ -34,26 +34,28 @@ struct TireForces {
   T v_rel_right_mps;    // r w_r - v_fwd_r
 };
 
-template <typename T>
-inline TireForces<T> ComputeTireForces(const T* x, const Attitude<T>& attitude, const Params& p) {
-  const T roll = WardRollRad(attitude.roll_rad);
-  const T phi = WardPitchUphillRad(attitude.pitch_rad);
+// T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
+// keeps the trigonometry of the normal forces out of the automatic differentiation).
+template <typename T, typename A>
+inline TireForces<T> ComputeTireForces(const T* x, const Attitude<A>& attitude, const Params& p) {
+  const A roll = WardRollRad(attitude.roll_rad);
+  const A phi = WardPitchUphillRad(attitude.pitch_rad);
   const double weight_n = p.mass_kg * p.gravity_mps2;
   const T half_track_yaw = 0.5 * p.track_width_m * x[kYawRate];
   const T v_fwd_left = x[kVbx] - half_track_yaw;
   const T v_fwd_right = x[kVbx] + half_track_yaw;
 
-  T driven_left_n, driven_right_n;
-  T roll_left_n, roll_right_n;  // rolling resistance of all wheels on each side
+  A driven_left_n, driven_right_n;
+  A roll_left_n, roll_right_n;  // rolling resistance of all wheels on each side
   if (p.type == VehicleType::kDiffDriveCastor) {
-    const DiffDriveNormalForces<T> n = DiffDriveCastorNormalForcesN(
+    const DiffDriveNormalForces<A> n = DiffDriveCastorNormalForcesN(
         weight_n, roll, phi, p.cg_to_front_m, p.cg_to_rear_m, p.track_width_m, p.cg_height_m);
     driven_left_n = n.front_left_n;
     driven_right_n = n.front_right_n;
     roll_left_n = n.front_left_n + n.rear_each_n;
     roll_right_n = n.front_right_n + n.rear_each_n;
   } else {
-    const SideNormalForces<T> n =
+    const SideNormalForces<A> n =
         SideTotalNormalForcesN(weight_n, roll, phi, p.track_width_m, p.cg_height_m);
     driven_left_n = roll_left_n = n.left_n;
     driven_right_n = roll_right_n = n.right_n;
@@ -64,18 +66,18 @@ inline TireForces<T> ComputeTireForces(const T* x, const Attitude<T>& attitude, 
   out.v_rel_right_mps = TireRelativeVelocityMps(x[kOmegaRight], p.wheel_radius_m, v_fwd_right);
   out.traction_left_n = TractionForceN(driven_left_n, out.v_rel_left_mps, p.tire);
   out.traction_right_n = TractionForceN(driven_right_n, out.v_rel_right_mps, p.tire);
-  const T rolling_left_n = RollingResistanceForceN(roll_left_n, v_fwd_left, p.rolling);
-  const T rolling_right_n = RollingResistanceForceN(roll_right_n, v_fwd_right, p.rolling);
+  // Eq. (9) is linear in N: one evaluation per side serves every wheel on it.
+  const T rolling_per_n_left = RollingResistancePerNewton(v_fwd_left, p.rolling);
+  const T rolling_per_n_right = RollingResistancePerNewton(v_fwd_right, p.rolling);
+  const T rolling_left_n = roll_left_n * rolling_per_n_left;
+  const T rolling_right_n = roll_right_n * rolling_per_n_right;
 
   out.f_tire_mps2 =
       (out.traction_left_n + out.traction_right_n + rolling_left_n + rolling_right_n) / p.mass_kg;
   // Eq. (2) uses the driven wheels' rolling resistance; for the castor vehicle that is the front
   // pair only (the castors sit near the yaw axis's line and are free to swivel).
-  T yaw_roll_left_n = rolling_left_n, yaw_roll_right_n = rolling_right_n;
-  if (p.type == VehicleType::kDiffDriveCastor) {
-    yaw_roll_left_n = RollingResistanceForceN(driven_left_n, v_fwd_left, p.rolling);
-    yaw_roll_right_n = RollingResistanceForceN(driven_right_n, v_fwd_right, p.rolling);
-  }
+  const T yaw_roll_left_n = driven_left_n * rolling_per_n_left;
+  const T yaw_roll_right_n = driven_right_n * rolling_per_n_right;
   out.g_tire_radps2 = p.track_width_m / (2.0 * p.yaw_inertia_kgm2) *
                       (out.traction_right_n + yaw_roll_right_n - out.traction_left_n -
                        yaw_roll_left_n);
@@ -83,11 +85,11 @@ inline TireForces<T> ComputeTireForces(const T* x, const Attitude<T>& attitude, 
 }
 
 // Continuous state derivative, eq. (10), noise-free.
-template <typename T>
-inline void StateDerivative(const T* x, const Attitude<T>& attitude, const Params& p, T* x_dot) {
+template <typename T, typename A>
+inline void StateDerivative(const T* x, const Attitude<A>& attitude, const Params& p, T* x_dot) {
   using std::sin;
   const TireForces<T> forces = ComputeTireForces(x, attitude, p);
-  const T phi = WardPitchUphillRad(attitude.pitch_rad);
+  const A phi = WardPitchUphillRad(attitude.pitch_rad);
   x_dot[kVbx] = forces.f_tire_mps2 + x[kAdist] - p.gravity_mps2 * sin(phi);
   x_dot[kAccelBias] = -x[kAccelBias] / p.accel_bias_tau_s;
   x_dot[kAdist] = T(0.0);
@@ -126,8 +128,8 @@ inline void PropagateWith(const T* x, const Derivative& derivative, double dt_s,
 // the LAGR values), so forward Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78.
 // The EKF and the dynamics factor both call this, so filter and smoother share one
 // discretization.
-template <typename T>
-inline void Propagate(const T* x, const Attitude<T>& attitude, const Params& p, double dt_s,
+template <typename T, typename A>
+inline void Propagate(const T* x, const Attitude<A>& attitude, const Params& p, double dt_s,
                       T* x_next, double max_substep_s = 0.01) {
   PropagateWith(
       x, [&](const T* state, T* x_dot) { StateDerivative(state, attitude, p, x_dot); }, dt_s,

@@ -190,7 +190,8 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
        {{"ema_samples", &im.ema_samples, false},
         {"slip_threshold", &im.slip_threshold, false},
         {"low_speed_threshold_add", &im.low_speed_threshold_add, false},
-        {"low_speed", &im.low_speed_mps, false}}},
+        {"low_speed", &im.low_speed_mps, false},
+        {"min_wheel_speed", &im.min_wheel_speed_mps, false}}},
       {"offsets",
        {{"init_samples", &init_samples, false}, {"ema_samples", &m.offset_ema_samples, false}}},
       {"tire_uncertainty",
@@ -310,7 +311,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   section("immobilization", {{"ema_samples", im.ema_samples},
                              {"slip_threshold", im.slip_threshold},
                              {"low_speed_threshold_add", im.low_speed_threshold_add},
-                             {"low_speed", im.low_speed_mps}});
+                             {"low_speed", im.low_speed_mps},
+                             {"min_wheel_speed", im.min_wheel_speed_mps}});
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
                       {"ema_samples", m.offset_ema_samples}});
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},

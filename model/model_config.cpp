@@ -56,6 +56,7 @@ bool ModelConfig::IsValid(std::string* error) const {
       {"immobilization.ema_samples", immobilization.ema_samples},
       {"immobilization.slip_threshold", immobilization.slip_threshold},
       {"immobilization.low_speed", immobilization.low_speed_mps},
+      {"immobilization.min_wheel_speed", immobilization.min_wheel_speed_mps},
       {"offset_ema_samples", offset_ema_samples},
       {"tire_uncertainty.relative_sd", tire_uncertainty.relative_sd},
       {"tire_uncertainty.floor", tire_uncertainty.floor_mps2},

@@ -33,7 +33,7 @@ const SlipEstimate& ImmobilizationDetector::Update(double v_bx, double yaw_rate,
   latest_.threshold = config_.slip_threshold + config_.low_speed_threshold_add * low_speed;
   // Braking: the body outruns the wheels (v_bx > r w in the direction of travel).
   latest_.braking = surface >= 0.0 ? v_bx > surface : v_bx < surface;
-  const bool turning = std::abs(surface) > kSlipSpeedFloorMps * 10.0;
+  const bool turning = std::abs(surface) > config_.min_wheel_speed_mps;
   latest_.immobilized = turning && !latest_.braking && latest_.slip_ema > latest_.threshold;
   return latest_;
 }

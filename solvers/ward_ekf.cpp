@@ -66,7 +66,7 @@ void WardEkf::PredictTo(double t) {
   using Jet = ceres::Jet<double, kStateSize>;
   Jet x_jet[kStateSize], next[kStateSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
-  const Attitude<Jet> attitude{Jet(roll_rad_), Jet(pitch_rad_)};
+  const Attitude<double> attitude = CurrentAttitude();
   const bool accel_driven =
       options_.velocity_model == VelocityModel::kAccelerometerDriven && have_accel_input_;
   if (accel_driven) {
@@ -116,27 +116,42 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
                      StreamCounters* counters, int* consecutive_rejections) {
   const int m = static_cast<int>(nu.size());
   if (m == 0) return false;
-  using RowSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
-  const Eigen::Matrix<double, Eigen::Dynamic, kStateSize, 0, kMaxRows, kStateSize> HP = H * P_;
-  RowSquare S = HP * H.transpose();
-  S.diagonal() += r;
-  const Eigen::LDLT<RowSquare> ldlt(S);
-  const double mahalanobis = nu.dot(ldlt.solve(nu));
-  if (std::isinf(gate_chi2) == false && mahalanobis > gate_chi2) {
-    if (consecutive_rejections == nullptr ||
-        ++*consecutive_rejections <= max_consecutive_rejections) {
-      ++counters->rejected;
-      return false;
+  if (!std::isinf(gate_chi2)) {
+    // Mahalanobis distance of the stacked innovation, S = H P H^T + R.
+    using RowSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
+    RowSquare S(m, m);
+    for (int i = 0; i < m; ++i) {
+      const StateVector Ph = P_ * H.row(i).transpose();
+      for (int j = 0; j < m; ++j) S(j, i) = H.row(j).dot(Ph);
+      S(i, i) += r(i);
     }
-    ++counters->forced;
+    const double mahalanobis = nu.dot(S.ldlt().solve(nu));
+    if (mahalanobis > gate_chi2) {
+      if (consecutive_rejections == nullptr ||
+          ++*consecutive_rejections <= max_consecutive_rejections) {
+        ++counters->rejected;
+        return false;
+      }
+      ++counters->forced;
+    }
   }
   if (consecutive_rejections != nullptr) *consecutive_rejections = 0;
-  // K = P H^T S^-1; Joseph form P = (I - K H) P (I - K H)^T + K R K^T.
-  const Eigen::Matrix<double, kStateSize, Eigen::Dynamic, 0, kStateSize, kMaxRows> K =
-      ldlt.solve(HP).transpose();
-  x_ += K * nu;
-  const StateMatrix I_KH = StateMatrix::Identity() - K * H;
-  P_ = I_KH * P_ * I_KH.transpose() + K * r.asDiagonal() * K.transpose();
+  // R is diagonal, so the rows are applied one after the other as scalar updates (the same
+  // result as the stacked update), each in Joseph form P = A P A^T + r k k^T, A = I - k h^T,
+  // evaluated in O(n^2): A P = P - k (P h)^T, (A P) A^T = A P - (A P h) k^T.
+  const StateVector x_prior = x_;
+  for (int i = 0; i < m; ++i) {
+    const StateVector h = H.row(i).transpose();
+    // The stacked update's linearization at x_prior: the innovation moves with the earlier rows.
+    const double innovation = nu(i) - h.dot(x_ - x_prior);
+    const StateVector Ph = P_ * h;
+    const double s = h.dot(Ph) + r(i);
+    const StateVector k = Ph / s;
+    x_ += k * innovation;
+    const StateMatrix AP = P_ - k * Ph.transpose();
+    const StateVector APh = AP * h;
+    P_ = AP - APh * k.transpose() + r(i) * k * k.transpose();
+  }
   ++counters->used;
   return true;
 }
@@ -178,9 +193,10 @@ void WardEkf::AddImu(const ImuSample& imu) {
   using Jet = ceres::Jet<double, kStateSize>;
   Jet x_jet[kStateSize], z[kMeasurementSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
-  PredictMeasurements(x_jet, Attitude<Jet>{Jet(roll_rad_), Jet(pitch_rad_)},
-                      ImuOffsets<Jet>{Jet(offsets_.accel_x_mps2()), Jet(offsets_.gyro_z_radps())},
-                      params_, z);
+  TireForces<Jet> forces;
+  PredictMeasurements(x_jet, CurrentAttitude(),
+                      ImuOffsets<double>{offsets_.accel_x_mps2(), offsets_.gyro_z_radps()},
+                      params_, z, &forces);
   RowVector nu(0), r(0);
   RowMatrix H(0, kStateSize);
   const auto add_row = [&](int index, double measured, double variance) {
@@ -198,16 +214,15 @@ void WardEkf::AddImu(const ImuSample& imu) {
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's.
       const TireLawUncertainty& u = model_.tire_uncertainty;
-      const TireForces<double> forces = ComputeTireForces(x_.data(), CurrentAttitude(), params_);
       const double traction =
-          std::abs(forces.traction_left_n + forces.traction_right_n) / params_.mass_kg;
+          std::abs(forces.traction_left_n.a + forces.traction_right_n.a) / params_.mass_kg;
       // d f / d w_side = r d f / d v_rel: the slope of the law at the current slip.
       const double slope_left = std::abs(z[kZAccelX].v[kOmegaLeft]) / params_.wheel_radius_m;
       const double slope_right = std::abs(z[kZAccelX].v[kOmegaRight]) / params_.wheel_radius_m;
       const double slip_left =
-          slope_left * (u.slip_relative_sd * std::abs(forces.v_rel_left_mps) + u.slip_floor_mps);
-      const double slip_right = slope_right * (u.slip_relative_sd * std::abs(forces.v_rel_right_mps) +
-                                               u.slip_floor_mps);
+          slope_left * (u.slip_relative_sd * std::abs(forces.v_rel_left_mps.a) + u.slip_floor_mps);
+      const double slip_right =
+          slope_right * (u.slip_relative_sd * std::abs(forces.v_rel_right_mps.a) + u.slip_floor_mps);
       const double law_variance = u.relative_sd * traction * u.relative_sd * traction +
                                   slip_left * slip_left + slip_right * slip_right +
                                   u.floor_mps2 * u.floor_mps2;
