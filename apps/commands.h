@@ -14,5 +14,6 @@ void RegisterInfoCommand(CLI::App* app, int* status);
 void RegisterSimulateCommand(CLI::App* app, int* status);
 void RegisterFilterCommand(CLI::App* app, int* status);
 void RegisterEvaluateCommand(CLI::App* app, int* status);
+void RegisterSmoothCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterInfoCommand(&app, &status);
   slipgraph::RegisterSimulateCommand(&app, &status);
   slipgraph::RegisterFilterCommand(&app, &status);
+  slipgraph::RegisterSmoothCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "factors/frames.h"
+#include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_measurement.h"
 
@@ -193,10 +194,9 @@ void WardEkf::AddImu(const ImuSample& imu) {
   using Jet = ceres::Jet<double, kStateSize>;
   Jet x_jet[kStateSize], z[kMeasurementSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
-  TireForces<Jet> forces;
   PredictMeasurements(x_jet, CurrentAttitude(),
                       ImuOffsets<double>{offsets_.accel_x_mps2(), offsets_.gyro_z_radps()},
-                      params_, z, &forces);
+                      params_, z);
   RowVector nu(0), r(0);
   RowMatrix H(0, kStateSize);
   const auto add_row = [&](int index, double measured, double variance) {
@@ -212,21 +212,12 @@ void WardEkf::AddImu(const ImuSample& imu) {
   if (ax_ok) {
     double variance = noise.imu_sd_accel_mps2 * noise.imu_sd_accel_mps2;
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
-      // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's.
-      const TireLawUncertainty& u = model_.tire_uncertainty;
-      const double traction =
-          std::abs(forces.traction_left_n.a + forces.traction_right_n.a) / params_.mass_kg;
-      // d f / d w_side = r d f / d v_rel: the slope of the law at the current slip.
-      const double slope_left = std::abs(z[kZAccelX].v[kOmegaLeft]) / params_.wheel_radius_m;
-      const double slope_right = std::abs(z[kZAccelX].v[kOmegaRight]) / params_.wheel_radius_m;
-      const double slip_left =
-          slope_left * (u.slip_relative_sd * std::abs(forces.v_rel_left_mps.a) + u.slip_floor_mps);
-      const double slip_right =
-          slope_right * (u.slip_relative_sd * std::abs(forces.v_rel_right_mps.a) + u.slip_floor_mps);
-      const double law_variance = u.relative_sd * traction * u.relative_sd * traction +
-                                  slip_left * slip_left + slip_right * slip_right +
-                                  u.floor_mps2 * u.floor_mps2;
-      variance += law_variance * std::max(1.0, u.correlation_time_s / imu_period_s_);
+      // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's,
+      // persistent over correlation_time (a per-sample variance scaled by correlation_time/dt).
+      const double law_variance =
+          TireLawVariance(x_.data(), CurrentAttitude(), params_, model_.tire_uncertainty);
+      variance += law_variance *
+                  std::max(1.0, model_.tire_uncertainty.correlation_time_s / imu_period_s_);
     }
     add_row(kZAccelX, imu.ax, variance);
     // Normalized innovation squared of the accelerometer alone, for the adaptive w3.

@@ -1,0 +1,41 @@
+// The variance of the tire law's traction acceleration at a state, from the model's
+// TireLawUncertainty (model/model_config.h):
+//
+//   var = (relative_sd |traction|)^2 + sum_sides (d traction/d v_rel (slip_relative_sd |v_rel|
+//         + slip_floor))^2 + floor^2
+//
+// Shared by the EKF's accelerometer update and the smoother's accelerometer factor, so both
+// weigh the law the same way.
+#pragma once
+
+#include <ceres/jet.h>
+
+#include <cmath>
+
+#include "factors/ward_dynamics.h"
+#include "model/model_config.h"
+
+namespace slipgraph {
+
+inline double TireLawVariance(const double* x, const ward::Attitude<double>& attitude,
+                              const ward::Params& params, const TireLawUncertainty& u) {
+  // Differentiate the traction with respect to the two wheel speeds: r d/d v_rel = d/d w.
+  using Jet2 = ceres::Jet<double, 2>;
+  Jet2 state[ward::kStateSize];
+  for (int i = 0; i < ward::kStateSize; ++i) state[i] = Jet2(x[i]);
+  state[ward::kOmegaLeft] = Jet2(x[ward::kOmegaLeft], 0);
+  state[ward::kOmegaRight] = Jet2(x[ward::kOmegaRight], 1);
+  const ward::TireForces<Jet2> f = ward::ComputeTireForces(state, attitude, params);
+  const double traction = std::abs(f.traction_left_n.a + f.traction_right_n.a) / params.mass_kg;
+  const double slope_left = std::abs(f.traction_left_n.v[0]) / params.mass_kg / params.wheel_radius_m;
+  const double slope_right =
+      std::abs(f.traction_right_n.v[1]) / params.mass_kg / params.wheel_radius_m;
+  const double slip_left =
+      slope_left * (u.slip_relative_sd * std::abs(f.v_rel_left_mps.a) + u.slip_floor_mps);
+  const double slip_right =
+      slope_right * (u.slip_relative_sd * std::abs(f.v_rel_right_mps.a) + u.slip_floor_mps);
+  return u.relative_sd * traction * u.relative_sd * traction + slip_left * slip_left +
+         slip_right * slip_right + u.floor_mps2 * u.floor_mps2;
+}
+
+}  // namespace slipgraph

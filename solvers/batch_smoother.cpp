@@ -1,0 +1,144 @@
+#include "solvers/batch_smoother.h"
+
+#include <ceres/covariance.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "factors/slip_ratio.h"
+
+namespace slipgraph {
+namespace {
+
+using namespace ward;  // NOLINT: state indices
+
+// Non-causal detection on smoothed states: slip of the driven sides above the threshold, the
+// wheels turning, not braking, for at least min_duration.
+void DetectImmobilization(const ModelConfig& model, const Vehicle& vehicle, double min_duration_s,
+                          std::vector<EkfEstimate>* estimates) {
+  const ImmobilizationConfig& c = model.immobilization;
+  std::vector<bool> raw(estimates->size(), false);
+  for (size_t k = 0; k < estimates->size(); ++k) {
+    EkfEstimate& e = (*estimates)[k];
+    const double half_track_yaw = 0.5 * vehicle.track_width_m * e.x[kYawRate];
+    const double surface_left = vehicle.wheel_radius_m * e.x[kOmegaLeft];
+    const double surface_right = vehicle.wheel_radius_m * e.x[kOmegaRight];
+    e.slip.slip_left = SlipRatio(surface_left, e.x[kVbx] - half_track_yaw);
+    e.slip.slip_right = SlipRatio(surface_right, e.x[kVbx] + half_track_yaw);
+    e.slip.slip_ema = 0.5 * (e.slip.slip_left + e.slip.slip_right);  // smoothed: no EMA needed
+    const double surface = 0.5 * (surface_left + surface_right);
+    e.slip.braking = surface >= 0.0 ? e.x[kVbx] > surface : e.x[kVbx] < surface;
+    const double low_speed = std::max(0.0, 1.0 - std::abs(surface) / c.low_speed_mps);
+    e.slip.threshold = c.slip_threshold + c.low_speed_threshold_add * low_speed;
+    raw[k] = std::abs(surface) > c.min_wheel_speed_mps && !e.slip.braking &&
+             e.slip.slip_ema > e.slip.threshold;
+  }
+  // Keep runs that last at least min_duration.
+  size_t k = 0;
+  while (k < raw.size()) {
+    size_t end = k;
+    while (end < raw.size() && raw[end]) ++end;
+    const bool keep = end > k && (*estimates)[end - 1].t - (*estimates)[k].t >= min_duration_s;
+    for (size_t i = k; i < end; ++i) (*estimates)[i].slip.immobilized = keep;
+    if (end == k) (*estimates)[k].slip.immobilized = false;
+    k = std::max(end, k + 1);
+  }
+}
+
+}  // namespace
+
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
+                           const BatchSmootherOptions& options) {
+  SmootherResult result;
+  result.ekf = RunEkf(log, model, options.filter);
+  result.estimates = result.ekf.estimates;
+  if (result.ekf.estimates.size() < 2) {
+    result.used_fallback = true;
+    result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
+    return result;
+  }
+  WardProblemOptions problem_options = options.problem;
+  problem_options.use_gps = options.filter.use_gps;
+  problem_options.velocity_model = options.filter.ekf.velocity_model;
+  std::unique_ptr<WardProblem> problem =
+      BuildWardBatchProblem(log, model, result.ekf, problem_options);
+
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver_options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.num_threads = options.threads;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.function_tolerance = 1e-12;
+  solver_options.gradient_tolerance = 1e-12;
+  solver_options.parameter_tolerance = 1e-12;
+  const std::map<std::string, double> initial_costs = CostByKind(*problem);
+  ceres::Solve(solver_options, problem->problem.get(), &result.summary);
+  std::ostringstream breakdown;
+  breakdown << "cost by factor (EKF start -> solution):";
+  for (const auto& [kind, cost] : CostByKind(*problem)) {
+    breakdown << " " << kind << " " << initial_costs.at(kind) << " -> " << cost << ";";
+  }
+  result.notes.push_back(breakdown.str());
+  if (!result.summary.IsSolutionUsable()) {
+    result.used_fallback = true;
+    result.notes.push_back("the solve failed (" + result.summary.message +
+                           "): EKF estimates reported instead");
+    return result;
+  }
+  if (result.summary.termination_type == ceres::NO_CONVERGENCE) {
+    result.notes.push_back("the solve did not converge in " +
+                           std::to_string(options.max_iterations) +
+                           " iterations; its last iterate is reported");
+  }
+  const size_t n = problem->states.size();
+  for (size_t k = 0; k < n; ++k) {
+    EkfEstimate& e = result.estimates[k];
+    for (int i = 0; i < kStateSize; ++i) e.x[i] = problem->states[k][i];
+    e.accel_offset_mps2 = problem->offsets[0];
+    e.gyro_offset_radps = problem->offsets[1];
+  }
+  if (options.covariance) {
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::SPARSE_QR;
+    covariance_options.num_threads = options.threads;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<std::pair<const double*, const double*>> blocks;
+    blocks.reserve(n);
+    for (size_t k = 0; k < n; ++k) {
+      blocks.emplace_back(problem->states[k].data(), problem->states[k].data());
+    }
+    result.covariance_ok = covariance.Compute(blocks, problem->problem.get());
+    if (result.covariance_ok) {
+      double block[kStateSize * kStateSize];
+      for (size_t k = 0; k < n; ++k) {
+        covariance.GetCovarianceBlock(problem->states[k].data(), problem->states[k].data(), block);
+        for (int i = 0; i < kStateSize; ++i) {
+          result.estimates[k].sd[i] = std::sqrt(std::max(0.0, block[i * kStateSize + i]));
+        }
+      }
+    } else {
+      result.notes.push_back("covariance recovery failed (rank-deficient?): EKF sd reported");
+    }
+  }
+  DetectImmobilization(model, log.vehicle, options.min_immobilized_s, &result.estimates);
+  std::ostringstream counts;
+  counts << "factors: " << problem->dynamics << " dynamics, " << problem->accelerometer
+         << " accelerometer, " << problem->gyro << " gyro, " << problem->encoders
+         << " encoder, " << problem->gnss << " GNSS, " << problem->oppose_motion
+         << " oppose-motion, " << problem->act_quickly << " decay, " << problem->at_rest << " at-rest, " << problem->bounds
+         << " bound priors";
+  result.notes.insert(result.notes.begin(), counts.str());
+  return result;
+}
+
+std::string DescribeSmootherRun(const SmootherResult& result) {
+  std::ostringstream out;
+  out << "smoother: " << result.summary.BriefReport() << "\n";
+  out << "  " << (result.used_fallback ? "FALLBACK to the EKF" : "smoothed estimates")
+      << ", covariance " << (result.covariance_ok ? "recovered" : "not recovered") << "\n";
+  for (const std::string& note : result.notes) out << "  " << note << "\n";
+  return out.str();
+}
+
+}  // namespace slipgraph

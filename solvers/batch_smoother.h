@@ -1,0 +1,44 @@
+// Post-processing: the whole-log Ward factor graph (problems/ward_batch_problem) solved with
+// sparse Cholesky (SuiteSparse), initialised from the EKF, with a standard deviation for every
+// estimate from the marginal covariance. A failed or unusable solve falls back to the EKF's
+// estimates and says so; nothing is dropped.
+#pragma once
+
+#include <ceres/solver.h>
+
+#include <string>
+#include <vector>
+
+#include "io/drive_log.h"
+#include "model/model_config.h"
+#include "problems/ward_batch_problem.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+
+struct BatchSmootherOptions {
+  int max_iterations = 200;
+  int threads = 1;
+  bool covariance = true;           // marginal sd per state (else the EKF's sd is reported)
+  FilterRunOptions filter;          // the EKF run that initialises the smoother
+  WardProblemOptions problem;
+  // Post-processing detection: the smoothed slip (no EMA lag) above the threshold for at least
+  // this long while the wheels turn and the robot is not braking.
+  double min_immobilized_s = 0.1;
+};
+
+struct SmootherResult {
+  std::vector<EkfEstimate> estimates;  // same layout as the EKF's, one per wheel sample
+  FilterResult ekf;                     // the initialising filter run
+  ceres::Solver::Summary summary;
+  bool used_fallback = false;           // true: estimates are the EKF's (see notes)
+  bool covariance_ok = false;
+  std::vector<std::string> notes;
+};
+
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
+                           const BatchSmootherOptions& options = {});
+
+std::string DescribeSmootherRun(const SmootherResult& result);
+
+}  // namespace slipgraph

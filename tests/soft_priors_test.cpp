@@ -1,0 +1,80 @@
+// Soft priors of the smoother: first-state and offset priors, the disturbance random walk and
+// decay (WC2), oppose-motion (WC1), at-rest (WC4) and bounds (WC5).
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "factors/at_rest_prior.h"
+#include "factors/bound_prior.h"
+#include "factors/diagonal_prior.h"
+#include "factors/disturbance_decay_prior.h"
+#include "factors/disturbance_walk_factor.h"
+#include "factors/oppose_motion_prior.h"
+#include "tests/factor_check.h"
+
+namespace slipgraph {
+namespace {
+
+using namespace ward;  // NOLINT
+
+TEST(DiagonalPrior, ResidualIsTheNormalizedDifference) {
+  const std::unique_ptr<ceres::CostFunction> f(DiagonalPrior<2>::Create({1.0, 2.0}, {0.5, 0.1}));
+  const double x[2] = {2.0, 2.0};
+  const std::vector<double> r = testing::Residuals(*f, {x});
+  EXPECT_DOUBLE_EQ(r[0], 2.0);
+  EXPECT_DOUBLE_EQ(r[1], 0.0);
+  testing::ExpectJacobiansMatchNumeric(*f, {x});
+}
+
+TEST(DisturbanceFactors, WalkAndDecay) {
+  const double a[kStateSize] = {0, 0, -1.0, 0, 0, 0, 0};
+  const double b[kStateSize] = {0, 0, -2.5, 0, 0, 0, 0};
+  const std::unique_ptr<ceres::CostFunction> walk(DisturbanceWalkFactor::Create(0.5));
+  EXPECT_DOUBLE_EQ(testing::Residuals(*walk, {a, b})[0], -3.0);
+  testing::ExpectJacobiansMatchNumeric(*walk, {a, b});
+  const std::unique_ptr<ceres::CostFunction> decay(DisturbanceDecayPrior::Create(2.0));
+  EXPECT_DOUBLE_EQ(testing::Residuals(*decay, {b})[0], -1.25);
+  testing::ExpectJacobiansMatchNumeric(*decay, {b});
+}
+
+TEST(OpposeMotionPrior, PenalizesOnlyAPushingDisturbance) {
+  const std::unique_ptr<ceres::CostFunction> forward(OpposeMotionPrior::Create(1.0, 0.5));
+  const double resisting[kStateSize] = {1, 0, -1.0, 4, 4, 0, 0};
+  const double pushing[kStateSize] = {1, 0, 1.0, 4, 4, 0, 0};
+  const double zero[kStateSize] = {1, 0, 0.0, 4, 4, 0, 0};
+  EXPECT_NEAR(testing::Residuals(*forward, {resisting})[0], 0.0, 1e-4);
+  EXPECT_NEAR(testing::Residuals(*forward, {pushing})[0], 1.0 / 0.5, 1e-4);
+  // Smooth at the kink: residual eps/2 / sd at zero, Jacobians finite and correct there.
+  EXPECT_NEAR(testing::Residuals(*forward, {zero})[0],
+              0.5 * OpposeMotionPrior::kEpsMps2 / 0.5, 1e-12);
+  for (const double* x : {resisting, pushing, zero}) {
+    testing::ExpectJacobiansMatchNumeric(*forward, {x});
+  }
+  const std::unique_ptr<ceres::CostFunction> reverse(OpposeMotionPrior::Create(-1.0, 0.5));
+  EXPECT_NEAR(testing::Residuals(*reverse, {resisting})[0], 1.0 / 0.5, 1e-4);
+}
+
+TEST(AtRestPrior, PullsBiasesAndDisturbanceToZero) {
+  const std::unique_ptr<ceres::CostFunction> f(AtRestPrior::Create(0.1, 0.01));
+  const double x[kStateSize] = {0, 0.02, -0.3, 0, 0, 0, 0.001};
+  const std::vector<double> r = testing::Residuals(*f, {x});
+  EXPECT_DOUBLE_EQ(r[0], 0.2);
+  EXPECT_DOUBLE_EQ(r[1], -3.0);
+  EXPECT_DOUBLE_EQ(r[2], 0.1);
+  testing::ExpectJacobiansMatchNumeric(*f, {x});
+}
+
+TEST(BoundPrior, ZeroInsideLinearOutside) {
+  const std::unique_ptr<ceres::CostFunction> f(BoundPrior::Create({3.0, 0.5, 10.0, 0.1}, 0.1));
+  const double inside[kStateSize] = {1.0, 0.1, -2.0, 0, 0, 0, 0.01};
+  const double outside[kStateSize] = {-4.0, 0.1, -2.0, 0, 0, 0, 0.01};
+  for (double r : testing::Residuals(*f, {inside})) EXPECT_NEAR(r, 0.0, 1e-3);
+  EXPECT_NEAR(testing::Residuals(*f, {outside})[0], (4.0 - 3.0) / 0.1, 1e-2);
+  // Inside the bounds the derivatives are ~1e-8 (the hinge's tail); the numeric side's absolute
+  // error there (~1e-13) is 2e-5 relative, hence the looser precision.
+  testing::ExpectJacobiansMatchNumeric(*f, {inside}, 1e-4);
+  testing::ExpectJacobiansMatchNumeric(*f, {outside}, 1e-4);
+}
+
+}  // namespace
+}  // namespace slipgraph
