@@ -1,7 +1,8 @@
 // The EKF on the ward21 suite (Ward & Iagnemma Sec. III): detection, delay and false-alarm
 // figures with and without GNSS, and the paper's Table II (each tire coefficient at +-20 %).
 // Simulates the suite in memory. Run: build/bench/ward21_report [--seed N] [--tire-dynamics]
-// (--tire-dynamics: the paper's propagation of v_bx through the tire law, for comparison).
+// [--smoother] (--tire-dynamics: the paper's propagation of v_bx through the tire law, for
+// comparison; --smoother: the batch smoother instead of the EKF, nominal rows only).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include "evaluation/evaluation.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 
 namespace slipgraph {
@@ -29,6 +31,7 @@ NumericTable AsTable(const FilterResult& result) {
 }
 
 VelocityModel g_velocity_model = VelocityModel::kAccelerometerDriven;
+bool g_smoother = false;
 
 Evaluation RunSuite(const std::vector<DriveLog>& logs, bool gps,
                     const std::function<void(ModelConfig*)>& change) {
@@ -39,7 +42,15 @@ Evaluation RunSuite(const std::vector<DriveLog>& logs, bool gps,
     FilterRunOptions options;
     options.use_gps = gps;
     options.ekf.velocity_model = g_velocity_model;
-    runs.push_back(Evaluate(log, AsTable(RunEkf(log, model, options))));
+    if (g_smoother) {
+      BatchSmootherOptions smoother;
+      smoother.filter = options;
+      FilterResult rows;
+      rows.estimates = SmoothBatch(log, model, smoother).estimates;
+      runs.push_back(Evaluate(log, AsTable(rows)));
+    } else {
+      runs.push_back(Evaluate(log, AsTable(RunEkf(log, model, options))));
+    }
   }
   return Combine(runs, "ward21");
 }
@@ -64,6 +75,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--tire-dynamics") == 0) {
       g_velocity_model = VelocityModel::kTireDynamics;
     }
+    if (std::strcmp(argv[i], "--smoother") == 0) g_smoother = true;
   }
   std::vector<DriveLog> logs;
   for (const sim::ScenarioRun& run : sim::ExpandScenario("ward21", seed)) {
@@ -75,6 +87,7 @@ int main(int argc, char** argv) {
   const auto nominal = [](ModelConfig*) {};
   Print("nominal, GNSS", RunSuite(logs, true, nominal));
   Print("nominal, no GNSS", RunSuite(logs, false, nominal));
+  if (g_smoother) return 0;  // the batch smoother: the two nominal rows only
   const struct {
     const char* name;
     std::function<double&(ModelConfig*)> field;

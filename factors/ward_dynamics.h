@@ -124,6 +124,15 @@ inline void PropagateWith(const T* x, const Derivative& derivative, double dt_s,
   for (int i = 0; i < kStateSize; ++i) x_next[i] = state[i];
 }
 
+// Accelerometer-driven form: the white-noise density (squared, (m/s^2)^2 s) of the input
+// a_x - g sin(phi): the accelerometer's per-sample noise and the attitude's pitch noise seen
+// through gravity, each white over one IMU interval.
+inline double AccelInputDensitySq(double sd_accel_mps2, double sd_pitch_rad, double gravity_mps2,
+                                  double imu_period_s) {
+  const double gravity_noise = gravity_mps2 * sd_pitch_rad;
+  return (sd_accel_mps2 * sd_accel_mps2 + gravity_noise * gravity_noise) * imu_period_s;
+}
+
 // Eq. (10) propagated over dt. The tire law is stiff (d v' / d v ~ -g C1 At, about -150 1/s for
 // the LAGR values), so forward Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78.
 // The EKF and the dynamics factor both call this, so filter and smoother share one

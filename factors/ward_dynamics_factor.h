@@ -5,7 +5,8 @@
 //
 // Parameter blocks: x_k (7), x_{k+1} (7), IMU offsets [c_ax, c_gz] (2). u_k: the attitude at t_k
 // (REP-103 roll and pitch, rad) and, in the accelerometer-driven form, the accelerometer x
-// reading held over [t_k, t_{k+1}) (m/s^2): v' = a_x - c_ax - b_ax - g sin(phi). S: the inverse
+// reading that covers [t_k, t_{k+1}] (the sample stamped t_{k+1}, a mean over the interval;
+// m/s^2): v' = a_x - c_ax - b_ax - g sin(phi). S: the inverse
 // process-noise standard deviations per step. a_dist has its own random-walk factor
 // (disturbance_walk_factor.h) so that a robust loss can let it jump.
 #pragma once

@@ -27,6 +27,7 @@ using namespace ward;  // NOLINT: state indices
 // Sensor context of one state: the latest attitude, accelerometer reading and IMU interval.
 struct Context {
   Attitude<double> attitude{0.0, 0.0};
+  double pitch_sd = 0.0;  // the attitude source's stated pitch sd (0 when not given)
   double yaw = 0.0;
   bool have_attitude = false;
   double accel_x = std::nan("");
@@ -102,6 +103,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     if (a >= 0) {
       c.attitude = {log.attitude[a].roll, log.attitude[a].pitch};
       c.yaw = log.attitude[a].yaw;
+      c.pitch_sd = std::isfinite(log.attitude[a].sd_pitch) ? log.attitude[a].sd_pitch : 0.0;
       c.have_attitude = true;
     }
     const long i = latest_index(log.imu, t);
@@ -203,12 +205,15 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     if (k + 1 >= n) continue;
     const double dt = out->times[k + 1] - out->times[k];
     if (dt <= 0.0) continue;
-    const Context c = context_at(out->times[k]);
+    // The attitude at t_k; the accelerometer sample that ends the interval (its mean over it).
+    Context c = context_at(out->times[k]);
+    c.accel_x = context_at(out->times[k + 1]).accel_x;
     const bool accel_driven = options.velocity_model == VelocityModel::kAccelerometerDriven &&
                               std::isfinite(c.accel_x);
     const double sd_v =
-        accel_driven ? std::sqrt(noise.imu_sd_accel_mps2 * noise.imu_sd_accel_mps2 *
-                                 c.imu_period_s * dt)
+        accel_driven ? std::sqrt(AccelInputDensitySq(noise.imu_sd_accel_mps2, c.pitch_sd,
+                                                     params.gravity_mps2, c.imu_period_s) *
+                                 dt)
                      : q.v_bx_mps2_per_sqrt_hz * std::sqrt(dt);
     const auto gauss_markov = [dt](double sd, double tau) {
       return sd * std::sqrt(1.0 - std::exp(-2.0 * dt / tau));

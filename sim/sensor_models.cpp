@@ -91,8 +91,15 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   // Specific force in the body frame: f = a - g_world expressed in body axes (REP-103, z up).
   const double cp = std::cos(s.pitch), sp = std::sin(s.pitch);
   const double cr = std::cos(s.roll), sr = std::sin(s.roll);
-  double f[3] = {s.a_bx - s.v_by * s.yaw_rate - kGravity * sp,
-                 s.a_by + s.v_bx * s.yaw_rate + kGravity * sr * cp,
+  // Band-limited accelerometer: the mean of dv/dt over the sample interval, so that the samples
+  // integrate to the true velocity change (an instantaneous sample would alias the fast wheel and
+  // tire dynamics into a velocity drift).
+  const double a_x = have_previous_imu_ ? (s.v_bx - previous_v_bx_) / dt : s.a_bx;
+  const double a_y = have_previous_imu_ ? (s.v_by - previous_v_by_) / dt : s.a_by;
+  previous_v_bx_ = s.v_bx, previous_v_by_ = s.v_by;
+  have_previous_imu_ = true;
+  double f[3] = {a_x - s.v_by * s.yaw_rate - kGravity * sp,
+                 a_y + s.v_bx * s.yaw_rate + kGravity * sr * cp,
                  kGravity * cr * cp};
   double w[3] = {s.roll_rate, s.pitch_rate, s.yaw_rate};
   // imu_mounting_pitch: sensor axes pitched nose-down by delta about body y.

@@ -21,7 +21,7 @@ struct KinematicState {
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // pitch positive nose down
   double roll_rate = 0.0, pitch_rate = 0.0;
   double v_bx = 0.0, v_by = 0.0, yaw_rate = 0.0;
-  double a_bx = 0.0;  // dv_bx/dt
+  double a_bx = 0.0;  // dv_bx/dt (instantaneous; the IMU model band-limits it)
   double a_by = 0.0;  // dv_by/dt
   std::array<double, kMaxWheels> wheel_angle_rad{};
   std::array<double, kMaxWheels> omega_radps{};
@@ -62,6 +62,10 @@ class SensorSimulator {
   DriveLog* log_;
   ImuErrors imu_errors_;
   double accel_bias_[3] = {0.0, 0.0, 0.0};
+  // Body velocity at the previous IMU sample: the accelerometer reports the mean acceleration
+  // over its sample interval (an anti-aliased MEMS output), i.e. the velocity change / interval.
+  double previous_v_bx_ = 0.0, previous_v_by_ = 0.0;
+  bool have_previous_imu_ = false;
   double gyro_bias_[3] = {0.0, 0.0, 0.0};
   std::array<int64_t, kMaxWheels> last_counts_{};
   bool have_last_counts_ = false;

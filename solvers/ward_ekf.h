@@ -122,8 +122,8 @@ class WardEkf {
 
   // EMA of the accelerometer's normalized innovation squared, driving the adaptive w3.
   double accel_nis_ema_ = 1.0;
-  // kAccelerometerDriven: the latest accelerometer x reading (held until the next) and the IMU
-  // sample interval, for the input noise.
+  // kAccelerometerDriven: the accelerometer x reading driving the current prediction (the mean
+  // over the interval ending at its stamp) and the IMU sample interval, for the input noise.
   double accel_input_mps2_ = 0.0;
   bool have_accel_input_ = false;
   double imu_period_s_ = 0.01;
@@ -138,6 +138,7 @@ class WardEkf {
   bool started_ = false;
   bool wheels_initialised_ = false;
   double roll_rad_ = 0.0, pitch_rad_ = 0.0, yaw_rad_ = 0.0;
+  double pitch_sd_rad_ = 0.0;  // the attitude source's stated pitch sd (0 when not given)
   bool have_attitude_ = false;
   ImuOffsetEstimator offsets_;
   ImmobilizationDetector detector_;
