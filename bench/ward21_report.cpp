@@ -19,16 +19,6 @@
 namespace slipgraph {
 namespace {
 
-NumericTable AsTable(const FilterResult& result) {
-  NumericTable table;
-  for (const EkfEstimate& e : result.estimates) {
-    table.columns["t"].push_back(e.t);
-    table.columns["v_bx"].push_back(e.x[ward::kVbx]);
-    table.columns["a_dist"].push_back(e.x[ward::kAdist]);
-    table.columns["immobilized"].push_back(e.slip.immobilized ? 1.0 : 0.0);
-  }
-  return table;
-}
 
 VelocityModel g_velocity_model = VelocityModel::kAccelerometerDriven;
 bool g_smoother = false;
@@ -47,9 +37,9 @@ Evaluation RunSuite(const std::vector<DriveLog>& logs, bool gps,
       smoother.filter = options;
       FilterResult rows;
       rows.estimates = SmoothBatch(log, model, smoother).estimates;
-      runs.push_back(Evaluate(log, AsTable(rows)));
+      runs.push_back(Evaluate(log, EstimateTable(rows.estimates)));
     } else {
-      runs.push_back(Evaluate(log, AsTable(RunEkf(log, model, options))));
+      runs.push_back(Evaluate(log, EstimateTable(RunEkf(log, model, options).estimates)));
     }
   }
   return Combine(runs, "ward21");

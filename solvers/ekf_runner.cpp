@@ -81,6 +81,18 @@ void WriteEkfEstimates(const FilterResult& result, const std::string& path) {
   }
 }
 
+NumericTable EstimateTable(const std::vector<EkfEstimate>& estimates) {
+  NumericTable table;
+  table.names = {"t", "v_bx", "a_dist", "immobilized"};
+  for (const EkfEstimate& e : estimates) {
+    table.columns["t"].push_back(e.t);
+    table.columns["v_bx"].push_back(e.x[ward::kVbx]);
+    table.columns["a_dist"].push_back(e.x[ward::kAdist]);
+    table.columns["immobilized"].push_back(e.slip.immobilized ? 1.0 : 0.0);
+  }
+  return table;
+}
+
 std::string DescribeFilterRun(const FilterResult& result) {
   std::ostringstream out;
   out << "streams used:";

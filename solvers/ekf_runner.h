@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/drive_log.h"
+#include "io/estimate_file.h"
 #include "model/model_config.h"
 #include "solvers/ward_ekf.h"
 
@@ -30,6 +31,9 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
 // Estimate file: t, v_bx, b_ax, a_dist, omega_left, omega_right, yaw_rate, b_gz (each with
 // sd_), slip_left, slip_right, slip_ema, immobilized, accel_offset, gyro_offset.
 void WriteEkfEstimates(const FilterResult& result, const std::string& path);
+
+// The estimates as the table `evaluate` reads (t, v_bx, a_dist, immobilized), without a file.
+NumericTable EstimateTable(const std::vector<EkfEstimate>& estimates);
 
 // One paragraph for the terminal: streams used, counts, rejections, weak constraints.
 std::string DescribeFilterRun(const FilterResult& result);

@@ -17,16 +17,6 @@ DriveLog Simulated(const std::string& scenario) {
   return log;
 }
 
-NumericTable AsTable(const std::vector<EkfEstimate>& estimates) {
-  NumericTable table;
-  for (const EkfEstimate& e : estimates) {
-    table.columns["t"].push_back(e.t);
-    table.columns["v_bx"].push_back(e.x[ward::kVbx]);
-    table.columns["a_dist"].push_back(e.x[ward::kAdist]);
-    table.columns["immobilized"].push_back(e.slip.immobilized ? 1.0 : 0.0);
-  }
-  return table;
-}
 
 TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
   const DriveLog log = Simulated("fig5");
@@ -38,7 +28,7 @@ TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
   for (const EkfEstimate& e : result.estimates) {
     for (double sd : e.sd) EXPECT_GT(sd, 0.0);
   }
-  const Evaluation ev = Evaluate(log, AsTable(result.estimates));
+  const Evaluation ev = Evaluate(log, EstimateTable(result.estimates));
   EXPECT_EQ(ev.detected(), 1);
   EXPECT_EQ(ev.false_immobilized_samples, 0);
   // Measured 0.028 m/s (the EKF: 0.020): the smoother does not beat the filter yet

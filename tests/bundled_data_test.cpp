@@ -15,13 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
 void ExpectBundledMatchesSimulation(const std::string& folder, const std::string& scenario) {
   const fs::path bundled = fs::path(SLIPGRAPH_DATA_DIR) / folder;
   ASSERT_TRUE(fs::exists(bundled / "vehicle.yaml")) << bundled;
@@ -30,7 +23,7 @@ void ExpectBundledMatchesSimulation(const std::string& folder, const std::string
   sim::WriteSimulation(run.scenario, run.seed, sim::Simulate(run.scenario, run.seed), fresh);
   for (const auto& entry : fs::directory_iterator(fresh)) {
     const std::string name = entry.path().filename().string();
-    EXPECT_EQ(Slurp(entry.path()), Slurp(bundled / name))
+    EXPECT_EQ(testing::ReadFileBytes(entry.path()), testing::ReadFileBytes(bundled / name))
         << folder << "/" << name << " differs from a fresh simulation: regenerate it with the "
         << "command in data/README.md";
   }

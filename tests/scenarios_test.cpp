@@ -16,13 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
 std::string SimulateTo(const std::string& name, uint64_t seed, const std::string& tag) {
   const std::string dir = testing::FreshDirectory(tag);
   const sim::ScenarioRun run = sim::ExpandScenario(name, seed).at(0);
@@ -36,9 +29,9 @@ TEST(Scenarios, SameSeedGivesTheSameBytesAndAnotherSeedDoesNot) {
   const std::string c = SimulateTo("ward21/03", 2, "c");
   for (const char* file : {"imu.csv", "wheels.csv", "gps.csv", "truth.csv", "events.csv",
                            "vehicle.yaml", "sim.yaml"}) {
-    EXPECT_EQ(Slurp(fs::path(a) / file), Slurp(fs::path(b) / file)) << file;
+    EXPECT_EQ(testing::ReadFileBytes(fs::path(a) / file), testing::ReadFileBytes(fs::path(b) / file)) << file;
   }
-  EXPECT_NE(Slurp(fs::path(a) / "imu.csv"), Slurp(fs::path(c) / "imu.csv"));
+  EXPECT_NE(testing::ReadFileBytes(fs::path(a) / "imu.csv"), testing::ReadFileBytes(fs::path(c) / "imu.csv"));
 }
 
 TEST(Scenarios, Ward21HasTwentyHoldBacksOverAbout120Metres) {

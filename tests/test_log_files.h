@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 
 namespace slipgraph {
@@ -75,6 +76,14 @@ inline std::string WriteValidLog(const std::string& name,
     if (!text.empty()) WriteText(dir, file, text);
   }
   return dir;
+}
+
+// The bytes of a file.
+inline std::string ReadFileBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
 }
 
 }  // namespace testing

@@ -21,17 +21,6 @@ DriveLog Simulated(const std::string& scenario, uint64_t seed = 1) {
   return log;
 }
 
-// The estimates of a filter run as the table `evaluate` reads.
-NumericTable AsTable(const FilterResult& result) {
-  NumericTable table;
-  for (const EkfEstimate& e : result.estimates) {
-    table.columns["t"].push_back(e.t);
-    table.columns["v_bx"].push_back(e.x[ward::kVbx]);
-    table.columns["a_dist"].push_back(e.x[ward::kAdist]);
-    table.columns["immobilized"].push_back(e.slip.immobilized ? 1.0 : 0.0);
-  }
-  return table;
-}
 
 TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) {
   // Ward & Iagnemma Fig. 5: 1 m/s on grass, held back with 325 N (2.78 m/s^2) for 4 s.
@@ -40,7 +29,7 @@ TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) 
     FilterRunOptions options;
     options.use_gps = gps;
     const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle), options);
-    const Evaluation ev = Evaluate(log, AsTable(result));
+    const Evaluation ev = Evaluate(log, EstimateTable(result.estimates));
     ASSERT_EQ(ev.events.size(), 1u);
     EXPECT_TRUE(ev.events[0].detected) << "gps=" << gps;
     EXPECT_LT(ev.events[0].delay_s, 0.4);  // the paper's mean detection time
@@ -66,7 +55,7 @@ TEST(WardEkf, Ward21RunsAreDetectedWithFewFalseAlarms) {
   for (const char* name : {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05",
                            "ward21/06"}) {
     const DriveLog log = Simulated(name);
-    runs.push_back(Evaluate(log, AsTable(RunEkf(log, DefaultModelConfig(log.vehicle)))));
+    runs.push_back(Evaluate(log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle)).estimates)));
   }
   const Evaluation total = Combine(runs, "ward21 01-06");
   EXPECT_GE(total.detected(), 5);
