@@ -2,11 +2,11 @@
 // quickly" — a disturbance that creeps up while the wheels barely slip is pulled back toward
 // zero. As a soft prior on every state:
 //
-//   r = a_dist / sd,   with a robust loss (Huber) chosen by the problem builder
+//   r = a_dist / sd,   with a robust loss (Cauchy) chosen by the problem builder
 //
 // Near zero it is quadratic (small, slow disturbances decay, as WC2's alpha x3 does); a large
-// disturbance that the accelerometer and the tire law insist on (a hold-back) pays only a linear
-// cost and stays. Without it, a_dist and v_bx can drift together along the tire law, which the
+// disturbance that the accelerometer and the tire law insist on (a hold-back) pays an almost
+// flat cost and stays. Without it, a_dist and v_bx can drift together along the tire law, which the
 // accelerometer alone cannot see (docs/ekf.md). Parameter block: x_k (7).
 #pragma once
 

@@ -193,8 +193,8 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
           AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt), nullptr, x);
       ++out->at_rest;
     }
-    Add("act_quickly", DisturbanceDecayPrior::Create(wc.sd_act_quickly / root_dt),
-                             new ceres::HuberLoss(1.0), x);
+    Add("act_quickly", DisturbanceDecayPrior::Create(options.decay_sd_density / root_dt),
+        new ceres::CauchyLoss(options.decay_cauchy_sigmas), x);
     ++out->act_quickly;
     Add("bound", 
         BoundPrior::Create({wc.max_v_bx_mps, wc.max_accel_bias_mps2, wc.max_a_dist_mps2,

@@ -24,6 +24,13 @@ struct WardProblemOptions {
   bool use_gps = true;
   // Huber scale of the disturbance random walk, in standard deviations of one step.
   double disturbance_huber_sigmas = 3.0;
+  // Cauchy scale of the disturbance decay prior (weak constraint 2), in its standard deviations:
+  // quadratic near zero (a creeping disturbance decays), nearly flat far out (a hold-back's
+  // disturbance, which the accelerometer and the tire law insist on, is left alone).
+  double decay_cauchy_sigmas = 1.0;
+  // Density (m/s^2 sqrt(s)) of that prior. The EKF's WC2 applies only under its conditions with
+  // WeakConstraintConfig::sd_act_quickly; this always-on robust form is stronger near zero.
+  double decay_sd_density = 0.1;
 };
 
 struct WardProblem {
