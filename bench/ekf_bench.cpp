@@ -1,12 +1,12 @@
 // EKF steps per second on one core: one step = one IMU update and one wheel cycle (prediction,
-// updates, weak constraints, detector) at 100 Hz, on the bundled-style fig5 drive.
+// updates, weak constraints, detector) plus an attitude sample, at 100 Hz, on the fig5 drive,
+// through RunEkf (the stream merge included).
 // Run: build/bench/ekf_bench
 #include <benchmark/benchmark.h>
 
-#include "io/measurement_stream.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
-#include "solvers/ward_ekf.h"
+#include "solvers/ekf_runner.h"
 
 namespace slipgraph {
 namespace {
@@ -15,32 +15,11 @@ void BM_EkfStep(benchmark::State& state) {
   const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
   const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   const ModelConfig model = DefaultModelConfig(log.vehicle);
-  const std::vector<StreamEntry> entries = MergeStreams(log);
   size_t cycles = 0;
   for (auto _ : state) {
-    WardEkf ekf(log.vehicle, model);
-    for (const StreamEntry& e : entries) {
-      switch (e.stream) {
-        case Stream::kImu:
-          ekf.AddImu(log.imu[e.index]);
-          break;
-        case Stream::kWheels: {
-          const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
-          ekf.AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
-          ++cycles;
-          break;
-        }
-        case Stream::kGps:
-          ekf.AddGps(log.gps[e.index]);
-          break;
-        case Stream::kAttitude:
-          ekf.AddAttitude(log.attitude[e.index]);
-          break;
-        default:
-          break;
-      }
-    }
-    benchmark::DoNotOptimize(ekf.Estimate());
+    const FilterResult result = RunEkf(log, model);
+    cycles += result.estimates.size();
+    benchmark::DoNotOptimize(result.estimates.back());
   }
   state.counters["steps_per_s"] =
       benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
