@@ -5,6 +5,7 @@
 #include <set>
 
 #include "io/input_error.h"
+#include "model/effect_catalogue.h"
 
 namespace slipgraph {
 namespace {
@@ -210,7 +211,14 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
     if (key == "effects") {
       if (!entry.second.IsSequence()) Fail(path, entry.second, key, "", "expected a list of names");
       m.effects.clear();
-      for (const auto& effect : entry.second) m.effects.push_back(effect.as<std::string>());
+      for (const auto& effect : entry.second) {
+        const std::string name = effect.as<std::string>();
+        const EffectInfo* info = FindEffect(name);
+        if (info == nullptr || !info->in_model_catalogue) {
+          Fail(path, effect, key, name, "unknown effect (not in the model's effect catalogue)");
+        }
+        m.effects.push_back(name);
+      }
       continue;
     }
     bool known = false;

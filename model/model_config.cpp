@@ -1,5 +1,7 @@
 #include "model/model_config.h"
 
+#include "model/effect_catalogue.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -75,6 +77,13 @@ bool ModelConfig::IsValid(std::string* error) const {
   if (!(weak_constraints.decay_alpha > 0.0 && weak_constraints.decay_alpha < 1.0)) {
     *error = "weak_constraints.decay_alpha must lie in (0, 1)";
     return false;
+  }
+  for (const std::string& effect : effects) {
+    const EffectInfo* info = FindEffect(effect);
+    if (info == nullptr || !info->in_model_catalogue) {
+      *error = "effects: unknown effect '" + effect + "'";
+      return false;
+    }
   }
   if (offset_init_samples < 1) {
     *error = "offset_init_samples must be at least 1";

@@ -1,31 +1,20 @@
-// Catalogue of the simulator's switchable physical effects. Each has a name (the one `diagnose`
-// will report and `--effect NAME[=VALUE]` switches on), a default magnitude with its unit, the
-// physics the simulator applies, and the evidence that betrays its absence from a model.
-// None of them is in the estimators' default model: on a log simulated with one of them, that
-// effect is "hidden".
+// The simulator's switchable physical effects (catalogue: model/effect_catalogue.h). On a log
+// simulated with one of them, that effect is "hidden" from the estimators' default model.
 #pragma once
 
 #include <map>
 #include <string>
 #include <vector>
 
+#include "model/effect_catalogue.h"
+
 namespace slipgraph {
 namespace sim {
 
-struct EffectInfo {
-  std::string name;
-  double default_value;
-  std::string unit;
-  std::string physics;   // what the simulator does with it
-  std::string evidence;  // what betrays its absence in a model's residuals
-  // false for effects deliberately outside the estimators' candidate catalogue, used to test
-  // that the workbench answers "no candidate explains it".
-  bool in_model_catalogue;
-};
-
-const std::vector<EffectInfo>& EffectCatalogue();
-// nullptr when `name` is not in the catalogue.
-const EffectInfo* FindEffect(const std::string& name);
+// The catalogue lives in model/ (the estimators name effects too); the simulator uses it here.
+using slipgraph::EffectCatalogue;
+using slipgraph::EffectInfo;
+using slipgraph::FindEffect;
 
 // Effects switched on, by name, with their magnitudes.
 using EffectSet = std::map<std::string, double>;

@@ -52,6 +52,10 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   SmootherResult result;
   result.ekf = RunEkf(log, model, options.filter);
   result.estimates = result.ekf.estimates;
+  for (const std::string& effect : model.effects) {
+    result.notes.push_back("effect '" + effect +
+                           "' is named in the model but has no factor yet: ignored");
+  }
   if (result.ekf.estimates.size() < 2) {
     result.used_fallback = true;
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");

@@ -26,6 +26,10 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
     result.notes.push_back("no attitude: ground taken as flat (roll = pitch = 0)");
   }
   if (log.gps.empty() || !options.use_gps) result.notes.push_back("no GNSS velocity used");
+  for (const std::string& effect : model.effects) {
+    result.notes.push_back("effect '" + effect +
+                           "' is named in the model but has no estimator term yet: ignored");
+  }
   for (Stream s : {Stream::kPose, Stream::kArticulation, Stream::kRange, Stream::kCommands}) {
     selection.Set(s, false);
   }

@@ -76,6 +76,18 @@ TEST(WardEkf, RunsWithoutGnssAndSaysSo) {
   EXPECT_EQ(result.estimates.size(), log.wheels.size());
 }
 
+TEST(WardEkf, AnEffectWithoutAnEstimatorTermIsSaidNotSilentlyIgnored) {
+  const DriveLog log = Simulated("fig5");
+  ModelConfig model = DefaultModelConfig(log.vehicle);
+  model.effects = {"quadratic_drag"};
+  const FilterResult result = RunEkf(log, model);
+  bool said = false;
+  for (const std::string& note : result.notes) {
+    said = said || note.find("'quadratic_drag'") != std::string::npos;
+  }
+  EXPECT_TRUE(said);
+}
+
 TEST(WardEkf, ANanComponentIsDroppedAlone) {
   const DriveLog log = Simulated("fig5");
   WardEkf ekf(log.vehicle, DefaultModelConfig(log.vehicle));

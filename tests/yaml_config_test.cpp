@@ -47,6 +47,20 @@ TEST(YamlConfig, UnknownModelKeyIsAnErrorNamingIt) {
   EXPECT_THROW(ReadModelYaml(WriteModel("tyre: {C1: 0.6}\n"), LagrVehicle()), InputError);
 }
 
+TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
+  try {
+    ReadModelYaml(WriteModel("tire: {C1: 0.6}\neffects: [quadratic_drag, warp_drive]\n"),
+                  LagrVehicle());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.column(), "effects");
+    EXPECT_EQ(e.value(), "warp_drive");
+  }
+  // corrugation exists only in the simulator: outside the model catalogue on purpose.
+  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [corrugation]\n"), LagrVehicle()), InputError);
+}
+
 TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {decay_alpha: 1.5}\n"), LagrVehicle()),
                InputError);
