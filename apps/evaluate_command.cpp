@@ -16,7 +16,8 @@ void PrintEvaluation(const Evaluation& ev, std::ostream& out) {
       << ev.disturbance_rmse << " m/s^2, immobilized " << ev.detected() << "/" << ev.events.size()
       << " detected, mean delay " << ev.mean_detection_delay_s() << " s, false immobilized "
       << ev.false_immobilized_samples << " samples (" << 100.0 * ev.false_immobilized_fraction()
-      << " %)\n";
+      << " %), v_bx NEES mean " << ev.velocity_mean_nees << ", within its 95 % bound "
+      << 100.0 * ev.nees_within_95_fraction() << " %\n";
 }
 
 }  // namespace

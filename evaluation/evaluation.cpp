@@ -8,6 +8,8 @@
 namespace slipgraph {
 namespace {
 
+constexpr double kChiSquare95OneDof = 3.841;
+
 // Truth interpolated linearly in time (truth is dense; clamps at the ends).
 class TruthTrack {
  public:
@@ -52,6 +54,10 @@ double Evaluation::mean_detection_delay_s() const {
   return n > 0 ? sum / n : std::nan("");
 }
 
+double Evaluation::nees_within_95_fraction() const {
+  return nees_samples > 0 ? static_cast<double>(nees_within_95) / nees_samples : std::nan("");
+}
+
 double Evaluation::false_immobilized_fraction() const {
   return samples > 0 ? static_cast<double>(false_immobilized_samples) / samples : 0.0;
 }
@@ -66,6 +72,8 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
   const std::vector<double>& t = Column(estimates, "t");
   const std::vector<double>& v = Column(estimates, "v_bx");
   const std::vector<double>& flag = Column(estimates, "immobilized");
+  const auto sd_v_it = estimates.columns.find("sd_v_bx");
+  const std::vector<double>* sd_v = sd_v_it == estimates.columns.end() ? nullptr : &sd_v_it->second;
   const auto a_dist_it = estimates.columns.find("a_dist");
   const std::vector<double>* a_dist =
       a_dist_it == estimates.columns.end() ? nullptr : &a_dist_it->second;
@@ -80,6 +88,12 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
     ++ev.samples;
     const double dv = v[i] - truth.At(t[i], [](const TruthSample& s) { return s.vx; });
     ev.velocity_sq_sum += dv * dv;
+    if (sd_v != nullptr && (*sd_v)[i] > 0.0) {
+      const double nees = dv * dv / ((*sd_v)[i] * (*sd_v)[i]);
+      ev.nees_sum += nees;
+      ++ev.nees_samples;
+      if (nees <= kChiSquare95OneDof) ++ev.nees_within_95;
+    }
     if (a_dist != nullptr && std::isfinite(log.truth.front().a_dist)) {
       const double da =
           (*a_dist)[i] - truth.At(t[i], [](const TruthSample& s) { return s.a_dist; });
@@ -101,6 +115,7 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
     if (!near_event && truth_flag < 0.5) ++ev.false_immobilized_samples;
   }
   ev.velocity_rmse = ev.samples > 0 ? std::sqrt(ev.velocity_sq_sum / ev.samples) : std::nan("");
+  if (ev.nees_samples > 0) ev.velocity_mean_nees = ev.nees_sum / ev.nees_samples;
   ev.disturbance_rmse = ev.disturbance_samples > 0
                             ? std::sqrt(ev.disturbance_sq_sum / ev.disturbance_samples)
                             : std::nan("");
@@ -116,10 +131,14 @@ Evaluation Combine(const std::vector<Evaluation>& runs, const std::string& name)
     total.disturbance_sq_sum += run.disturbance_sq_sum;
     total.disturbance_samples += run.disturbance_samples;
     total.false_immobilized_samples += run.false_immobilized_samples;
+    total.nees_sum += run.nees_sum;
+    total.nees_samples += run.nees_samples;
+    total.nees_within_95 += run.nees_within_95;
     total.events.insert(total.events.end(), run.events.begin(), run.events.end());
   }
   total.velocity_rmse =
       total.samples > 0 ? std::sqrt(total.velocity_sq_sum / total.samples) : std::nan("");
+  if (total.nees_samples > 0) total.velocity_mean_nees = total.nees_sum / total.nees_samples;
   total.disturbance_rmse = total.disturbance_samples > 0
                                ? std::sqrt(total.disturbance_sq_sum / total.disturbance_samples)
                                : std::nan("");
@@ -146,6 +165,8 @@ nlohmann::json ToJson(const Evaluation& ev) {
           {"mean_detection_delay_s", number(ev.mean_detection_delay_s())},
           {"false_immobilized_samples", ev.false_immobilized_samples},
           {"false_immobilized_fraction", ev.false_immobilized_fraction()},
+          {"velocity_mean_nees", number(ev.velocity_mean_nees)},
+          {"velocity_nees_within_95", number(ev.nees_within_95_fraction())},
           {"event_details", events}};
 }
 

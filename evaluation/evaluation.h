@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct Evaluation {
   double disturbance_rmse = 0.0;  // a_dist vs truth a_dist, m/s^2 (NaN without truth a_dist)
   std::vector<EventScore> events;
   long false_immobilized_samples = 0;
+  // Consistency of v_bx (when the estimates carry sd_v_bx): normalized estimation error squared
+  // e^2 / sd^2, and the share of samples inside its 95 % bound (chi-square, 1 dof: 3.84).
+  double velocity_mean_nees = std::nan("");
+  size_t nees_samples = 0, nees_within_95 = 0;
+  double nees_sum = 0.0;
   // Sums for combining a suite.
   double velocity_sq_sum = 0.0, disturbance_sq_sum = 0.0;
   size_t disturbance_samples = 0;
@@ -43,6 +49,7 @@ struct Evaluation {
   int detected() const;
   double mean_detection_delay_s() const;  // over detected events (NaN when none)
   double false_immobilized_fraction() const;
+  double nees_within_95_fraction() const;  // NaN without sd_v_bx
 };
 
 // Throws InputError when the estimates lack t, v_bx or immobilized, or the log has no truth.

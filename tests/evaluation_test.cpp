@@ -32,6 +32,8 @@ TEST(Evaluation, HandComputedScores) {
     const bool held = t >= 4.0 && t <= 6.0;
     est.columns["t"].push_back(t);
     est.columns["v_bx"].push_back((held ? 0.0 : 1.0) + 0.1);  // biased by 0.1 m/s
+    // sd 0.1 on even samples (NEES 1, inside the bound), 0.01 on odd ones (NEES 100, outside).
+    est.columns["sd_v_bx"].push_back(k % 2 == 0 ? 0.1 : 0.01);
     est.columns["a_dist"].push_back(held ? -2.0 : 0.0);
     // Flags from 4.3 s (delay 0.3 s) to 6.0 s, plus a false alarm at 8.0 and 8.1 s.
     const bool flag = (t >= 4.3 - 1e-9 && t <= 6.0 + 1e-9) || std::abs(t - 8.0) < 1e-9 ||
@@ -46,6 +48,8 @@ TEST(Evaluation, HandComputedScores) {
   EXPECT_NEAR(ev.mean_detection_delay_s(), 0.3, 1e-9);
   EXPECT_EQ(ev.false_immobilized_samples, 2);
   EXPECT_NEAR(ev.false_immobilized_fraction(), 2.0 / 101.0, 1e-12);
+  EXPECT_NEAR(ev.nees_within_95_fraction(), 51.0 / 101.0, 1e-12);
+  EXPECT_NEAR(ev.velocity_mean_nees, (51.0 * 1.0 + 50.0 * 100.0) / 101.0, 1e-6);
   const nlohmann::json json = ToJson(ev);
   for (const char* key : {"velocity_rmse", "disturbance_rmse", "events", "detected",
                           "mean_detection_delay_s", "false_immobilized_fraction"}) {
