@@ -35,12 +35,9 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
     rows.estimates = estimate(log, model, std::cerr);
     WriteEkfEstimates(rows, file);
     if (!log.truth.empty()) {
-      const Evaluation ev = Evaluate(log, ReadNumericTable(file));
-      std::cout << log_dir << " against truth: velocity RMSE " << ev.velocity_rmse
-                << " m/s, disturbance RMSE " << ev.disturbance_rmse << " m/s^2, immobilized "
-                << ev.detected() << "/" << ev.events.size() << " detected (mean delay "
-                << ev.mean_detection_delay_s() << " s), false immobilized "
-                << 100.0 * ev.false_immobilized_fraction() << " % of samples\n";
+      Evaluation ev = Evaluate(log, ReadNumericTable(file));
+      ev.name = log_dir + " against truth";
+      PrintEvaluation(ev, std::cout);
     }
   }
 }

@@ -1,5 +1,4 @@
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 
 #include "apps/commands.h"
@@ -8,20 +7,6 @@
 #include "io/log_reader.h"
 
 namespace slipgraph {
-namespace {
-
-void PrintEvaluation(const Evaluation& ev, std::ostream& out) {
-  out << std::fixed << std::setprecision(4) << ev.name << ": " << ev.samples
-      << " samples, velocity RMSE " << ev.velocity_rmse << " m/s, disturbance RMSE "
-      << ev.disturbance_rmse << " m/s^2, immobilized " << ev.detected() << "/" << ev.events.size()
-      << " detected, mean delay " << ev.mean_detection_delay_s() << " s, false immobilized "
-      << ev.false_immobilized_samples << " samples (" << 100.0 * ev.false_immobilized_fraction()
-      << " %), v_bx NEES mean " << ev.velocity_mean_nees << ", within its 95 % bound "
-      << 100.0 * ev.nees_within_95_fraction() << " %\n";
-}
-
-}  // namespace
-
 void RegisterEvaluateCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log;

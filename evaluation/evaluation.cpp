@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <ostream>
 
 #include "io/input_error.h"
 
@@ -143,6 +145,16 @@ Evaluation Combine(const std::vector<Evaluation>& runs, const std::string& name)
                                ? std::sqrt(total.disturbance_sq_sum / total.disturbance_samples)
                                : std::nan("");
   return total;
+}
+
+void PrintEvaluation(const Evaluation& ev, std::ostream& out) {
+  out << std::fixed << std::setprecision(4) << ev.name << ": " << ev.samples
+      << " samples, velocity RMSE " << ev.velocity_rmse << " m/s, disturbance RMSE "
+      << ev.disturbance_rmse << " m/s^2, immobilized " << ev.detected() << "/" << ev.events.size()
+      << " detected, mean delay " << ev.mean_detection_delay_s() << " s, false immobilized "
+      << ev.false_immobilized_samples << " samples (" << 100.0 * ev.false_immobilized_fraction()
+      << " %), v_bx NEES mean " << ev.velocity_mean_nees << ", within its 95 % bound "
+      << 100.0 * ev.nees_within_95_fraction() << " %\n";
 }
 
 nlohmann::json ToJson(const Evaluation& ev) {

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -59,5 +60,7 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
 Evaluation Combine(const std::vector<Evaluation>& runs, const std::string& name);
 
 nlohmann::json ToJson(const Evaluation& evaluation);
+// One line: name, samples, RMSEs, detections, delay, false alarms, v_bx consistency.
+void PrintEvaluation(const Evaluation& evaluation, std::ostream& out);
 
 }  // namespace slipgraph

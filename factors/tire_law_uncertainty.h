@@ -10,6 +10,7 @@
 
 #include <ceres/jet.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "factors/ward_dynamics.h"
@@ -36,6 +37,16 @@ inline double TireLawVariance(const double* x, const ward::Attitude<double>& att
       slope_right * (u.slip_relative_sd * std::abs(f.v_rel_right_mps.a) + u.slip_floor_mps);
   return u.relative_sd * traction * u.relative_sd * traction + slip_left * slip_left +
          slip_right * slip_right + u.floor_mps2 * u.floor_mps2;
+}
+
+// The law's variance as the noise of one accelerometer sample of interval sample_interval_s: its
+// error persists over correlation_time, so the per-sample variance grows by correlation_time /
+// interval (never below the plain variance).
+inline double TireLawSampleVariance(const double* x, const ward::Attitude<double>& attitude,
+                                    const ward::Params& params, const TireLawUncertainty& u,
+                                    double sample_interval_s) {
+  return TireLawVariance(x, attitude, params, u) *
+         std::max(1.0, u.correlation_time_s / sample_interval_s);
 }
 
 }  // namespace slipgraph

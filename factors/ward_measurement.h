@@ -31,12 +31,10 @@ struct ImuOffsets {
   T gyro_z_radps;
 };
 
-// forces_out, when given, receives the tire forces the prediction used.
 template <typename T, typename A>
 inline void PredictMeasurements(const T* x, const Attitude<A>& attitude, const ImuOffsets<A>& c,
-                                const Params& p, T* z, TireForces<T>* forces_out = nullptr) {
+                                const Params& p, T* z) {
   const TireForces<T> forces = ComputeTireForces(x, attitude, p);
-  if (forces_out != nullptr) *forces_out = forces;
   z[kZAccelX] = forces.f_tire_mps2 + c.accel_x_mps2 + x[kAccelBias] + x[kAdist];
   z[kZYawRate] = x[kYawRate] + c.gyro_z_radps + x[kGyroBias];
   z[kZGpsVx] = x[kVbx];

@@ -18,6 +18,7 @@
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
+#include "solvers/weak_constraints.h"
 
 namespace slipgraph {
 namespace {
@@ -32,7 +33,6 @@ struct Context {
   bool have_attitude = false;
   double accel_x = std::nan("");
   double imu_period_s = 0.01;
-  double last_imu_t = -1.0;
 };
 
 }  // namespace
@@ -76,7 +76,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     }
     Add("first_state_prior", DiagonalPrior<kStateSize>::Create(mean, sd), nullptr,
                              out->states[0].data());
-    Add("offset_prior", 
+    Add("offset_prior",
         DiagonalPrior<2>::Create({out->offsets[0], out->offsets[1]},
                                  {noise.imu_sd_accel_mps2 + q.accel_bias_sd_mps2,
                                   noise.imu_sd_gyro_radps + q.gyro_bias_sd_radps}),
@@ -116,7 +116,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   for (size_t k = 0; k < n && k < log.wheels.size(); ++k) {
     const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
     out->wheel_speeds[k] = {s.left_radps, s.right_radps};
-    Add("encoder", 
+    Add("encoder",
         EncoderFactor::Create(s.left_radps, s.right_radps, noise.wheels_sd_omega_radps), nullptr,
         out->states[k].data());
     ++out->encoders;
@@ -128,10 +128,9 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     double* x = out->states[k].data();
     double sd_a = noise.imu_sd_accel_mps2;
     if (options.velocity_model == VelocityModel::kAccelerometerDriven) {
-      const double law =
-          TireLawVariance(ekf.estimates[k].x.data(), c.attitude, params, model.tire_uncertainty);
-      sd_a = std::sqrt(sd_a * sd_a + law * std::max(1.0, model.tire_uncertainty.correlation_time_s /
-                                                           c.imu_period_s));
+      sd_a = std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf.estimates[k].x.data(), c.attitude,
+                                                            params, model.tire_uncertainty,
+                                                            c.imu_period_s));
     }
     if (std::isfinite(imu.ax)) {
       Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
@@ -170,7 +169,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   double stopped_since = -1.0;
   for (size_t k = 0; k < n; ++k) {
     const auto& w = out->wheel_speeds[k];
-    const double still = 0.15;  // rad/s, as EkfOptions::wheel_still_radps
+    const double still = options.wheel_still_radps;
     const bool stopped = std::abs(w[0]) < still && std::abs(w[1]) < still;
     if (!stopped) {
       stopped_since = -1.0;
@@ -181,22 +180,21 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
                                       : (k > 0 ? out->times[k] - out->times[k - 1] : 0.01);
     const double root_dt = std::sqrt(std::max(dt_cycle, 1e-6));
     double* x = out->states[k].data();
-    const double wheel_sum = w[0] + w[1];
-    if (std::abs(wheel_sum) >= 2.0 * still) {
-      Add("oppose_motion", 
-          OpposeMotionPrior::Create(wheel_sum > 0.0 ? 1.0 : -1.0, wc.sd_oppose_motion / root_dt),
+    const double vel_dir = DriveDirection(w[0], w[1], still);
+    if (vel_dir != 0.0) {
+      Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, wc.sd_oppose_motion / root_dt),
           nullptr, x);
       ++out->oppose_motion;
     }
     if (stopped && out->times[k] - stopped_since >= wc.stop_time_s) {
-      Add("at_rest", 
+      Add("at_rest",
           AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt), nullptr, x);
       ++out->at_rest;
     }
     Add("act_quickly", DisturbanceDecayPrior::Create(options.decay_sd_density / root_dt),
         new ceres::CauchyLoss(options.decay_cauchy_sigmas), x);
     ++out->act_quickly;
-    Add("bound", 
+    Add("bound",
         BoundPrior::Create({wc.max_v_bx_mps, wc.max_accel_bias_mps2, wc.max_a_dist_mps2,
                             wc.max_gyro_bias_radps},
                            wc.sd_bound / root_dt),
@@ -225,11 +223,11 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
         q.omega_radps2_per_sqrt_hz * std::sqrt(dt),
         q.yaw_rate_radps2_per_sqrt_hz * std::sqrt(dt),
         gauss_markov(q.gyro_bias_sd_radps, q.gyro_bias_tau_s)};
-    Add("dynamics", 
+    Add("dynamics",
         WardDynamicsFactor::Create(params, c.attitude, dt,
                                    accel_driven ? c.accel_x : std::nan(""), sd_step),
         nullptr, x, out->states[k + 1].data(), out->offsets.data());
-    Add("disturbance_walk", 
+    Add("disturbance_walk",
         DisturbanceWalkFactor::Create(q.a_dist_mps3_per_sqrt_hz * std::sqrt(dt)),
         new ceres::HuberLoss(options.disturbance_huber_sigmas), x, out->states[k + 1].data());
     ++out->dynamics;

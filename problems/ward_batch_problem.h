@@ -22,6 +22,8 @@ namespace slipgraph {
 struct WardProblemOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   bool use_gps = true;
+  // |w| below this reads as a stopped wheel (weak constraints 1 and 4), as in the EKF.
+  double wheel_still_radps = EkfOptions().wheel_still_radps;
   // Huber scale of the disturbance random walk, in standard deviations of one step.
   double disturbance_huber_sigmas = 3.0;
   // Cauchy scale of the disturbance decay prior (weak constraint 2), in its standard deviations:

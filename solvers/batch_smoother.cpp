@@ -5,7 +5,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "factors/slip_ratio.h"
 
 namespace slipgraph {
 namespace {
@@ -16,22 +15,15 @@ using namespace ward;  // NOLINT: state indices
 // wheels turning, not braking, for at least min_duration.
 void DetectImmobilization(const ModelConfig& model, const Vehicle& vehicle, double min_duration_s,
                           std::vector<EkfEstimate>* estimates) {
-  const ImmobilizationConfig& c = model.immobilization;
   std::vector<bool> raw(estimates->size(), false);
   for (size_t k = 0; k < estimates->size(); ++k) {
     EkfEstimate& e = (*estimates)[k];
-    const double half_track_yaw = 0.5 * vehicle.track_width_m * e.x[kYawRate];
-    const double surface_left = vehicle.wheel_radius_m * e.x[kOmegaLeft];
-    const double surface_right = vehicle.wheel_radius_m * e.x[kOmegaRight];
-    e.slip.slip_left = SlipRatio(surface_left, e.x[kVbx] - half_track_yaw);
-    e.slip.slip_right = SlipRatio(surface_right, e.x[kVbx] + half_track_yaw);
+    const InstantSlip instant =
+        ComputeInstantSlip(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m,
+                           e.x[kVbx], e.x[kYawRate], e.x[kOmegaLeft], e.x[kOmegaRight]);
+    e.slip = instant.estimate;
     e.slip.slip_ema = 0.5 * (e.slip.slip_left + e.slip.slip_right);  // smoothed: no EMA needed
-    const double surface = 0.5 * (surface_left + surface_right);
-    e.slip.braking = surface >= 0.0 ? e.x[kVbx] > surface : e.x[kVbx] < surface;
-    const double low_speed = std::max(0.0, 1.0 - std::abs(surface) / c.low_speed_mps);
-    e.slip.threshold = c.slip_threshold + c.low_speed_threshold_add * low_speed;
-    raw[k] = std::abs(surface) > c.min_wheel_speed_mps && !e.slip.braking &&
-             e.slip.slip_ema > e.slip.threshold;
+    raw[k] = instant.wheels_turning && !e.slip.braking && e.slip.slip_ema > e.slip.threshold;
   }
   // Keep runs that last at least min_duration.
   size_t k = 0;
@@ -64,6 +56,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   WardProblemOptions problem_options = options.problem;
   problem_options.use_gps = options.filter.use_gps;
   problem_options.velocity_model = options.filter.ekf.velocity_model;
+  problem_options.wheel_still_radps = options.filter.ekf.wheel_still_radps;
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, model, result.ekf, problem_options);
 

@@ -7,6 +7,25 @@
 
 namespace slipgraph {
 
+InstantSlip ComputeInstantSlip(const ImmobilizationConfig& config, double wheel_radius_m,
+                               double track_width_m, double v_bx, double yaw_rate,
+                               double omega_left, double omega_right) {
+  InstantSlip out;
+  SlipEstimate& e = out.estimate;
+  const double surface_left = wheel_radius_m * omega_left;
+  const double surface_right = wheel_radius_m * omega_right;
+  const double half_track_yaw = 0.5 * track_width_m * yaw_rate;
+  e.slip_left = SlipRatio(surface_left, v_bx - half_track_yaw);
+  e.slip_right = SlipRatio(surface_right, v_bx + half_track_yaw);
+  const double surface = 0.5 * (surface_left + surface_right);
+  const double low_speed = std::max(0.0, 1.0 - std::abs(surface) / config.low_speed_mps);
+  e.threshold = config.slip_threshold + config.low_speed_threshold_add * low_speed;
+  // Braking: the body outruns the wheels (v_bx > r w in the direction of travel).
+  e.braking = surface >= 0.0 ? v_bx > surface : v_bx < surface;
+  out.wheels_turning = std::abs(surface) > config.min_wheel_speed_mps;
+  return out;
+}
+
 ImmobilizationDetector::ImmobilizationDetector(const ImmobilizationConfig& config,
                                                double wheel_radius_m, double track_width_m)
     : config_(config),
@@ -21,20 +40,12 @@ const SlipEstimate& ImmobilizationDetector::Update(double v_bx, double yaw_rate,
     latest_.immobilized = false;
     return latest_;
   }
-  const double surface_left = wheel_radius_m_ * omega_left;
-  const double surface_right = wheel_radius_m_ * omega_right;
-  const double half_track_yaw = 0.5 * track_width_m_ * yaw_rate;
-  latest_.slip_left = SlipRatio(surface_left, v_bx - half_track_yaw);
-  latest_.slip_right = SlipRatio(surface_right, v_bx + half_track_yaw);
-  const double mean_slip = 0.5 * (latest_.slip_left + latest_.slip_right);
-  latest_.slip_ema = ema_.Add(mean_slip);
-  const double surface = 0.5 * (surface_left + surface_right);
-  const double low_speed = std::max(0.0, 1.0 - std::abs(surface) / config_.low_speed_mps);
-  latest_.threshold = config_.slip_threshold + config_.low_speed_threshold_add * low_speed;
-  // Braking: the body outruns the wheels (v_bx > r w in the direction of travel).
-  latest_.braking = surface >= 0.0 ? v_bx > surface : v_bx < surface;
-  const bool turning = std::abs(surface) > config_.min_wheel_speed_mps;
-  latest_.immobilized = turning && !latest_.braking && latest_.slip_ema > latest_.threshold;
+  const InstantSlip instant = ComputeInstantSlip(config_, wheel_radius_m_, track_width_m_, v_bx,
+                                                 yaw_rate, omega_left, omega_right);
+  latest_ = instant.estimate;
+  latest_.slip_ema = ema_.Add(0.5 * (latest_.slip_left + latest_.slip_right));
+  latest_.immobilized =
+      instant.wheels_turning && !latest_.braking && latest_.slip_ema > latest_.threshold;
   return latest_;
 }
 

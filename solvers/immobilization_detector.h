@@ -18,6 +18,17 @@ struct SlipEstimate {
   bool immobilized = false;
 };
 
+// The instantaneous part of the detector, shared with post-processing: the slip of each driven
+// side, braking, the speed-dependent threshold, and whether the wheels turn fast enough to count
+// as spinning (slip_ema and immobilized are left for the caller).
+struct InstantSlip {
+  SlipEstimate estimate;
+  bool wheels_turning = false;
+};
+InstantSlip ComputeInstantSlip(const ImmobilizationConfig& config, double wheel_radius_m,
+                               double track_width_m, double v_bx_mps, double yaw_rate_radps,
+                               double omega_left_radps, double omega_right_radps);
+
 class ImmobilizationDetector {
  public:
   ImmobilizationDetector(const ImmobilizationConfig& config, double wheel_radius_m,

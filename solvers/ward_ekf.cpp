@@ -222,10 +222,8 @@ void WardEkf::AddImu(const ImuSample& imu) {
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's,
       // persistent over correlation_time (a per-sample variance scaled by correlation_time/dt).
-      const double law_variance =
-          TireLawVariance(x_.data(), CurrentAttitude(), params_, model_.tire_uncertainty);
-      variance += law_variance *
-                  std::max(1.0, model_.tire_uncertainty.correlation_time_s / imu_period_s_);
+      variance += TireLawSampleVariance(x_.data(), CurrentAttitude(), params_,
+                                        model_.tire_uncertainty, imu_period_s_);
     }
     add_row(kZAccelX, imu.ax, variance);
     // Normalized innovation squared of the accelerometer alone, for the adaptive w3.
@@ -290,10 +288,7 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
 void WardEkf::ApplyWeakConstraints(double dt_cycle) {
   WeakConstraintInputs in;
   in.dt_s = dt_cycle;
-  const double wheel_sum = x_(kOmegaLeft) + x_(kOmegaRight);
-  in.vel_dir = std::abs(wheel_sum) < 2.0 * options_.wheel_still_radps ? 0.0
-               : wheel_sum > 0.0                                       ? 1.0
-                                                                       : -1.0;
+  in.vel_dir = DriveDirection(x_(kOmegaLeft), x_(kOmegaRight), options_.wheel_still_radps);
   in.slip_ema = detector_.latest().slip_ema;
   in.slip_ema_rate_per_s =
       dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;

@@ -43,6 +43,14 @@ struct WeakConstraintInputs {
   double gravity_along_x_mps2 = 0.0;  // g sin(phi), phi uphill positive
 };
 
+// VelDir of Table I: sign(w_l + w_r), 0 when the sum is within twice the still threshold.
+inline double DriveDirection(double omega_left_radps, double omega_right_radps,
+                             double wheel_still_radps) {
+  const double sum = omega_left_radps + omega_right_radps;
+  if (sum > -2.0 * wheel_still_radps && sum < 2.0 * wheel_still_radps) return 0.0;
+  return sum > 0.0 ? 1.0 : -1.0;
+}
+
 // Appends the pseudo-measurements that apply at the a priori state x (and x_prev, the state of
 // the previous cycle, for WC6).
 void CollectWeakConstraints(const double* x, const double* x_prev,
