@@ -15,17 +15,16 @@
 namespace slipgraph {
 
 struct EstimatorRunOptions {
-  std::string log;        // empty: the bundled sample
-  std::string model;      // empty: the vehicle's nominal model
-  std::string out;        // empty: ./<log>_<name>.csv, or ./<suite>_<name>/ for a suite
+  std::string log;    // empty: the bundled sample
+  std::string model;  // empty: the vehicle's nominal model
+  std::string out;    // empty: ./<log>_<name>.csv, or ./<suite>_<name>/ for a suite
   bool skip_bad = false;
-  std::string name;       // "filter", "smooth": the default output suffix and report prefix
+  std::string name;  // "filter", "smooth": the default output suffix and report prefix
 };
 
 // `estimate` runs one log and writes its own report lines to `report`.
-using Estimator = std::function<std::vector<EkfEstimate>(const DriveLog& log,
-                                                         const ModelConfig& model,
-                                                         std::ostream& report)>;
+using Estimator = std::function<std::vector<EkfEstimate>(
+    const DriveLog& log, const ModelConfig& model, std::ostream& report)>;
 
 void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate);
 

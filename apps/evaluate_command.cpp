@@ -14,8 +14,8 @@ void RegisterEvaluateCommand(CLI::App* app, int* status) {
     bool json = false;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd = app->add_subcommand(
-      "evaluate", "Score estimates against the log's truth.csv and events.csv");
+  CLI::App* cmd =
+      app->add_subcommand("evaluate", "Score estimates against the log's truth.csv and events.csv");
   cmd->add_option("LOG", options->log, "Log or suite directory")->required();
   cmd->add_option("ESTIMATES", options->estimates,
                   "Estimate CSV (a suite: the directory of <log>.csv files)")

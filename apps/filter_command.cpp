@@ -24,12 +24,12 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
   cmd->callback([options, status]() {
     FilterRunOptions run_options;
     run_options.use_gps = !options->no_gps;
-    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
-                                           std::ostream& report) {
-      const FilterResult result = RunEkf(log, model, run_options);
-      report << DescribeFilterRun(result);
-      return result.estimates;
-    });
+    RunEstimatorOverLogs(options->run,
+                         [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
+                           const FilterResult result = RunEkf(log, model, run_options);
+                           report << DescribeFilterRun(result);
+                           return result.estimates;
+                         });
     *status = 0;
   });
 }

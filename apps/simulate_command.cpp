@@ -38,9 +38,8 @@ void RegisterSimulateCommand(CLI::App* app, int* status) {
           (std::filesystem::path(options->out) / run.relative_directory).string();
       const sim::SimResult result = sim::Simulate(scenario, run.seed);
       sim::WriteSimulation(scenario, run.seed, result, dir);
-      std::cerr << "simulate: " << scenario.name << " -> " << dir << " ("
-                << result.log.imu.size() << " IMU samples, " << result.log.events.size()
-                << " immobilized events)\n";
+      std::cerr << "simulate: " << scenario.name << " -> " << dir << " (" << result.log.imu.size()
+                << " IMU samples, " << result.log.events.size() << " immobilized events)\n";
     }
     *status = 0;
   });

@@ -27,12 +27,12 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     BatchSmootherOptions smoother_options;
     smoother_options.filter.use_gps = !options->no_gps;
     smoother_options.threads = options->threads;
-    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
-                                           std::ostream& report) {
-      const SmootherResult result = SmoothBatch(log, model, smoother_options);
-      report << DescribeSmootherRun(result);
-      return result.estimates;
-    });
+    RunEstimatorOverLogs(options->run,
+                         [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
+                           const SmootherResult result = SmoothBatch(log, model, smoother_options);
+                           report << DescribeSmootherRun(result);
+                           return result.estimates;
+                         });
     *status = 0;
   });
 }

@@ -19,7 +19,6 @@
 namespace slipgraph {
 namespace {
 
-
 VelocityModel g_velocity_model = VelocityModel::kAccelerometerDriven;
 bool g_smoother = false;
 
@@ -90,9 +89,9 @@ int main(int argc, char** argv) {
   };
   for (const auto& p : parameters) {
     for (double factor : {1.2, 0.8}) {
-      const std::string label = std::string(p.name) + (factor > 1.0 ? " +20 %" : " -20 %") + ", GNSS";
-      Print(label.c_str(),
-            RunSuite(logs, true, [&](ModelConfig* m) { p.field(m) *= factor; }));
+      const std::string label =
+          std::string(p.name) + (factor > 1.0 ? " +20 %" : " -20 %") + ", GNSS";
+      Print(label.c_str(), RunSuite(logs, true, [&](ModelConfig* m) { p.field(m) *= factor; }));
     }
   }
   return 0;

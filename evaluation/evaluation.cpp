@@ -43,8 +43,8 @@ const std::vector<double>& Column(const NumericTable& table, const std::string& 
 }  // namespace
 
 int Evaluation::detected() const {
-  return static_cast<int>(std::count_if(events.begin(), events.end(),
-                                        [](const EventScore& e) { return e.detected; }));
+  return static_cast<int>(
+      std::count_if(events.begin(), events.end(), [](const EventScore& e) { return e.detected; }));
 }
 
 double Evaluation::mean_detection_delay_s() const {

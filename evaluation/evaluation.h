@@ -3,8 +3,8 @@
 // missed with their detection delays, and the fraction of samples falsely flagged immobilized.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>

@@ -19,13 +19,14 @@ struct BoundPrior {
   static constexpr int kBounded[4] = {ward::kVbx, ward::kAccelBias, ward::kAdist, ward::kGyroBias};
   static constexpr double kEps = 1e-3;
 
-  BoundPrior(const std::array<double, 4>& max_abs, double sd) : max_abs_(max_abs), sqrt_information_(1.0 / sd) {}
+  BoundPrior(const std::array<double, 4>& max_abs, double sd)
+      : max_abs_(max_abs), sqrt_information_(1.0 / sd) {}
 
   template <typename T>
   bool operator()(const T* x, T* residual) const {
     for (int i = 0; i < 4; ++i) {
-      residual[i] = sqrt_information_ *
-                    SmoothHinge(SmoothAbsolute(x[kBounded[i]], kEps) - max_abs_[i], kEps);
+      residual[i] =
+          sqrt_information_ * SmoothHinge(SmoothAbsolute(x[kBounded[i]], kEps) - max_abs_[i], kEps);
     }
     return true;
   }

@@ -17,7 +17,10 @@ namespace slipgraph {
 struct AccelerometerFactor {
   AccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                       double accel_x_mps2, double sd_mps2)
-      : params_(params), attitude_(attitude), measured_(accel_x_mps2), sqrt_information_(1.0 / sd_mps2) {}
+      : params_(params),
+        attitude_(attitude),
+        measured_(accel_x_mps2),
+        sqrt_information_(1.0 / sd_mps2) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, T* residual) const {

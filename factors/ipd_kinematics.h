@@ -47,8 +47,8 @@ inline void GravityInBody(const T& roll_rad, const T& pitch_rad, double g, T* g_
 
 // u_s = C(u_n, g) alpha.
 template <typename T, typename P>
-inline void SlipVelocities(const T& v_x, const T& v_yaw, const T& g_x, const T& g_y,
-                           const P* alpha, T* u_s) {
+inline void SlipVelocities(const T& v_x, const T& v_yaw, const T& g_x, const T& g_y, const P* alpha,
+                           T* u_s) {
   const T abs_yaw = SmoothAbs(v_yaw, kAbsSmoothingRadps);
   u_s[0] = alpha[0] * v_x + alpha[1] * abs_yaw + alpha[2] * v_x * abs_yaw + alpha[3] * g_x;
   u_s[1] = alpha[4] * v_x + alpha[5] * v_yaw + alpha[6] * v_x * v_yaw + alpha[7] * g_y;

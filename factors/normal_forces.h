@@ -27,13 +27,9 @@ struct DiffDriveNormalForces {
 };
 
 template <typename T>
-inline DiffDriveNormalForces<T> DiffDriveCastorNormalForcesN(double weight_n,
-                                                             const T& roll_ward_rad,
-                                                             const T& pitch_uphill_rad,
-                                                             double cg_to_front_m,
-                                                             double cg_to_rear_m,
-                                                             double track_width_m,
-                                                             double cg_height_m) {
+inline DiffDriveNormalForces<T> DiffDriveCastorNormalForcesN(
+    double weight_n, const T& roll_ward_rad, const T& pitch_uphill_rad, double cg_to_front_m,
+    double cg_to_rear_m, double track_width_m, double cg_height_m) {
   using std::cos;
   using std::sin;
   using std::tan;

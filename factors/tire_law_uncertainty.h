@@ -28,7 +28,8 @@ inline double TireLawVariance(const double* x, const ward::Attitude<double>& att
   state[ward::kOmegaRight] = Jet2(x[ward::kOmegaRight], 1);
   const ward::TireForces<Jet2> f = ward::ComputeTireForces(state, attitude, params);
   const double traction = std::abs(f.traction_left_n.a + f.traction_right_n.a) / params.mass_kg;
-  const double slope_left = std::abs(f.traction_left_n.v[0]) / params.mass_kg / params.wheel_radius_m;
+  const double slope_left =
+      std::abs(f.traction_left_n.v[0]) / params.mass_kg / params.wheel_radius_m;
   const double slope_right =
       std::abs(f.traction_right_n.v[1]) / params.mass_kg / params.wheel_radius_m;
   const double slip_left =

@@ -26,12 +26,12 @@ namespace ward {
 
 template <typename T>
 struct TireForces {
-  T f_tire_mps2;        // body-x acceleration from all tire forces, eq. (1)
-  T g_tire_radps2;      // yaw acceleration from the driven tires, eq. (2)
-  T traction_left_n;    // driven left side traction/braking force
-  T traction_right_n;   // driven right side traction/braking force
-  T v_rel_left_mps;     // r w_l - v_fwd_l
-  T v_rel_right_mps;    // r w_r - v_fwd_r
+  T f_tire_mps2;       // body-x acceleration from all tire forces, eq. (1)
+  T g_tire_radps2;     // yaw acceleration from the driven tires, eq. (2)
+  T traction_left_n;   // driven left side traction/braking force
+  T traction_right_n;  // driven right side traction/braking force
+  T v_rel_left_mps;    // r w_l - v_fwd_l
+  T v_rel_right_mps;   // r w_r - v_fwd_r
 };
 
 // T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
@@ -78,9 +78,9 @@ inline TireForces<T> ComputeTireForces(const T* x, const Attitude<A>& attitude, 
   // pair only (the castors sit near the yaw axis's line and are free to swivel).
   const T yaw_roll_left_n = driven_left_n * rolling_per_n_left;
   const T yaw_roll_right_n = driven_right_n * rolling_per_n_right;
-  out.g_tire_radps2 = p.track_width_m / (2.0 * p.yaw_inertia_kgm2) *
-                      (out.traction_right_n + yaw_roll_right_n - out.traction_left_n -
-                       yaw_roll_left_n);
+  out.g_tire_radps2 =
+      p.track_width_m / (2.0 * p.yaw_inertia_kgm2) *
+      (out.traction_right_n + yaw_roll_right_n - out.traction_left_n - yaw_roll_left_n);
   return out;
 }
 

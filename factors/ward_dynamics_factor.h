@@ -23,9 +23,8 @@ namespace slipgraph {
 
 struct WardDynamicsFactor {
   static constexpr int kResiduals = 6;
-  static constexpr int kRows[kResiduals] = {ward::kVbx,       ward::kAccelBias,
-                                            ward::kOmegaLeft, ward::kOmegaRight,
-                                            ward::kYawRate,   ward::kGyroBias};
+  static constexpr int kRows[kResiduals] = {ward::kVbx,        ward::kAccelBias, ward::kOmegaLeft,
+                                            ward::kOmegaRight, ward::kYawRate,   ward::kGyroBias};
 
   // accel_input_mps2: NaN selects eq. (10) as printed (v' from the tire law).
   WardDynamicsFactor(const ward::Params& params, const ward::Attitude<double>& attitude,

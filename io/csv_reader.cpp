@@ -96,7 +96,8 @@ double CsvReader::Number(int column) const {
     Fail(column, "", "row has fewer cells than the header");
   }
   if (IsMissing(cell)) {
-    if (columns_[column].required) Fail(column, std::string(cell), "missing value in a required column");
+    if (columns_[column].required)
+      Fail(column, std::string(cell), "missing value in a required column");
     return std::numeric_limits<double>::quiet_NaN();
   }
   double value = 0.0;
@@ -104,7 +105,8 @@ double CsvReader::Number(int column) const {
   const char* end = begin + cell.size();
   if (*begin == '+') ++begin;  // from_chars rejects a leading '+', which CSV writers may emit
   const auto result = std::from_chars(begin, end, value);
-  if (result.ec != std::errc() || result.ptr != end) Fail(column, std::string(cell), "not a number");
+  if (result.ec != std::errc() || result.ptr != end)
+    Fail(column, std::string(cell), "not a number");
   if (!std::isfinite(value)) Fail(column, std::string(cell), "not a finite number");
   return value;
 }

@@ -77,8 +77,8 @@ struct TruthSample {
   double roll = 0.0, pitch = 0.0, yaw = 0.0;
   double vx = 0.0, vy = 0.0;  // body-frame velocity, m/s
   double yaw_rate = 0.0;
-  double a_dist = kMissing;       // disturbance acceleration along body x, m/s^2
-  double immobilized = kMissing;  // 0 or 1
+  double a_dist = kMissing;                  // disturbance acceleration along body x, m/s^2
+  double immobilized = kMissing;             // 0 or 1
   std::array<double, kMaxWheels> slip{};     // per wheel, NaN when absent
   std::array<double, kMaxWheels> sinkage{};  // per wheel, m, NaN when absent
 };

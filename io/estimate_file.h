@@ -11,7 +11,7 @@
 namespace slipgraph {
 
 struct EstimateColumn {
-  std::string name;    // e.g. "v_bx"; SI units implied by the name's documentation
+  std::string name;     // e.g. "v_bx"; SI units implied by the name's documentation
   bool with_sd = true;  // writes sd_<name> right after it
 };
 

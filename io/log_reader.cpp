@@ -64,8 +64,8 @@ void CheckIncreasing(const CsvReader& reader, int t_column, double t, double pre
   char value[64];
   std::snprintf(value, sizeof(value), "%.9g", t);
   reader.Fail(t_column, value,
-              std::string(t == previous_t ? "repeated" : "decreasing") +
-                  " time stamp (previous " + std::to_string(previous_t) + ")");
+              std::string(t == previous_t ? "repeated" : "decreasing") + " time stamp (previous " +
+                  std::to_string(previous_t) + ")");
 }
 
 template <typename Sample>
@@ -241,8 +241,8 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 }
               });
 
-  ReadCsvFile(directory, "events.csv", false,
-              {{"t_start", true}, {"t_end", true}, {"label", true}}, options, &log, &log.events,
+  ReadCsvFile(directory, "events.csv", false, {{"t_start", true}, {"t_end", true}, {"label", true}},
+              options, &log, &log.events,
               [](const CsvReader& r, const std::vector<Event>&, Event* e) {
                 e->t_start = r.Number(0);
                 e->t_end = r.Number(1);

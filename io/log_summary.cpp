@@ -118,10 +118,10 @@ void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostrea
       << Seconds(summary.t_start_s) << " to " << Seconds(summary.t_end_s) << ")\n";
   out << "streams:\n";
   for (const StreamSummary& s : summary.streams) {
-    out << "  " << std::left << std::setw(13) << s.name << std::right << std::setw(9)
-        << s.samples << " samples  " << std::setw(8) << std::fixed << std::setprecision(1)
-        << s.rate_hz << " Hz  t " << Seconds(s.t_first_s) << " to " << Seconds(s.t_last_s)
-        << "  gaps " << s.gaps.size() << "\n";
+    out << "  " << std::left << std::setw(13) << s.name << std::right << std::setw(9) << s.samples
+        << " samples  " << std::setw(8) << std::fixed << std::setprecision(1) << s.rate_hz
+        << " Hz  t " << Seconds(s.t_first_s) << " to " << Seconds(s.t_last_s) << "  gaps "
+        << s.gaps.size() << "\n";
     out.unsetf(std::ios::fixed);
     out << std::setprecision(6);
   }

@@ -17,8 +17,8 @@ void Append(const std::vector<Sample>& samples, Stream stream, const StreamSelec
 }  // namespace
 
 const char* StreamName(Stream stream) {
-  static const char* const kNames[kStreamCount] = {
-      "imu", "wheels", "attitude", "gps", "pose", "articulation", "range", "commands"};
+  static const char* const kNames[kStreamCount] = {"imu",  "wheels",       "attitude", "gps",
+                                                   "pose", "articulation", "range",    "commands"};
   return kNames[static_cast<int>(stream)];
 }
 

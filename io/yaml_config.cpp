@@ -105,8 +105,8 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
   const YAML::Node tire = root["tire"];
   if (!tire) Fail(path, root, "tire", "", "missing key");
   ReadNumbers(path, tire, "tire.",
-              {{"C1", &v.tire.C1, true}, {"At", &v.tire.At, true}, {"C2", &v.tire.C2, true}},
-              false, warnings);
+              {{"C1", &v.tire.C1, true}, {"At", &v.tire.At, true}, {"C2", &v.tire.C2, true}}, false,
+              warnings);
   const YAML::Node rolling = root["rolling"];
   if (!rolling) Fail(path, root, "rolling", "", "missing key");
   ReadNumbers(path, rolling, "rolling.",
@@ -259,9 +259,9 @@ void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {
   e << YAML::Key << "R1" << YAML::Value << v.rolling.R1 << YAML::Key << "A_roll" << YAML::Value
     << v.rolling.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling.R2 << YAML::EndMap;
   e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
-  e << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
-    << "sd_accel" << YAML::Value << v.sensors.imu_sd_accel_mps2 << YAML::Key << "sd_gyro"
-    << YAML::Value << v.sensors.imu_sd_gyro_radps << YAML::EndMap;
+  e << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "sd_accel"
+    << YAML::Value << v.sensors.imu_sd_accel_mps2 << YAML::Key << "sd_gyro" << YAML::Value
+    << v.sensors.imu_sd_gyro_radps << YAML::EndMap;
   e << YAML::Key << "wheels" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
     << "sd_omega" << YAML::Value << v.sensors.wheels_sd_omega_radps << YAML::EndMap;
   e << YAML::Key << "gps" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "sd_xy"
@@ -278,8 +278,7 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   YAML::Emitter e;
   e << YAML::BeginMap;
   e << YAML::Key << "gravity" << YAML::Value << m.gravity_mps2;
-  auto section = [&e](const char* name,
-                      const std::vector<std::pair<const char*, double>>& fields) {
+  auto section = [&e](const char* name, const std::vector<std::pair<const char*, double>>& fields) {
     e << YAML::Key << name << YAML::Value << YAML::BeginMap;
     for (const auto& field : fields) e << YAML::Key << field.first << YAML::Value << field.second;
     e << YAML::EndMap;

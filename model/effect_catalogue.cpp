@@ -25,8 +25,7 @@ const std::vector<EffectInfo>& EffectCatalogue() {
       {"slope_slip", 4.0, "1/rad",
        "On a slope the traction coefficient C1 drops by a factor (1 - value |phi|), phi the grade "
        "angle (looser footing on inclines).",
-       "Slip and disturbance residuals that appear on slopes only and grow with |grade|.",
-       true},
+       "Slip and disturbance residuals that appear on slopes only and grow with |grade|.", true},
       {"turn_slip", 0.15, "s/rad",
        "Turning scrubs the tires: an extra resistive force value x m g x |yaw rate| along body x, "
        "smoothed at zero speed.",
@@ -40,8 +39,7 @@ const std::vector<EffectInfo>& EffectCatalogue() {
        true},
       {"quadratic_drag", 40.0, "N s^2/m^2",
        "Aerodynamic / vegetation drag, value x v |v| opposing motion.",
-       "Acceleration residuals proportional to v^2: small at low speed, large at top speed.",
-       true},
+       "Acceleration residuals proportional to v^2: small at low speed, large at top speed.", true},
       {"load_transfer", 1.0, "scale",
        "Longitudinal load transfer: the front normal forces change by -value x m a h / (a + b) "
        "under body acceleration a (the default model neglects acceleration in eqs. 3-5).",
@@ -51,8 +49,7 @@ const std::vector<EffectInfo>& EffectCatalogue() {
       {"terrain_change", 0.6, "C1 factor",
        "Halfway through the log the terrain's tire coefficients C1 and C2 are scaled by value "
        "(e.g. from hard soil to loose gravel).",
-       "Residuals that are white before one moment and biased after it: a change point.",
-       true},
+       "Residuals that are white before one moment and biased after it: a change point.", true},
       {"clock_offset", 0.05, "s",
        "IMU time stamps are late by value relative to the encoders (an unsynchronised clock).",
        "Accelerometer and gyro residuals correlated with the derivative of acceleration and yaw "
@@ -61,8 +58,7 @@ const std::vector<EffectInfo>& EffectCatalogue() {
       {"corrugation", 0.6, "m/s^2",
        "Washboard terrain: a periodic longitudinal force of amplitude value x m with a 0.8 m "
        "wavelength along the path. Deliberately outside the model catalogue.",
-       "Periodic disturbance/acceleration residuals at a spatial frequency of 1/0.8 m.",
-       false},
+       "Periodic disturbance/acceleration residuals at a spatial frequency of 1/0.8 m.", false},
   };
   return kCatalogue;
 }

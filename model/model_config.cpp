@@ -1,9 +1,9 @@
 #include "model/model_config.h"
 
-#include "model/effect_catalogue.h"
-
 #include <cmath>
 #include <sstream>
+
+#include "model/effect_catalogue.h"
 
 namespace slipgraph {
 namespace {

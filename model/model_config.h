@@ -13,20 +13,20 @@ namespace slipgraph {
 
 // Continuous-time process noise of Ward & Iagnemma eq. (10), as white-noise densities.
 struct ProcessNoiseConfig {
-  double v_bx_mps2_per_sqrt_hz = 0.3;      // w1: unmodelled longitudinal acceleration
-  double a_dist_mps3_per_sqrt_hz = 5.0;    // w3: random walk of the disturbance acceleration
+  double v_bx_mps2_per_sqrt_hz = 0.3;    // w1: unmodelled longitudinal acceleration
+  double a_dist_mps3_per_sqrt_hz = 5.0;  // w3: random walk of the disturbance acceleration
   // Adaptive w3 (innovation-based, beyond the paper): while the accelerometer's normalized
   // innovations are large (a force the model lacks has appeared, e.g. a hold-back), the density
   // of w3 grows up to this value; with the tire law's stiffness the disturbance and velocity
   // would otherwise drift together along an unobservable direction in normal driving.
   double a_dist_max_mps3_per_sqrt_hz = 40.0;
-  double a_dist_adapt_samples = 5.0;       // EMA length (accelerometer samples) of the NIS
-  double omega_radps2_per_sqrt_hz = 10.0;  // w4, w5: wheel acceleration (controller neglected)
+  double a_dist_adapt_samples = 5.0;         // EMA length (accelerometer samples) of the NIS
+  double omega_radps2_per_sqrt_hz = 10.0;    // w4, w5: wheel acceleration (controller neglected)
   double yaw_rate_radps2_per_sqrt_hz = 1.0;  // w6: unmodelled yaw acceleration
-  double accel_bias_sd_mps2 = 0.02;        // sigma_abx: stationary sd of the walking bias b_ax
-  double accel_bias_tau_s = 300.0;         // tau_ax: correlation time of b_ax
-  double gyro_bias_sd_radps = 0.002;       // sigma_gbz: stationary sd of the walking bias b_gz
-  double gyro_bias_tau_s = 300.0;          // tau_gz: correlation time of b_gz
+  double accel_bias_sd_mps2 = 0.02;          // sigma_abx: stationary sd of the walking bias b_ax
+  double accel_bias_tau_s = 300.0;           // tau_ax: correlation time of b_ax
+  double gyro_bias_sd_radps = 0.002;         // sigma_gbz: stationary sd of the walking bias b_gz
+  double gyro_bias_tau_s = 300.0;            // tau_gz: correlation time of b_gz
 };
 
 // Ward & Iagnemma Table I. In the EKF these are pseudo-measurements applied under their
@@ -40,27 +40,27 @@ struct WeakConstraintConfig {
   double sd_no_pull_back = 0.1;   // WC3, m/s^2 sqrt(s)
   double sd_at_rest = 0.02;       // WC4, on a_dist and b_ax (m/s^2 sqrt(s)); b_gz uses sd/10 rad/s
   double sd_bound = 0.05;         // WC5 and WC6, in the bounded state's unit x sqrt(s)
-  double min_slip_rate_per_s = 0.05;     // WC2 min_delta_i: slow slip growth, per second
-  double slip_threshold = 0.3;           // WC2 thresh_i: WC2 applies only below this EMA slip
-  double decay_alpha = 0.995;            // WC2 alpha, 0 < alpha < 1, applied per filter cycle
-  double stop_time_s = 1.0;              // WC4 t_stop: wheels at rest this long
-  double max_v_bx_mps = 3.0;             // WC5 bound on |v_bx|
-  double max_accel_bias_mps2 = 0.5;      // WC5 bound on |b_ax|
-  double max_a_dist_mps2 = 10.0;         // WC5 bound on |a_dist|
-  double max_gyro_bias_radps = 0.1;      // WC5 bound on |b_gz|
-  double max_v_bx_rate_mps2 = 5.0;       // WC6 bound on |d v_bx / dt|
+  double min_slip_rate_per_s = 0.05;      // WC2 min_delta_i: slow slip growth, per second
+  double slip_threshold = 0.3;            // WC2 thresh_i: WC2 applies only below this EMA slip
+  double decay_alpha = 0.995;             // WC2 alpha, 0 < alpha < 1, applied per filter cycle
+  double stop_time_s = 1.0;               // WC4 t_stop: wheels at rest this long
+  double max_v_bx_mps = 3.0;              // WC5 bound on |v_bx|
+  double max_accel_bias_mps2 = 0.5;       // WC5 bound on |b_ax|
+  double max_a_dist_mps2 = 10.0;          // WC5 bound on |a_dist|
+  double max_gyro_bias_radps = 0.1;       // WC5 bound on |b_gz|
+  double max_v_bx_rate_mps2 = 5.0;        // WC6 bound on |d v_bx / dt|
   double max_accel_bias_rate_mps3 = 0.5;  // WC6 bound on |d b_ax / dt|
 };
 
 // Immobilization detector: EMA (eq. 12) of the mean driven-wheel slip over a threshold that
 // rises at low wheel speed, where encoder noise makes slip noisy; never while braking.
 struct ImmobilizationConfig {
-  double ema_samples = 20.0;            // p of eq. (12)
-  double slip_threshold = 0.7;          // EMA slip above which the robot is immobilized
+  double ema_samples = 20.0;             // p of eq. (12)
+  double slip_threshold = 0.7;           // EMA slip above which the robot is immobilized
   double low_speed_threshold_add = 0.2;  // added to the threshold at zero wheel speed
-  double low_speed_mps = 0.2;           // wheel surface speed below which the addition fades in
-  double min_wheel_speed_mps = 0.05;    // never flagged below this wheel surface speed: the
-                                        // wheels are not "spinning" (and slip is noise there)
+  double low_speed_mps = 0.2;            // wheel surface speed below which the addition fades in
+  double min_wheel_speed_mps = 0.05;     // never flagged below this wheel surface speed: the
+                                         // wheels are not "spinning" (and slip is noise there)
 };
 
 // How far the tire law (eqs. 8-9) with the nominal coefficients may be from the terrain's, as
@@ -92,9 +92,9 @@ struct ModelConfig {
   SensorNoise measurement;  // from vehicle.yaml sensors unless the model file overrides it
   WeakConstraintConfig weak_constraints;
   ImmobilizationConfig immobilization;
-  int offset_init_samples = 100;  // n: IMU samples averaged for the constant offsets
+  int offset_init_samples = 100;      // n: IMU samples averaged for the constant offsets
   double offset_ema_samples = 200.0;  // p of eq. (12) for the offsets at rest
-  std::vector<std::string> effects;  // optional physical effects switched on, by name
+  std::vector<std::string> effects;   // optional physical effects switched on, by name
 
   // Ceres-style validity check: false with a message naming the first bad field.
   bool IsValid(std::string* error) const;

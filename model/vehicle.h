@@ -43,16 +43,16 @@ struct SensorNoise {
 };
 
 struct Vehicle {
-  std::string name;                               // free text
+  std::string name;  // free text
   VehicleType type = VehicleType::kDiffDriveCastor;
-  double mass_kg = 0.0;                           // m
-  double yaw_inertia_kgm2 = 0.0;                  // J, about body z
-  double wheel_radius_m = 0.0;                    // r
-  double track_width_m = 0.0;                     // c, left-right wheel centre distance
-  double cg_to_front_m = 0.0;                     // a
-  double cg_to_rear_m = 0.0;                      // b
-  double cg_height_m = 0.0;                       // h
-  double axle_spacing_m = 0.0;                    // A, rocker_bogie6 only
+  double mass_kg = 0.0;           // m
+  double yaw_inertia_kgm2 = 0.0;  // J, about body z
+  double wheel_radius_m = 0.0;    // r
+  double track_width_m = 0.0;     // c, left-right wheel centre distance
+  double cg_to_front_m = 0.0;     // a
+  double cg_to_rear_m = 0.0;      // b
+  double cg_height_m = 0.0;       // h
+  double axle_spacing_m = 0.0;    // A, rocker_bogie6 only
   TireParams tire;
   RollingParams rolling;
   SensorNoise sensors;

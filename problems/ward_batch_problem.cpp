@@ -75,7 +75,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
       sd[i] = std::max(ekf.estimates.front().sd[i], 1e-6);
     }
     Add("first_state_prior", DiagonalPrior<kStateSize>::Create(mean, sd), nullptr,
-                             out->states[0].data());
+        out->states[0].data());
     Add("offset_prior",
         DiagonalPrior<2>::Create({out->offsets[0], out->offsets[1]},
                                  {noise.imu_sd_accel_mps2 + q.accel_bias_sd_mps2,
@@ -116,9 +116,8 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   for (size_t k = 0; k < n && k < log.wheels.size(); ++k) {
     const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
     out->wheel_speeds[k] = {s.left_radps, s.right_radps};
-    Add("encoder",
-        EncoderFactor::Create(s.left_radps, s.right_radps, noise.wheels_sd_omega_radps), nullptr,
-        out->states[k].data());
+    Add("encoder", EncoderFactor::Create(s.left_radps, s.right_radps, noise.wheels_sd_omega_radps),
+        nullptr, out->states[k].data());
     ++out->encoders;
   }
   for (const ImuSample& imu : log.imu) {
@@ -129,17 +128,17 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     double sd_a = noise.imu_sd_accel_mps2;
     if (options.velocity_model == VelocityModel::kAccelerometerDriven) {
       sd_a = std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf.estimates[k].x.data(), c.attitude,
-                                                            params, model.tire_uncertainty,
-                                                            c.imu_period_s));
+                                                           params, model.tire_uncertainty,
+                                                           c.imu_period_s));
     }
     if (std::isfinite(imu.ax)) {
-      Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
-                               nullptr, x, out->offsets.data());
+      Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,
+          x, out->offsets.data());
       ++out->accelerometer;
     }
     if (std::isfinite(imu.gz)) {
       Add("gyro", YawGyroFactor::Create(imu.gz, noise.imu_sd_gyro_radps), nullptr, x,
-                               out->offsets.data());
+          out->offsets.data());
       ++out->gyro;
     }
   }
@@ -159,8 +158,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
         along = (w[0] + w[1] >= 0.0 ? 1.0 : -1.0) * std::hypot(g.vx, g.vy);
       }
       const double sd = std::isfinite(g.sd_v) && g.sd_v > 0.0 ? g.sd_v : noise.gps_sd_v_mps;
-      Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr,
-                               out->states[k].data());
+      Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, out->states[k].data());
       ++out->gnss;
     }
   }
@@ -187,17 +185,17 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
       ++out->oppose_motion;
     }
     if (stopped && out->times[k] - stopped_since >= wc.stop_time_s) {
-      Add("at_rest",
-          AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt), nullptr, x);
+      Add("at_rest", AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt),
+          nullptr, x);
       ++out->at_rest;
     }
     Add("act_quickly", DisturbanceDecayPrior::Create(options.decay_sd_density / root_dt),
         new ceres::CauchyLoss(options.decay_cauchy_sigmas), x);
     ++out->act_quickly;
     Add("bound",
-        BoundPrior::Create({wc.max_v_bx_mps, wc.max_accel_bias_mps2, wc.max_a_dist_mps2,
-                            wc.max_gyro_bias_radps},
-                           wc.sd_bound / root_dt),
+        BoundPrior::Create(
+            {wc.max_v_bx_mps, wc.max_accel_bias_mps2, wc.max_a_dist_mps2, wc.max_gyro_bias_radps},
+            wc.sd_bound / root_dt),
         nullptr, x);
     ++out->bounds;
     if (k + 1 >= n) continue;
@@ -206,13 +204,13 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     // The attitude at t_k; the accelerometer sample that ends the interval (its mean over it).
     Context c = context_at(out->times[k]);
     c.accel_x = context_at(out->times[k + 1]).accel_x;
-    const bool accel_driven = options.velocity_model == VelocityModel::kAccelerometerDriven &&
-                              std::isfinite(c.accel_x);
-    const double sd_v =
-        accel_driven ? std::sqrt(AccelInputDensitySq(noise.imu_sd_accel_mps2, c.pitch_sd,
-                                                     params.gravity_mps2, c.imu_period_s) *
-                                 dt)
-                     : q.v_bx_mps2_per_sqrt_hz * std::sqrt(dt);
+    const bool accel_driven =
+        options.velocity_model == VelocityModel::kAccelerometerDriven && std::isfinite(c.accel_x);
+    const double sd_v = accel_driven
+                            ? std::sqrt(AccelInputDensitySq(noise.imu_sd_accel_mps2, c.pitch_sd,
+                                                            params.gravity_mps2, c.imu_period_s) *
+                                        dt)
+                            : q.v_bx_mps2_per_sqrt_hz * std::sqrt(dt);
     const auto gauss_markov = [dt](double sd, double tau) {
       return sd * std::sqrt(1.0 - std::exp(-2.0 * dt / tau));
     };
@@ -224,8 +222,8 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
         q.yaw_rate_radps2_per_sqrt_hz * std::sqrt(dt),
         gauss_markov(q.gyro_bias_sd_radps, q.gyro_bias_tau_s)};
     Add("dynamics",
-        WardDynamicsFactor::Create(params, c.attitude, dt,
-                                   accel_driven ? c.accel_x : std::nan(""), sd_step),
+        WardDynamicsFactor::Create(params, c.attitude, dt, accel_driven ? c.accel_x : std::nan(""),
+                                   sd_step),
         nullptr, x, out->states[k + 1].data(), out->offsets.data());
     Add("disturbance_walk",
         DisturbanceWalkFactor::Create(q.a_dist_mps3_per_sqrt_hz * std::sqrt(dt)),

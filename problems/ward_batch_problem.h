@@ -36,10 +36,10 @@ struct WardProblemOptions {
 };
 
 struct WardProblem {
-  std::vector<double> times;                         // state times: the wheel samples
-  std::vector<std::array<double, 7>> states;         // parameter blocks, one per time
-  std::array<double, 2> offsets{};                   // [c_ax, c_gz]
-  std::vector<std::array<double, 2>> wheel_speeds;   // measured driven-side speeds per state
+  std::vector<double> times;                        // state times: the wheel samples
+  std::vector<std::array<double, 7>> states;        // parameter blocks, one per time
+  std::array<double, 2> offsets{};                  // [c_ax, c_gz]
+  std::vector<std::array<double, 2>> wheel_speeds;  // measured driven-side speeds per state
   std::unique_ptr<ceres::Problem> problem;
   // Residual blocks by factor kind ("dynamics", "accelerometer", ...), for cost breakdowns.
   std::map<std::string, std::vector<ceres::ResidualBlockId>> blocks;

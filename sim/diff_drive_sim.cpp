@@ -6,9 +6,9 @@
 
 #include "factors/normal_forces.h"
 #include "factors/rolling_resistance.h"
+#include "factors/slip_ratio.h"
 #include "factors/smooth_math.h"
 #include "factors/traction.h"
-#include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
 #include "sim/sensor_models.h"
 
@@ -131,8 +131,8 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     if (hold >= 0) {
       const double stretch = s - hold_anchor_s;  // the tether is slack until stretched
       if (stretch > 0.0) {
-        f_external += std::min(0.0, -(act.tether_stiffness_npm * stretch +
-                                      act.tether_damping_nspm * v));
+        f_external +=
+            std::min(0.0, -(act.tether_stiffness_npm * stretch + act.tether_damping_nspm * v));
       }
     }
     const double sign_v = SignedSaturation(v, kEffectSignRate);
@@ -142,13 +142,13 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
       const double build_up = std::min(1.0, sc.course.DistanceIntoPatch(s) / kSinkageBuildUpM);
       f_external -= EffectValue(fx, "sinkage_resistance") * weight * build_up * sign_v;
     }
-    f_external += EffectValue(fx, "corrugation") * m *
-                  std::sin(2.0 * M_PI * s / kCorrugationWavelengthM);
+    f_external +=
+        EffectValue(fx, "corrugation") * m * std::sin(2.0 * M_PI * s / kCorrugationWavelengthM);
 
     // Body dynamics (eqs. 1-2 with the true forces).
-    const double a = (traction[0] + traction[1] + rolling_side[0] + rolling_side[1] + f_external) /
-                         m -
-                     kGravity * std::sin(grade);
+    const double a =
+        (traction[0] + traction[1] + rolling_side[0] + rolling_side[1] + f_external) / m -
+        kGravity * std::sin(grade);
     const double yaw_accel = c / (2.0 * veh.yaw_inertia_kgm2) *
                              (traction[1] + rolling_front[1] - traction[0] - rolling_front[0]);
 

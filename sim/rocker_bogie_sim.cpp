@@ -103,9 +103,9 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
         const Side label = side == 0 ? Side::kLeft : Side::kRight;
         for (int i = 0; i < spec.range_points; ++i) {
           const double d = 2.0 * axle + spec.range_first_m + i * spec.range_spacing_m;
-          log.range.push_back({t, label, d,
-                               sides[side]->Elevation(x_rear + d) - z[side][0] +
-                                   spec.range_sd_m * unit(rng)});
+          log.range.push_back(
+              {t, label, d,
+               sides[side]->Elevation(x_rear + d) - z[side][0] + spec.range_sd_m * unit(rng)});
         }
       }
     }

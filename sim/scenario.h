@@ -35,28 +35,29 @@ struct Actuation {
   double wheel_inertia_kgm2 = 0.4;      // wheel + reflected motor inertia
   double kp_nm_per_radps = 15.0;        // PI wheel-speed controller
   double ki_nm_per_rad = 60.0;
-  double tether_stiffness_npm = 10000.0;  // a person leaning on a spring scale: stops the robot in ~0.2 s
-  double tether_damping_nspm = 2000.0;   // about critical for the LAGR mass
+  double tether_stiffness_npm =
+      10000.0;  // a person leaning on a spring scale: stops the robot in ~0.2 s
+  double tether_damping_nspm = 2000.0;  // about critical for the LAGR mass
 };
 
 struct SensorSpec {
   double imu_rate_hz = 100.0;
   double wheel_rate_hz = 100.0;
-  double gps_rate_hz = 1.0;       // 0: no gps.csv
+  double gps_rate_hz = 1.0;         // 0: no gps.csv
   double attitude_rate_hz = 100.0;  // 0: no attitude.csv
-  double pose_rate_hz = 0.0;      // 0: no pose.csv
-  double command_rate_hz = 10.0;  // 0: no commands.csv
+  double pose_rate_hz = 0.0;        // 0: no pose.csv
+  double command_rate_hz = 10.0;    // 0: no commands.csv
   double truth_rate_hz = 100.0;
   int encoder_counts_per_rev = 4096;  // 0: no quantization
   double sd_accel_mps2 = 0.05;
   double sd_gyro_radps = 0.005;
   double accel_offset_max_mps2 = 0.1;  // constant offset c_ax ~ U(-max, max)
   double gyro_offset_max_radps = 0.01;
-  double accel_bias_sd_mps2 = 0.02;    // walking bias, Gauss-Markov
+  double accel_bias_sd_mps2 = 0.02;  // walking bias, Gauss-Markov
   double accel_bias_tau_s = 300.0;
   double gyro_bias_sd_radps = 0.002;
   double gyro_bias_tau_s = 300.0;
-  double sd_omega_radps = 0.02;        // encoder speed noise on top of quantization
+  double sd_omega_radps = 0.02;  // encoder speed noise on top of quantization
   double gps_sd_xy_m = 0.5;
   double gps_sd_z_m = 1.0;
   double gps_sd_v_mps = 0.1;
@@ -69,19 +70,19 @@ struct SensorSpec {
 // The articulated 6-wheel rover of Wilcox: per-side terrain profiles, sinkage, slip, and the
 // articulation and look-ahead ranging sensors.
 struct RockerSpec {
-  double roughness_rms_m = 0.01;    // RMS of each side's synthetic terrain profile y(x)
-  double slip_mean = 0.2;           // true slip: advance = rim motion x (1 - slip)
-  double slip_sd = 0.02;            // cycle-to-cycle variation of the slip
-  double cycle_rate_hz = 1.0;       // articulation and range sampling
+  double roughness_rms_m = 0.01;       // RMS of each side's synthetic terrain profile y(x)
+  double slip_mean = 0.2;              // true slip: advance = rim motion x (1 - slip)
+  double slip_sd = 0.02;               // cycle-to-cycle variation of the slip
+  double cycle_rate_hz = 1.0;          // articulation and range sampling
   double articulation_sd_m = 0.00004;  // 0.04 mm (Wilcox Sec. 3)
   double range_sd_m = 0.002;           // 2 mm
-  double range_first_m = 0.02;      // first sensed point ahead of the front wheel
-  double range_spacing_m = 0.02;    // spacing of sensed points
-  int range_points = 30;            // per side and cycle
-  double base_sinkage_m = 0.003;    // sinkage everywhere
-  double soft_sinkage_m = 0.015;    // extra sinkage at the centre of soft patches
-  double soft_patch_every_m = 2.0;  // a soft patch (raised cosine, 0.6 m long) this often
-  double left_extra_sinkage_m = 0.0;  // > 0: the left side sinks more (breaks the L/R check)
+  double range_first_m = 0.02;         // first sensed point ahead of the front wheel
+  double range_spacing_m = 0.02;       // spacing of sensed points
+  int range_points = 30;               // per side and cycle
+  double base_sinkage_m = 0.003;       // sinkage everywhere
+  double soft_sinkage_m = 0.015;       // extra sinkage at the centre of soft patches
+  double soft_patch_every_m = 2.0;     // a soft patch (raised cosine, 0.6 m long) this often
+  double left_extra_sinkage_m = 0.0;   // > 0: the left side sinks more (breaks the L/R check)
 };
 
 struct Scenario {

@@ -78,9 +78,9 @@ Scenario HiddenEffect(const std::string& effect) {
                        {35.0, NominalTerrain(sc.vehicle, false)}};
   sc.course.hills = {{45.0, 12.0, 0.12, 0.04}, {65.0, 10.0, -0.10, -0.03}};
   sc.rest_start_s = 3.0;
-  sc.commands = {{10.0, 0.5, 0.0},  {8.0, 1.2, 0.0},  {6.0, 1.2, 0.5},  {8.0, 0.8, 0.0},
-                 {6.0, 0.8, -0.6},  {12.0, 1.0, 0.0}, {5.0, 0.3, 0.0},  {10.0, 1.4, 0.0},
-                 {6.0, 0.6, 0.4},   {8.0, 1.0, 0.0},  {4.0, 0.0, 0.0}};
+  sc.commands = {{10.0, 0.5, 0.0}, {8.0, 1.2, 0.0},  {6.0, 1.2, 0.5}, {8.0, 0.8, 0.0},
+                 {6.0, 0.8, -0.6}, {12.0, 1.0, 0.0}, {5.0, 0.3, 0.0}, {10.0, 1.4, 0.0},
+                 {6.0, 0.6, 0.4},  {8.0, 1.0, 0.0},  {4.0, 0.0, 0.0}};
   if (effect != "none") {
     const EffectInfo* info = FindEffect(effect);
     if (info == nullptr) throw std::invalid_argument("unknown effect '" + effect + "'");
@@ -236,9 +236,10 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
       for (int run = 1; run <= kWilcoxRunsPerRoughness; ++run) {
         char dir[48];
         std::snprintf(dir, sizeof(dir), "r%gcm_run%02d", roughness_cm, run);
-        const uint64_t run_seed = RunSeed(seed, static_cast<uint64_t>(roughness_cm * 100) * 100 + run);
-        runs.push_back({dir, WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir),
-                        run_seed});
+        const uint64_t run_seed =
+            RunSeed(seed, static_cast<uint64_t>(roughness_cm * 100) * 100 + run);
+        runs.push_back(
+            {dir, WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir), run_seed});
       }
     }
   } else if (name == "wilcox_lr") {
@@ -256,7 +257,8 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
   } else if (name.rfind("wilcox/", 0) == 0) {
     // wilcox/<roughness cm>, e.g. wilcox/1: one run of the suite.
     const double roughness_cm = std::atof(name.c_str() + 7);
-    if (!(roughness_cm > 0.0)) throw std::invalid_argument("wilcox/<roughness in cm>: '" + name + "'");
+    if (!(roughness_cm > 0.0))
+      throw std::invalid_argument("wilcox/<roughness in cm>: '" + name + "'");
     runs.push_back({"", WilcoxRun(roughness_cm / 100.0, 0.0, name), RunSeed(seed, 777)});
   } else if (name == "hidden") {
     runs.push_back({"none", HiddenEffect("none"), seed});

@@ -17,9 +17,8 @@ double GaussMarkovStep(double value, double sd, double tau_s, double dt_s, doubl
 
 }  // namespace
 
-SensorSimulator::SensorSimulator(const SensorSpec& spec, const EffectSet& effects,
-                                 int wheel_count, double step_s, std::mt19937_64* rng,
-                                 DriveLog* log)
+SensorSimulator::SensorSimulator(const SensorSpec& spec, const EffectSet& effects, int wheel_count,
+                                 double step_s, std::mt19937_64* rng, DriveLog* log)
     : spec_(spec),
       effects_(effects),
       wheel_count_(wheel_count),
@@ -85,8 +84,8 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   for (int i = 0; i < 3; ++i) {
     accel_bias_[i] = GaussMarkovStep(accel_bias_[i], spec_.accel_bias_sd_mps2,
                                      spec_.accel_bias_tau_s, dt, normal_(*rng_));
-    gyro_bias_[i] = GaussMarkovStep(gyro_bias_[i], spec_.gyro_bias_sd_radps,
-                                    spec_.gyro_bias_tau_s, dt, normal_(*rng_));
+    gyro_bias_[i] = GaussMarkovStep(gyro_bias_[i], spec_.gyro_bias_sd_radps, spec_.gyro_bias_tau_s,
+                                    dt, normal_(*rng_));
   }
   // Specific force in the body frame: f = a - g_world expressed in body axes (REP-103, z up).
   const double cp = std::cos(s.pitch), sp = std::sin(s.pitch);
@@ -99,8 +98,7 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   previous_v_bx_ = s.v_bx, previous_v_by_ = s.v_by;
   have_previous_imu_ = true;
   double f[3] = {a_x - s.v_by * s.yaw_rate - kGravity * sp,
-                 a_y + s.v_bx * s.yaw_rate + kGravity * sr * cp,
-                 kGravity * cr * cp};
+                 a_y + s.v_bx * s.yaw_rate + kGravity * sr * cp, kGravity * cr * cp};
   double w[3] = {s.roll_rate, s.pitch_rate, s.yaw_rate};
   // imu_mounting_pitch: sensor axes pitched nose-down by delta about body y.
   const double delta = EffectValue(effects_, "imu_mounting_pitch");
@@ -117,8 +115,10 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   double* out_f[3] = {&imu.ax, &imu.ay, &imu.az};
   double* out_w[3] = {&imu.gx, &imu.gy, &imu.gz};
   for (int i = 0; i < 3; ++i) {
-    *out_f[i] = f[i] + imu_errors_.accel_offset_mps2[i] + accel_bias_[i] + Normal(spec_.sd_accel_mps2);
-    *out_w[i] = w[i] + imu_errors_.gyro_offset_radps[i] + gyro_bias_[i] + Normal(spec_.sd_gyro_radps);
+    *out_f[i] =
+        f[i] + imu_errors_.accel_offset_mps2[i] + accel_bias_[i] + Normal(spec_.sd_accel_mps2);
+    *out_w[i] =
+        w[i] + imu_errors_.gyro_offset_radps[i] + gyro_bias_[i] + Normal(spec_.sd_gyro_radps);
   }
   log_->imu.push_back(imu);
 }
@@ -133,9 +133,8 @@ void SensorSimulator::EmitWheels(const KinematicState& s) {
     if (counts_per_rev > 0) {
       const int64_t counts =
           static_cast<int64_t>(std::floor(s.wheel_angle_rad[w] * counts_per_rev / (2.0 * M_PI)));
-      omega = have_last_counts_
-                  ? (counts - last_counts_[w]) * 2.0 * M_PI / counts_per_rev / dt
-                  : s.omega_radps[w];
+      omega = have_last_counts_ ? (counts - last_counts_[w]) * 2.0 * M_PI / counts_per_rev / dt
+                                : s.omega_radps[w];
       last_counts_[w] = counts;
     }
     sample.omega_radps[w] = omega + Normal(spec_.sd_omega_radps);

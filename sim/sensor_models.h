@@ -38,8 +38,8 @@ struct ImuErrors {
 class SensorSimulator {
  public:
   // `step_s` is the simulator's integration step: every rate must be a whole number of steps.
-  SensorSimulator(const SensorSpec& spec, const EffectSet& effects, int wheel_count,
-                  double step_s, std::mt19937_64* rng, DriveLog* log);
+  SensorSimulator(const SensorSpec& spec, const EffectSet& effects, int wheel_count, double step_s,
+                  std::mt19937_64* rng, DriveLog* log);
 
   // Called once per integration step, step_index counting from 0 at t = 0.
   void Observe(const KinematicState& state, int64_t step_index);
@@ -70,8 +70,7 @@ class SensorSimulator {
   std::array<int64_t, kMaxWheels> last_counts_{};
   bool have_last_counts_ = false;
   double last_gps_x_ = 0.0, last_gps_y_ = 0.0, last_gps_z_ = 0.0, last_gps_t_ = -1.0;
-  int64_t imu_period_, wheel_period_, gps_period_, attitude_period_, pose_period_,
-      command_period_;
+  int64_t imu_period_, wheel_period_, gps_period_, attitude_period_, pose_period_, command_period_;
 };
 
 }  // namespace sim

@@ -21,7 +21,8 @@ bool EffectSupported(VehicleType type, const std::string& effect) {
   static const char* const kKinematic[] = {"wheel_radius_error", "imu_mounting_pitch",
                                            "clock_offset", "gps_velocity_averaging"};
   for (const char* name : kKinematic) {
-    if (effect == name) return type == VehicleType::kSkidSteer || effect != "gps_velocity_averaging";
+    if (effect == name)
+      return type == VehicleType::kSkidSteer || effect != "gps_velocity_averaging";
   }
   return false;
 }
@@ -53,9 +54,9 @@ void EmitTire(YAML::Emitter& e, const TireParams& tire) {
 }
 
 void EmitRolling(YAML::Emitter& e, const RollingParams& rolling) {
-  e << YAML::Flow << YAML::BeginMap << YAML::Key << "R1" << YAML::Value << rolling.R1
-    << YAML::Key << "A_roll" << YAML::Value << rolling.A_roll << YAML::Key << "R2" << YAML::Value
-    << rolling.R2 << YAML::EndMap;
+  e << YAML::Flow << YAML::BeginMap << YAML::Key << "R1" << YAML::Value << rolling.R1 << YAML::Key
+    << "A_roll" << YAML::Value << rolling.A_roll << YAML::Key << "R2" << YAML::Value << rolling.R2
+    << YAML::EndMap;
 }
 
 }  // namespace
@@ -93,17 +94,16 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
   e << YAML::EndSeq;
   e << YAML::Key << "hills" << YAML::Value << YAML::BeginSeq;
   for (const Hill& hill : scenario.course.hills) {
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "s_start_m" << YAML::Value
-      << hill.s_start_m << YAML::Key << "length_m" << YAML::Value << hill.length_m << YAML::Key
-      << "peak_grade_rad" << YAML::Value << hill.peak_grade_rad << YAML::Key
-      << "peak_cross_slope_rad" << YAML::Value << hill.peak_cross_slope_rad << YAML::EndMap;
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "s_start_m" << YAML::Value << hill.s_start_m
+      << YAML::Key << "length_m" << YAML::Value << hill.length_m << YAML::Key << "peak_grade_rad"
+      << YAML::Value << hill.peak_grade_rad << YAML::Key << "peak_cross_slope_rad" << YAML::Value
+      << hill.peak_cross_slope_rad << YAML::EndMap;
   }
   e << YAML::EndSeq;
   e << YAML::Key << "holdbacks" << YAML::Value << YAML::BeginSeq;
   for (const HoldBack& hold : scenario.holdbacks) {
-    e << YAML::Flow << YAML::BeginMap << YAML::Key << "t_start_s" << YAML::Value
-      << hold.t_start_s << YAML::Key << "t_end_s" << YAML::Value << hold.t_end_s
-      << YAML::EndMap;
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "t_start_s" << YAML::Value << hold.t_start_s
+      << YAML::Key << "t_end_s" << YAML::Value << hold.t_end_s << YAML::EndMap;
   }
   e << YAML::EndSeq;
   if (scenario.vehicle.type == VehicleType::kRockerBogie6) {

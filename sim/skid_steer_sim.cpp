@@ -111,7 +111,8 @@ SimResult SimulateSkidSteer(const Scenario& sc, uint64_t seed) {
     state.y += rho_dot[1] * dt;
     state.yaw += rho_dot[2] * dt;
     state.z += u[0] * std::sin(grade) * dt;
-    for (int side = 0; side < 2; ++side) state.wheel_angle_rad[side] += state.omega_radps[side] * dt;
+    for (int side = 0; side < 2; ++side)
+      state.wheel_angle_rad[side] += state.omega_radps[side] * dt;
     const double previous_roll = state.roll, previous_pitch = state.pitch;
     s += u[0] * dt;  // signed: reversing moves back along the path
     state.roll_rate = (sc.course.CrossSlopeRad(s) - previous_roll) / dt;

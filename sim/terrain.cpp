@@ -30,19 +30,43 @@ const std::vector<TerrainType>& TerrainCatalogue() {
   // speed and turning, the vehicle turns less than its tracks say (alpha[9] < 0), skids outward
   // in turns (alpha[6] < 0) and slides with gravity. Softer ground, more slip and more noise.
   const auto ipd = [](double fwd, double turn_fwd, double yaw_gain, double lateral, double noise) {
-    return IpdSlip{{fwd, turn_fwd, -0.03, 0.010,        //
-                    0.0, 0.01, lateral, 0.012,          //
+    return IpdSlip{{fwd, turn_fwd, -0.03, 0.010,  //
+                    0.0, 0.01, lateral, 0.012,    //
                     0.005, yaw_gain, 0.02, 0.004, -0.003},
                    {noise * 0.0004, noise * 0.0003, noise * 0.0008}};
   };
   static const std::vector<TerrainType> kCatalogue = {
-      {"asphalt", {0.85, 30.0, 0.02}, {0.015, 20.0, 0.005}, false, ipd(-0.02, -0.03, -0.08, -0.02, 0.5)},
-      {"gravel", {0.60, 15.0, 0.05}, {0.040, 20.0, 0.010}, false, ipd(-0.05, -0.05, -0.15, -0.04, 1.0)},
-      {"grass", {0.42, 20.0, 0.0435}, {0.050, 20.0, 0.020}, false, ipd(-0.05, -0.06, -0.18, -0.05, 1.0)},
-      {"mulch", {0.50, 10.0, 0.08}, {0.070, 15.0, 0.020}, true, ipd(-0.08, -0.07, -0.20, -0.06, 1.5)},
+      {"asphalt",
+       {0.85, 30.0, 0.02},
+       {0.015, 20.0, 0.005},
+       false,
+       ipd(-0.02, -0.03, -0.08, -0.02, 0.5)},
+      {"gravel",
+       {0.60, 15.0, 0.05},
+       {0.040, 20.0, 0.010},
+       false,
+       ipd(-0.05, -0.05, -0.15, -0.04, 1.0)},
+      {"grass",
+       {0.42, 20.0, 0.0435},
+       {0.050, 20.0, 0.020},
+       false,
+       ipd(-0.05, -0.06, -0.18, -0.05, 1.0)},
+      {"mulch",
+       {0.50, 10.0, 0.08},
+       {0.070, 15.0, 0.020},
+       true,
+       ipd(-0.08, -0.07, -0.20, -0.06, 1.5)},
       {"mud", {0.38, 8.0, 0.10}, {0.090, 10.0, 0.030}, true, ipd(-0.15, -0.10, -0.25, -0.08, 2.0)},
-      {"soft_dirt", {0.55, 12.0, 0.06}, {0.060, 15.0, 0.020}, true, ipd(-0.10, -0.08, -0.20, -0.07, 1.5)},
-      {"loose_rock", {0.65, 18.0, 0.03}, {0.050, 20.0, 0.010}, false, ipd(-0.07, -0.09, -0.25, -0.06, 2.0)},
+      {"soft_dirt",
+       {0.55, 12.0, 0.06},
+       {0.060, 15.0, 0.020},
+       true,
+       ipd(-0.10, -0.08, -0.20, -0.07, 1.5)},
+      {"loose_rock",
+       {0.65, 18.0, 0.03},
+       {0.050, 20.0, 0.010},
+       false,
+       ipd(-0.07, -0.09, -0.25, -0.06, 2.0)},
   };
   return kCatalogue;
 }
@@ -62,9 +86,7 @@ const TerrainPatch& Course::PatchAt(double s_m) const {
   return patches.at(index);
 }
 
-double Course::DistanceIntoPatch(double s_m) const {
-  return s_m - PatchAt(s_m).s_start_m;
-}
+double Course::DistanceIntoPatch(double s_m) const { return s_m - PatchAt(s_m).s_start_m; }
 
 double Course::GradeRad(double s_m) const {
   double grade = 0.0;

@@ -15,8 +15,8 @@ namespace sim {
 // Rogers-Marcovitz et al.'s generative slip model on this terrain: slip velocities
 // u_s = C(u_n, g) alpha + w, w white with spectral densities q (eqs. 14, 16-17).
 struct IpdSlip {
-  std::array<double, 13> alpha{};       // factors/ipd_kinematics.h for the layout
-  std::array<double, 3> q_density{};    // (m/s)^2/Hz, (m/s)^2/Hz, (rad/s)^2/Hz
+  std::array<double, 13> alpha{};     // factors/ipd_kinematics.h for the layout
+  std::array<double, 3> q_density{};  // (m/s)^2/Hz, (m/s)^2/Hz, (rad/s)^2/Hz
 };
 
 struct TerrainType {

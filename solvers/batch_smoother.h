@@ -19,8 +19,8 @@ namespace slipgraph {
 struct BatchSmootherOptions {
   int max_iterations = 200;
   int threads = 1;
-  bool covariance = true;           // marginal sd per state (else the EKF's sd is reported)
-  FilterRunOptions filter;          // the EKF run that initialises the smoother
+  bool covariance = true;   // marginal sd per state (else the EKF's sd is reported)
+  FilterRunOptions filter;  // the EKF run that initialises the smoother
   WardProblemOptions problem;
   // Post-processing detection: the smoothed slip (no EMA lag) above the threshold for at least
   // this long while the wheels turn and the robot is not braking.
@@ -29,9 +29,9 @@ struct BatchSmootherOptions {
 
 struct SmootherResult {
   std::vector<EkfEstimate> estimates;  // same layout as the EKF's, one per wheel sample
-  FilterResult ekf;                     // the initialising filter run
+  FilterResult ekf;                    // the initialising filter run
   ceres::Solver::Summary summary;
-  bool used_fallback = false;           // true: estimates are the EKF's (see notes)
+  bool used_fallback = false;  // true: estimates are the EKF's (see notes)
   bool covariance_ok = false;
   std::vector<std::string> notes;
 };

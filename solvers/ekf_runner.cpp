@@ -64,13 +64,11 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
 }
 
 void WriteEkfEstimates(const FilterResult& result, const std::string& path) {
-  std::vector<EstimateColumn> columns = {{"v_bx", true},       {"b_ax", true},
-                                         {"a_dist", true},     {"omega_left", true},
-                                         {"omega_right", true}, {"yaw_rate", true},
-                                         {"b_gz", true},       {"slip_left", false},
-                                         {"slip_right", false}, {"slip_ema", false},
-                                         {"immobilized", false}, {"accel_offset", false},
-                                         {"gyro_offset", false}};
+  std::vector<EstimateColumn> columns = {
+      {"v_bx", true},        {"b_ax", true},      {"a_dist", true},       {"omega_left", true},
+      {"omega_right", true}, {"yaw_rate", true},  {"b_gz", true},         {"slip_left", false},
+      {"slip_right", false}, {"slip_ema", false}, {"immobilized", false}, {"accel_offset", false},
+      {"gyro_offset", false}};
   EstimateWriter writer(path, columns);
   std::vector<double> values(columns.size()), sds(columns.size(), 0.0);
   for (const EkfEstimate& e : result.estimates) {

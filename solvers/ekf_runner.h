@@ -13,8 +13,8 @@
 namespace slipgraph {
 
 struct FilterRunOptions {
-  bool use_gps = true;        // --no-gps clears it
-  bool use_attitude = true;   // without attitude.csv the ground is taken as flat (and said so)
+  bool use_gps = true;       // --no-gps clears it
+  bool use_attitude = true;  // without attitude.csv the ground is taken as flat (and said so)
   EkfOptions ekf;
 };
 

@@ -33,9 +33,8 @@ ImmobilizationDetector::ImmobilizationDetector(const ImmobilizationConfig& confi
       track_width_m_(track_width_m),
       ema_(config.ema_samples) {}
 
-const SlipEstimate& ImmobilizationDetector::Update(double v_bx, double yaw_rate,
-                                                   double omega_left, double omega_right,
-                                                   bool encoders_fresh) {
+const SlipEstimate& ImmobilizationDetector::Update(double v_bx, double yaw_rate, double omega_left,
+                                                   double omega_right, bool encoders_fresh) {
   if (!encoders_fresh) {
     latest_.immobilized = false;
     return latest_;

@@ -10,10 +10,10 @@
 namespace slipgraph {
 
 struct SlipEstimate {
-  double slip_left = 0.0;   // slip ratio of the left driven wheel/side (factors/slip_ratio.h)
+  double slip_left = 0.0;  // slip ratio of the left driven wheel/side (factors/slip_ratio.h)
   double slip_right = 0.0;
-  double slip_ema = 0.0;    // EMA of the mean of the two
-  double threshold = 0.0;   // the speed-dependent threshold in force
+  double slip_ema = 0.0;   // EMA of the mean of the two
+  double threshold = 0.0;  // the speed-dependent threshold in force
   bool braking = false;
   bool immobilized = false;
 };

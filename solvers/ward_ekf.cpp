@@ -95,26 +95,28 @@ void WardEkf::PredictTo(double t) {
   // Accelerometer-driven: the input's white noise (accelerometer and pitch through gravity).
   const double accel_density_sq = AccelInputDensitySq(
       model_.measurement.imu_sd_accel_mps2, pitch_sd_rad_, params_.gravity_mps2, imu_period_s_);
-  q_diag(kVbx) = (accel_driven ? accel_density_sq : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz) * dt;
+  q_diag(kVbx) =
+      (accel_driven ? accel_density_sq : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz) * dt;
   q_diag(kAccelBias) = q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 *
                        (1.0 - std::exp(-2.0 * dt / q.accel_bias_tau_s));
   // Adaptive w3: the density scales with the recent accelerometer NIS (1 when consistent).
-  const double q_adist = std::min(q.a_dist_max_mps3_per_sqrt_hz,
-                                  q.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
+  const double q_adist =
+      std::min(q.a_dist_max_mps3_per_sqrt_hz,
+               q.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
   q_diag(kAdist) = q_adist * q_adist * dt;
   q_diag(kOmegaLeft) = q_diag(kOmegaRight) =
       q.omega_radps2_per_sqrt_hz * q.omega_radps2_per_sqrt_hz * dt;
   q_diag(kYawRate) = q.yaw_rate_radps2_per_sqrt_hz * q.yaw_rate_radps2_per_sqrt_hz * dt;
-  q_diag(kGyroBias) = q.gyro_bias_sd_radps * q.gyro_bias_sd_radps *
-                      (1.0 - std::exp(-2.0 * dt / q.gyro_bias_tau_s));
+  q_diag(kGyroBias) =
+      q.gyro_bias_sd_radps * q.gyro_bias_sd_radps * (1.0 - std::exp(-2.0 * dt / q.gyro_bias_tau_s));
   P_ = A * P_ * A.transpose();
   P_.diagonal() += q_diag;
   t_ = t;
 }
 
-bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r,
-                     double gate_chi2, int max_consecutive_rejections,
-                     StreamCounters* counters, int* consecutive_rejections) {
+bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r, double gate_chi2,
+                     int max_consecutive_rejections, StreamCounters* counters,
+                     int* consecutive_rejections) {
   const int m = static_cast<int>(nu.size());
   if (m == 0) return false;
   if (!std::isinf(gate_chi2)) {
@@ -203,8 +205,8 @@ void WardEkf::AddImu(const ImuSample& imu) {
   Jet x_jet[kStateSize], z[kMeasurementSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
   PredictMeasurements(x_jet, CurrentAttitude(),
-                      ImuOffsets<double>{offsets_.accel_x_mps2(), offsets_.gyro_z_radps()},
-                      params_, z);
+                      ImuOffsets<double>{offsets_.accel_x_mps2(), offsets_.gyro_z_radps()}, params_,
+                      z);
   RowVector nu(0), r(0);
   RowMatrix H(0, kStateSize);
   const auto add_row = [&](int index, double measured, double variance) {
@@ -330,7 +332,8 @@ void WardEkf::AddGps(const GpsSample& gps) {
     const double sign = x_(kOmegaLeft) + x_(kOmegaRight) >= 0.0 ? 1.0 : -1.0;
     along = sign * std::hypot(gps.vx, gps.vy);
   }
-  const double sd = IsFinite(gps.sd_v) && gps.sd_v > 0.0 ? gps.sd_v : model_.measurement.gps_sd_v_mps;
+  const double sd =
+      IsFinite(gps.sd_v) && gps.sd_v > 0.0 ? gps.sd_v : model_.measurement.gps_sd_v_mps;
   RowVector nu(1), r(1);
   RowMatrix H = RowMatrix::Zero(1, kStateSize);
   nu(0) = along - x_(kVbx);

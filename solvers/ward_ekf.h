@@ -49,7 +49,7 @@ struct EkfOptions {
   int imu_max_consecutive_rejections = 10;
   int wheels_max_consecutive_rejections = 10;
   int gps_max_consecutive_rejections = 1;
-  double encoder_timeout_s = 0.25;     // older encoder data: no immobilization flag
+  double encoder_timeout_s = 0.25;  // older encoder data: no immobilization flag
   // |w| below this reads as a stopped wheel: 3 sd of the LAGR encoder noise at 100 Hz (0.05 rad/s),
   // so that noise alone rarely restarts the at-rest timer of WC4.
   double wheel_still_radps = 0.15;
@@ -102,9 +102,8 @@ class WardEkf {
   using StateVector = Eigen::Matrix<double, ward::kStateSize, 1>;
   using StateMatrix = Eigen::Matrix<double, ward::kStateSize, ward::kStateSize>;
   static constexpr int kMaxRows = 5;
-  using RowMatrix =
-      Eigen::Matrix<double, Eigen::Dynamic, ward::kStateSize, Eigen::RowMajor, kMaxRows,
-                    ward::kStateSize>;
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, ward::kStateSize, Eigen::RowMajor,
+                                  kMaxRows, ward::kStateSize>;
   using RowVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
 
   // Starts the filter clock at t on the first measurement; returns false for a stamp before

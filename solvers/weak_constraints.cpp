@@ -16,9 +16,8 @@ const char* WeakConstraintName(WeakConstraint constraint) {
   return kNames[static_cast<int>(constraint)];
 }
 
-void CollectWeakConstraints(const double* x, const double* x_prev,
-                            const WeakConstraintInputs& in, const WeakConstraintConfig& c,
-                            std::vector<PseudoMeasurement>* out) {
+void CollectWeakConstraints(const double* x, const double* x_prev, const WeakConstraintInputs& in,
+                            const WeakConstraintConfig& c, std::vector<PseudoMeasurement>* out) {
   using namespace ward;  // NOLINT: state indices
   const double a_dist = x[kAdist];
   // WC1: the disturbance only opposes motion.

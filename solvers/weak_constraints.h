@@ -4,14 +4,16 @@
 // sd^2; the smoother turns the same rules into smooth soft priors.
 //
 //   WC1 the disturbance only opposes motion: sign(a_dist) = VelDir != 0        -> a_dist := 0
-//   WC2 the disturbance acts quickly: 0 < d(i_EMA)/dt < min and i_EMA < thresh -> a_dist := alpha a_dist
-//   WC3 it may stop the robot but not pull it backwards: sign(v) = -VelDir
+//   WC2 the disturbance acts quickly: 0 < d(i_EMA)/dt < min and i_EMA < thresh -> a_dist := alpha
+//   a_dist WC3 it may stop the robot but not pull it backwards: sign(v) = -VelDir
 //       a) sign(f_tire - g sin(phi)) = -VelDir                                 -> a_dist := 0
-//       b) otherwise                               -> a_dist := max(VelDir (g sin(phi) - f_tire), a_dist)
+//       b) otherwise                               -> a_dist := max(VelDir (g sin(phi) - f_tire),
+//       a_dist)
 //          (for VelDir = -1 the mirror image: min(...))
-//   WC4 wheels stopped for t_stop: biases and disturbance to zero              -> b_ax, a_dist, b_gz := 0
-//   WC5 magnitude bounds on v, b_ax, a_dist, b_gz                              -> x_i := sign(x_i) max_i
-//   WC6 rate bounds on v, b_ax                            -> x_i := x_i,prev + sign(dx) max_rate dt
+//   WC4 wheels stopped for t_stop: biases and disturbance to zero              -> b_ax, a_dist,
+//   b_gz := 0 WC5 magnitude bounds on v, b_ax, a_dist, b_gz                              -> x_i :=
+//   sign(x_i) max_i WC6 rate bounds on v, b_ax                            -> x_i := x_i,prev +
+//   sign(dx) max_rate dt
 #pragma once
 
 #include <vector>
@@ -28,18 +30,18 @@ const char* WeakConstraintName(WeakConstraint constraint);
 struct PseudoMeasurement {
   WeakConstraint constraint;
   int state_index;
-  double z;         // the value the state is pulled toward
-  double density;   // sigma density (unit x sqrt(s)): variance sigma^2 / dt per cycle of dt
+  double z;        // the value the state is pulled toward
+  double density;  // sigma density (unit x sqrt(s)): variance sigma^2 / dt per cycle of dt
 };
 
 // Everything the conditions look at, besides the a priori state.
 struct WeakConstraintInputs {
-  double dt_s = 0.0;                 // since the previous filter cycle
-  double vel_dir = 0.0;              // sign(w_l + w_r): +1, 0 or -1
-  double slip_ema = 0.0;             // i_EMA
-  double slip_ema_rate_per_s = 0.0;  // d(i_EMA)/dt
-  double wheels_stopped_s = 0.0;     // how long both wheels have read zero
-  double f_tire_mps2 = 0.0;          // f_tire at the a priori state
+  double dt_s = 0.0;                  // since the previous filter cycle
+  double vel_dir = 0.0;               // sign(w_l + w_r): +1, 0 or -1
+  double slip_ema = 0.0;              // i_EMA
+  double slip_ema_rate_per_s = 0.0;   // d(i_EMA)/dt
+  double wheels_stopped_s = 0.0;      // how long both wheels have read zero
+  double f_tire_mps2 = 0.0;           // f_tire at the a priori state
   double gravity_along_x_mps2 = 0.0;  // g sin(phi), phi uphill positive
 };
 
@@ -53,8 +55,8 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
 
 // Appends the pseudo-measurements that apply at the a priori state x (and x_prev, the state of
 // the previous cycle, for WC6).
-void CollectWeakConstraints(const double* x, const double* x_prev,
-                            const WeakConstraintInputs& in, const WeakConstraintConfig& config,
+void CollectWeakConstraints(const double* x, const double* x_prev, const WeakConstraintInputs& in,
+                            const WeakConstraintConfig& config,
                             std::vector<PseudoMeasurement>* out);
 
 }  // namespace slipgraph

@@ -17,7 +17,6 @@ DriveLog Simulated(const std::string& scenario) {
   return log;
 }
 
-
 TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
   const DriveLog log = Simulated("fig5");
   const SmootherResult result = SmoothBatch(log, DefaultModelConfig(log.vehicle));

@@ -35,7 +35,7 @@ TEST(DiffDriveSim, HoldBackOf325NewtonsGives2Point8MetresPerSecondSquared) {
   EXPECT_NEAR(MeanTruth(r.log, 11.0, 13.5, [](const auto& s) { return s.vx; }), 0.0, 0.01);
   EXPECT_EQ(MeanTruth(r.log, 11.0, 13.5, [](const auto& s) { return s.immobilized; }), 1.0);
   ASSERT_EQ(r.log.events.size(), 1u);
-  EXPECT_GT(r.log.events[0].t_start, 9.0);   // the robot needs a moment to stop
+  EXPECT_GT(r.log.events[0].t_start, 9.0);  // the robot needs a moment to stop
   EXPECT_LT(r.log.events[0].t_start, 10.0);
   EXPECT_NEAR(r.log.events[0].t_end, 14.0, 0.05);
   // Before the hold-back nothing is flagged.
@@ -91,15 +91,15 @@ TEST(DiffDriveSim, SteadyClimbSlipBalancesGravityAndRollingResistance) {
   const double needed = w * std::sin(phi) + rolling;
   const double v_rel = Bisect(
       [&](double x) {
-        return front * (gravel.tire.C1 * (1.0 - std::exp(-gravel.tire.At * x)) +
-                        gravel.tire.C2 * x) -
+        return front *
+                   (gravel.tire.C1 * (1.0 - std::exp(-gravel.tire.At * x)) + gravel.tire.C2 * x) -
                needed;
       },
       0.0, 2.0);
   const double expected_slip = v_rel / (v + v_rel);  // i = 1 - v / (r w), r w = v + v_rel
   const double slip = MeanTruth(r.log, t0, t1, [](const auto& s) { return s.slip[0]; });
   EXPECT_NEAR(slip, expected_slip, 0.01);
-  EXPECT_GT(slip, 0.05);  // climbing 10 % on gravel takes visible slip
+  EXPECT_GT(slip, 0.05);               // climbing 10 % on gravel takes visible slip
   EXPECT_NEAR(v + v_rel, 0.5, 0.005);  // the wheel controller holds the commanded surface speed
 }
 

@@ -15,16 +15,16 @@ using testing::MeanTruth;
 
 constexpr double kG = 9.80665;
 
-sim::SimResult RunWith(sim::Scenario sc, const std::string& effect, double value, uint64_t seed = 4) {
+sim::SimResult RunWith(sim::Scenario sc, const std::string& effect, double value,
+                       uint64_t seed = 4) {
   if (!effect.empty()) sc.effects[effect] = value;
   return sim::Simulate(sc, seed);
 }
 
 TEST(Effects, CatalogueIsCompleteAndParses) {
-  for (const char* name :
-       {"gps_velocity_averaging", "wheel_radius_error", "imu_mounting_pitch", "slope_slip",
-        "turn_slip", "sinkage_resistance", "quadratic_drag", "load_transfer", "terrain_change",
-        "clock_offset"}) {
+  for (const char* name : {"gps_velocity_averaging", "wheel_radius_error", "imu_mounting_pitch",
+                           "slope_slip", "turn_slip", "sinkage_resistance", "quadratic_drag",
+                           "load_transfer", "terrain_change", "clock_offset"}) {
     const sim::EffectInfo* info = sim::FindEffect(name);
     ASSERT_NE(info, nullptr) << name;
     EXPECT_TRUE(info->in_model_catalogue);

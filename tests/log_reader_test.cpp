@@ -172,8 +172,7 @@ TEST(LogReader, SkipBadLeavesOutAnOptionalFileWithoutItsHeader) {
 TEST(LogReader, SkipBadNeverSkipsARequiredFile) {
   ReadOptions options;
   options.skip_bad = true;
-  EXPECT_THROW(ReadDriveLog(WriteValidLog("nowheels", {{"wheels.csv", ""}}), options),
-               InputError);
+  EXPECT_THROW(ReadDriveLog(WriteValidLog("nowheels", {{"wheels.csv", ""}}), options), InputError);
 }
 
 TEST(LogReader, ArticulationTimeIsIncreasingPerSideAndRangeMayRepeat) {
@@ -184,8 +183,9 @@ TEST(LogReader, ArticulationTimeIsIncreasingPerSideAndRangeMayRepeat) {
       "rocker_ok",
       {{"vehicle.yaml", rocker},
        {"wheels.csv", "t,fl,ml,rl,fr,mr,rr\n0,1,1,1,1,1,1\n0.1,1,1,1,1,1,1\n"},
-       {"articulation.csv", "t,side,dz_mid,dz_front\n0,left,0.01,0.02\n0,right,0,0\n"
-                            "0.1,left,0.01,0.02\n0.1,right,0,0\n"},
+       {"articulation.csv",
+        "t,side,dz_mid,dz_front\n0,left,0.01,0.02\n0,right,0,0\n"
+        "0.1,left,0.01,0.02\n0.1,right,0,0\n"},
        {"range.csv", "t,side,d,dz\n0,left,1.0,0.01\n0,left,1.1,0.02\n0,right,1.0,0.0\n"}});
   const DriveLog log = ReadDriveLog(dir);
   EXPECT_EQ(log.articulation.size(), 4u);

@@ -43,7 +43,8 @@ TEST(LogSummary, FlagsAZDownImu) {
   for (ImuSample& s : log.imu) s.az = -9.81;
   const LogSummary s = SummarizeLog(log);
   bool flagged = false;
-  for (const std::string& p : s.problems) flagged = flagged || p.find("z axis points down") != std::string::npos;
+  for (const std::string& p : s.problems)
+    flagged = flagged || p.find("z axis points down") != std::string::npos;
   EXPECT_TRUE(flagged);
 }
 

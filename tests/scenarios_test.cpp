@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <set>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "io/log_reader.h"
@@ -29,9 +29,12 @@ TEST(Scenarios, SameSeedGivesTheSameBytesAndAnotherSeedDoesNot) {
   const std::string c = SimulateTo("ward21/03", 2, "c");
   for (const char* file : {"imu.csv", "wheels.csv", "gps.csv", "truth.csv", "events.csv",
                            "vehicle.yaml", "sim.yaml"}) {
-    EXPECT_EQ(testing::ReadFileBytes(fs::path(a) / file), testing::ReadFileBytes(fs::path(b) / file)) << file;
+    EXPECT_EQ(testing::ReadFileBytes(fs::path(a) / file),
+              testing::ReadFileBytes(fs::path(b) / file))
+        << file;
   }
-  EXPECT_NE(testing::ReadFileBytes(fs::path(a) / "imu.csv"), testing::ReadFileBytes(fs::path(c) / "imu.csv"));
+  EXPECT_NE(testing::ReadFileBytes(fs::path(a) / "imu.csv"),
+            testing::ReadFileBytes(fs::path(c) / "imu.csv"));
 }
 
 TEST(Scenarios, Ward21HasTwentyHoldBacksOverAbout120Metres) {

@@ -45,8 +45,8 @@ TEST(OpposeMotionPrior, PenalizesOnlyAPushingDisturbance) {
   EXPECT_NEAR(testing::Residuals(*forward, {resisting})[0], 0.0, 1e-4);
   EXPECT_NEAR(testing::Residuals(*forward, {pushing})[0], 1.0 / 0.5, 1e-4);
   // Smooth at the kink: residual eps/2 / sd at zero, Jacobians finite and correct there.
-  EXPECT_NEAR(testing::Residuals(*forward, {zero})[0],
-              0.5 * OpposeMotionPrior::kEpsMps2 / 0.5, 1e-12);
+  EXPECT_NEAR(testing::Residuals(*forward, {zero})[0], 0.5 * OpposeMotionPrior::kEpsMps2 / 0.5,
+              1e-12);
   for (const double* x : {resisting, pushing, zero}) {
     testing::ExpectJacobiansMatchNumeric(*forward, {x});
   }

@@ -33,9 +33,9 @@ sensors:
 // A fresh directory under the test temp dir, unique per test.
 inline std::string FreshDirectory(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
-                                    (std::string(info->test_suite_name()) + "_" + info->name() +
-                                     "_" + name);
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) /
+      (std::string(info->test_suite_name()) + "_" + info->name() + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

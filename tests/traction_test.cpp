@@ -16,9 +16,7 @@ TEST(Traction, HandComputedPoint) {
   EXPECT_EQ(TractionForceN(500.0, 0.0, kTire), 0.0);
 }
 
-TEST(Traction, RelativeVelocity) {
-  EXPECT_DOUBLE_EQ(TireRelativeVelocityMps(4.0, 0.25, 0.8), 0.2);
-}
+TEST(Traction, RelativeVelocity) { EXPECT_DOUBLE_EQ(TireRelativeVelocityMps(4.0, 0.25, 0.8), 0.2); }
 
 // f(N, v_rel) -> F, for Jacobian checks in both inputs.
 struct TractionFn {

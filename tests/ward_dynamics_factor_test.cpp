@@ -50,8 +50,8 @@ TEST(WardDynamicsFactor, JacobiansMatchNumericAtRandomAndZeroVelocityPoints) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double offsets[2] = {0.05, -0.002};
   for (int trial = 0; trial < 6; ++trial) {
-    double x[kStateSize] = {u(rng), 0.01 * u(rng), u(rng), 4 * u(rng), 4 * u(rng), 0.3 * u(rng),
-                            0.001 * u(rng)};
+    double x[kStateSize] = {u(rng),     0.01 * u(rng), u(rng),        4 * u(rng),
+                            4 * u(rng), 0.3 * u(rng),  0.001 * u(rng)};
     if (trial == 0) std::fill(x, x + kStateSize, 0.0);  // at rest: v_rel = v_fwd = 0
     double next[kStateSize];
     for (int i = 0; i < kStateSize; ++i) next[i] = x[i] + 0.01 * u(rng);

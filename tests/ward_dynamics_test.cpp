@@ -77,7 +77,8 @@ void ExpectJacobianMatches(const Params& params, const double* x) {
   const DerivativeFn f{params};
   const auto ad = testing::AutoDiffJacobian<kStateSize, kStateSize>(f, x);
   const auto nd = testing::CentralDifferenceJacobian<kStateSize, kStateSize>(f, x);
-  EXPECT_LT(testing::MaxRelativeDifference(ad, nd), 1e-5) << "autodiff\n" << ad << "\nnumeric\n"
+  EXPECT_LT(testing::MaxRelativeDifference(ad, nd), 1e-5) << "autodiff\n"
+                                                          << ad << "\nnumeric\n"
                                                           << nd;
 }
 
@@ -91,8 +92,7 @@ TEST(WardDynamics, JacobianMatchesCentralDifferencesAtZeroVelocityPoints) {
   }
   // The derivative in v at rest must carry the smooth slopes (a naive sign() law gives 0 here):
   // d v' / d v = -(N_front (C1 At + C2) + N_all (R1 A_roll + R2)) / m, N from eqs. (3)-(5).
-  const auto ad = testing::AutoDiffJacobian<kStateSize, kStateSize>(DerivativeFn{kParams},
-                                                                    at_rest);
+  const auto ad = testing::AutoDiffJacobian<kStateSize, kStateSize>(DerivativeFn{kParams}, at_rest);
   const auto n = DiffDriveCastorNormalForcesN(117.0 * 9.80665, 0.05, 0.08, 0.35, 0.55, 0.55, 0.3);
   const double front = n.front_left_n + n.front_right_n;
   const double all = front + 2.0 * n.rear_each_n;

@@ -21,7 +21,6 @@ DriveLog Simulated(const std::string& scenario, uint64_t seed = 1) {
   return log;
 }
 
-
 TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) {
   // Ward & Iagnemma Fig. 5: 1 m/s on grass, held back with 325 N (2.78 m/s^2) for 4 s.
   const DriveLog log = Simulated("fig5");
@@ -52,10 +51,11 @@ TEST(WardEkf, Ward21RunsAreDetectedWithFewFalseAlarms) {
   // A small default version of the ward21 figure (the full suite is in docs/ekf.md): six runs,
   // fast and slow, seed 1. Bounds sit above what is measured (6/6, 0.0 %) by one run / 0.3 %.
   std::vector<Evaluation> runs;
-  for (const char* name : {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05",
-                           "ward21/06"}) {
+  for (const char* name :
+       {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
     const DriveLog log = Simulated(name);
-    runs.push_back(Evaluate(log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle)).estimates)));
+    runs.push_back(
+        Evaluate(log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle)).estimates)));
   }
   const Evaluation total = Combine(runs, "ward21 01-06");
   EXPECT_GE(total.detected(), 5);

@@ -57,7 +57,7 @@ TEST(WeakConstraints, Wc2DecaysASlowlyGrowingDisturbanceWhileSlipIsSmall) {
   const PseudoMeasurement* p = Find(out, WeakConstraint::kActQuickly, kAdist);
   ASSERT_NE(p, nullptr);
   EXPECT_DOUBLE_EQ(p->z, WeakConstraintConfig().decay_alpha * -0.8);  // alpha x3
-  in.slip_ema_rate_per_s = 5.0;  // fast: a real event
+  in.slip_ema_rate_per_s = 5.0;                                       // fast: a real event
   EXPECT_EQ(Count(Collect(x, in), WeakConstraint::kActQuickly), 0);
   in.slip_ema_rate_per_s = 0.5 * c.min_slip_rate_per_s;
   in.slip_ema = 2.0 * c.slip_threshold;  // already slipping a lot

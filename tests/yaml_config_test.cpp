@@ -28,8 +28,8 @@ TEST(YamlConfig, ModelFileOverridesVehicleAndDefaults) {
   const ModelConfig m = ReadModelYaml(
       WriteModel("tire: {C1: 0.64}\nprocess_noise:\n  a_dist: 3.0\neffects: [quadratic_drag]\n"),
       vehicle);
-  EXPECT_DOUBLE_EQ(m.tire.C1, 0.64);   // overridden
-  EXPECT_DOUBLE_EQ(m.tire.At, 20.0);   // from vehicle.yaml
+  EXPECT_DOUBLE_EQ(m.tire.C1, 0.64);  // overridden
+  EXPECT_DOUBLE_EQ(m.tire.At, 20.0);  // from vehicle.yaml
   EXPECT_DOUBLE_EQ(m.process.a_dist_mps3_per_sqrt_hz, 3.0);
   EXPECT_DOUBLE_EQ(m.process.accel_bias_tau_s, ProcessNoiseConfig().accel_bias_tau_s);
   EXPECT_DOUBLE_EQ(m.measurement.gps_sd_v_mps, 0.1);  // from vehicle.yaml sensors
@@ -83,10 +83,11 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
   const std::string dir = testing::FreshDirectory("vehicle");
-  testing::WriteText(dir, "vehicle.yaml",
-                     "type: skid_steer\nmass: 50\nyaw_inertia: 3\nwheel_radius: 0.1\n"
-                     "track_width: 0.5\ncg_height: 0.2\ncolour: red\n"
-                     "tire: {C1: 0.8, At: 20, C2: 0.05}\nrolling: {R1: 0.03, A_roll: 20, R2: 0.01}\n");
+  testing::WriteText(
+      dir, "vehicle.yaml",
+      "type: skid_steer\nmass: 50\nyaw_inertia: 3\nwheel_radius: 0.1\n"
+      "track_width: 0.5\ncg_height: 0.2\ncolour: red\n"
+      "tire: {C1: 0.8, At: 20, C2: 0.05}\nrolling: {R1: 0.03, A_roll: 20, R2: 0.01}\n");
   std::vector<std::string> warnings;
   const Vehicle v = ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
   EXPECT_EQ(v.type, VehicleType::kSkidSteer);
