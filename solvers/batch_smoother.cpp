@@ -118,13 +118,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     }
   }
   DetectImmobilization(model, log.vehicle, options.min_immobilized_s, &result.estimates);
-  std::ostringstream counts;
-  counts << "factors: " << problem->dynamics << " dynamics, " << problem->accelerometer
-         << " accelerometer, " << problem->gyro << " gyro, " << problem->encoders << " encoder, "
-         << problem->gnss << " GNSS, " << problem->oppose_motion << " oppose-motion, "
-         << problem->act_quickly << " decay, " << problem->at_rest << " at-rest, "
-         << problem->bounds << " bound priors";
-  result.notes.insert(result.notes.begin(), counts.str());
+  result.notes.insert(result.notes.begin(), problem->counts.Describe());
   return result;
 }
 

@@ -1,0 +1,272 @@
+#include "problems/ward_factor_source.h"
+
+#include <ceres/loss_function.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "factors/at_rest_prior.h"
+#include "factors/bound_prior.h"
+#include "factors/diagonal_prior.h"
+#include "factors/disturbance_decay_prior.h"
+#include "factors/disturbance_walk_factor.h"
+#include "factors/encoder_factor.h"
+#include "factors/gnss_velocity_factor.h"
+#include "factors/imu_factor.h"
+#include "factors/oppose_motion_prior.h"
+#include "factors/tire_law_uncertainty.h"
+#include "factors/ward_dynamics_factor.h"
+#include "io/measurement_stream.h"
+#include "solvers/weak_constraints.h"
+
+namespace slipgraph {
+
+using namespace ward;  // NOLINT: state indices
+
+// Sensor context at a time: the latest attitude and accelerometer reading at or before it.
+struct WardFactorSource::Context {
+  Attitude<double> attitude{0.0, 0.0};
+  double pitch_sd = 0.0;  // the attitude source's stated pitch sd (0 when not given)
+  double yaw = 0.0;
+  bool have_attitude = false;
+  double accel_x = std::nan("");
+};
+
+namespace {
+
+// Index of the latest sample at or before t, or -1.
+template <typename Samples>
+long LatestIndex(const Samples& samples, double t) {
+  const auto it = std::upper_bound(samples.begin(), samples.end(), t + 1e-9,
+                                   [](double value, const auto& s) { return value < s.t; });
+  return static_cast<long>(it - samples.begin()) - 1;
+}
+
+// Index of the state nearest in time to t (ties go to the earlier state).
+size_t NearestState(const std::vector<double>& times, double t) {
+  const auto it = std::lower_bound(times.begin(), times.end(), t);
+  if (it == times.begin()) return 0;
+  if (it == times.end()) return times.size() - 1;
+  const size_t after = static_cast<size_t>(it - times.begin());
+  return (t - times[after - 1] <= times[after] - t) ? after - 1 : after;
+}
+
+// For samples sorted by time: begin[k] = first sample attached to state k (nearest to it, and
+// within half a second of the state range), begin[n] = one past the last attached sample.
+template <typename Samples>
+std::vector<size_t> AttachToStates(const Samples& samples, const std::vector<double>& times) {
+  const size_t n = times.size();
+  std::vector<size_t> begin(n + 1, samples.size());
+  size_t k = 0;
+  size_t i = 0;
+  while (i < samples.size() && samples[i].t < times.front() - 0.5) ++i;
+  for (; i < samples.size() && samples[i].t <= times.back() + 0.5; ++i) {
+    const size_t nearest = NearestState(times, samples[i].t);
+    while (k <= nearest) begin[k++] = i;
+  }
+  while (k <= n) begin[k++] = i;
+  return begin;
+}
+
+}  // namespace
+
+std::string FactorCounts::Describe() const {
+  std::ostringstream out;
+  out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
+      << " gyro, " << encoders << " encoder, " << gnss << " GNSS, " << oppose_motion
+      << " oppose-motion, " << act_quickly << " decay, " << at_rest << " at-rest, " << bounds
+      << " bound priors";
+  return out.str();
+}
+
+WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model,
+                                   const FilterResult& ekf, const WardProblemOptions& options)
+    : log_(log), model_(model), ekf_(ekf), options_(options), params_(MakeParams(log.vehicle, model)) {
+  if (ekf.estimates.empty()) throw std::invalid_argument("the EKF produced no estimates");
+  const size_t n = ekf.estimates.size();
+  times_.resize(n);
+  wheel_speeds_.assign(n, {0.0, 0.0});
+  stopped_since_.assign(n, -1.0);
+  for (size_t k = 0; k < n; ++k) times_[k] = ekf.estimates[k].t;
+  for (size_t k = 0; k < n && k < log.wheels.size(); ++k) {
+    const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
+    wheel_speeds_[k] = {s.left_radps, s.right_radps};
+  }
+  double stopped_since = -1.0;
+  for (size_t k = 0; k < n; ++k) {
+    const auto& w = wheel_speeds_[k];
+    const double still = options.wheel_still_radps;
+    if (std::abs(w[0]) >= still || std::abs(w[1]) >= still) {
+      stopped_since = -1.0;
+    } else if (stopped_since < 0.0) {
+      stopped_since = times_[k];
+    }
+    stopped_since_[k] = stopped_since;
+  }
+  imu_begin_ = AttachToStates(log.imu, times_);
+  if (options.use_gps) {
+    gps_begin_ = AttachToStates(log.gps, times_);
+  } else {
+    gps_begin_.assign(n + 1, 0);
+  }
+  if (log.imu.size() > 1) {
+    imu_period_s_ = (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1);
+  }
+}
+
+WardFactorSource::Context WardFactorSource::ContextAt(double t) const {
+  Context c;
+  const long a = LatestIndex(log_.attitude, t);
+  if (a >= 0) {
+    c.attitude = {log_.attitude[a].roll, log_.attitude[a].pitch};
+    c.yaw = log_.attitude[a].yaw;
+    c.pitch_sd = std::isfinite(log_.attitude[a].sd_pitch) ? log_.attitude[a].sd_pitch : 0.0;
+    c.have_attitude = true;
+  }
+  const long i = LatestIndex(log_.imu, t);
+  if (i >= 0) c.accel_x = log_.imu[i].ax;
+  return c;
+}
+
+void WardFactorSource::AddStatePrior(size_t k, double* x, ceres::Problem* problem,
+                                     std::vector<AddedFactor>* added) const {
+  std::array<double, kStateSize> mean, sd;
+  for (int i = 0; i < kStateSize; ++i) {
+    mean[i] = ekf_.estimates[k].x[i];
+    sd[i] = std::max(ekf_.estimates[k].sd[i], 1e-6);
+  }
+  added->push_back({"first_state_prior", problem->AddResidualBlock(
+                                             DiagonalPrior<kStateSize>::Create(mean, sd), nullptr,
+                                             x)});
+}
+
+void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double* offsets,
+                                      ceres::Problem* problem,
+                                      std::vector<AddedFactor>* added) const {
+  const SensorNoise& noise = model_.measurement;
+  const ProcessNoiseConfig& q = model_.process;
+  added->push_back(
+      {"offset_prior", problem->AddResidualBlock(
+                           DiagonalPrior<2>::Create(
+                               mean, {noise.imu_sd_accel_mps2 + q.accel_bias_sd_mps2,
+                                      noise.imu_sd_gyro_radps + q.gyro_bias_sd_radps}),
+                           nullptr, offsets)});
+}
+
+void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* offsets,
+                               ceres::Problem* problem, std::vector<AddedFactor>* added,
+                               FactorCounts* counts) const {
+  const Params& params = params_;
+  const SensorNoise& noise = model_.measurement;
+  const ProcessNoiseConfig& q = model_.process;
+  const WeakConstraintConfig& wc = model_.weak_constraints;
+  const size_t n = size();
+  const auto Add = [&](const char* kind, ceres::CostFunction* cost, ceres::LossFunction* loss,
+                       auto... blocks) {
+    added->push_back({kind, problem->AddResidualBlock(cost, loss, blocks...)});
+  };
+  const auto& w = wheel_speeds_[k];
+
+  // Measurements.
+  if (k < log_.wheels.size()) {
+    Add("encoder", EncoderFactor::Create(w[0], w[1], noise.wheels_sd_omega_radps), nullptr, x);
+    ++counts->encoders;
+  }
+  for (size_t i = imu_begin_[k]; i < imu_begin_[k + 1]; ++i) {
+    const ImuSample& imu = log_.imu[i];
+    const Context c = ContextAt(imu.t);
+    double sd_a = noise.imu_sd_accel_mps2;
+    if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
+      sd_a = std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(), c.attitude,
+                                                           params, model_.tire_uncertainty,
+                                                           imu_period_s_));
+    }
+    if (std::isfinite(imu.ax)) {
+      Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,
+          x, offsets);
+      ++counts->accelerometer;
+    }
+    if (std::isfinite(imu.gz)) {
+      Add("gyro", YawGyroFactor::Create(imu.gz, noise.imu_sd_gyro_radps), nullptr, x, offsets);
+      ++counts->gyro;
+    }
+  }
+  for (size_t i = gps_begin_[k]; i < gps_begin_[k + 1]; ++i) {
+    const GpsSample& g = log_.gps[i];
+    if (!std::isfinite(g.vx) || !std::isfinite(g.vy) || !std::isfinite(g.vz)) continue;
+    const Context c = ContextAt(g.t);
+    double along;
+    if (c.have_attitude) {
+      const double cp = std::cos(c.attitude.pitch_rad);
+      along = g.vx * std::cos(c.yaw) * cp + g.vy * std::sin(c.yaw) * cp -
+              g.vz * std::sin(c.attitude.pitch_rad);
+    } else {
+      along = (w[0] + w[1] >= 0.0 ? 1.0 : -1.0) * std::hypot(g.vx, g.vy);
+    }
+    const double sd = std::isfinite(g.sd_v) && g.sd_v > 0.0 ? g.sd_v : noise.gps_sd_v_mps;
+    Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, x);
+    ++counts->gnss;
+  }
+
+  // Weak constraints as soft priors, their densities scaled by the state's cycle time.
+  const double dt_cycle = k + 1 < n ? times_[k + 1] - times_[k]
+                                    : (k > 0 ? times_[k] - times_[k - 1] : 0.01);
+  const double root_dt = std::sqrt(std::max(dt_cycle, 1e-6));
+  const double still = options_.wheel_still_radps;
+  const double vel_dir = DriveDirection(w[0], w[1], still);
+  if (vel_dir != 0.0) {
+    Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, wc.sd_oppose_motion / root_dt),
+        nullptr, x);
+    ++counts->oppose_motion;
+  }
+  if (stopped_since_[k] >= 0.0 && times_[k] - stopped_since_[k] >= wc.stop_time_s) {
+    Add("at_rest", AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt),
+        nullptr, x);
+    ++counts->at_rest;
+  }
+  Add("act_quickly", DisturbanceDecayPrior::Create(options_.decay_sd_density / root_dt),
+      new ceres::CauchyLoss(options_.decay_cauchy_sigmas), x);
+  ++counts->act_quickly;
+  Add("bound",
+      BoundPrior::Create(
+          {wc.max_v_bx_mps, wc.max_accel_bias_mps2, wc.max_a_dist_mps2, wc.max_gyro_bias_radps},
+          wc.sd_bound / root_dt),
+      nullptr, x);
+  ++counts->bounds;
+
+  // Dynamics from state k-1.
+  if (k == 0) return;
+  const double dt = times_[k] - times_[k - 1];
+  if (dt <= 0.0) return;
+  // The attitude at t_{k-1}; the accelerometer sample that ends the interval (its mean over it).
+  Context c = ContextAt(times_[k - 1]);
+  c.accel_x = ContextAt(times_[k]).accel_x;
+  const bool accel_driven =
+      options_.velocity_model == VelocityModel::kAccelerometerDriven && std::isfinite(c.accel_x);
+  const double sd_v = accel_driven
+                          ? std::sqrt(AccelInputDensitySq(noise.imu_sd_accel_mps2, c.pitch_sd,
+                                                          params.gravity_mps2, imu_period_s_) *
+                                      dt)
+                          : q.v_bx_mps2_per_sqrt_hz * std::sqrt(dt);
+  const auto gauss_markov = [dt](double sd, double tau) {
+    return sd * std::sqrt(1.0 - std::exp(-2.0 * dt / tau));
+  };
+  const std::array<double, WardDynamicsFactor::kResiduals> sd_step = {
+      sd_v,
+      gauss_markov(q.accel_bias_sd_mps2, q.accel_bias_tau_s),
+      q.omega_radps2_per_sqrt_hz * std::sqrt(dt),
+      q.omega_radps2_per_sqrt_hz * std::sqrt(dt),
+      q.yaw_rate_radps2_per_sqrt_hz * std::sqrt(dt),
+      gauss_markov(q.gyro_bias_sd_radps, q.gyro_bias_tau_s)};
+  Add("dynamics",
+      WardDynamicsFactor::Create(params, c.attitude, dt, accel_driven ? c.accel_x : std::nan(""),
+                                 sd_step),
+      nullptr, previous, x, offsets);
+  Add("disturbance_walk", DisturbanceWalkFactor::Create(q.a_dist_mps3_per_sqrt_hz * std::sqrt(dt)),
+      new ceres::HuberLoss(options_.disturbance_huber_sigmas), previous, x);
+  ++counts->dynamics;
+}
+
+}  // namespace slipgraph

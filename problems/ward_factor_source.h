@@ -1,0 +1,94 @@
+// The Ward & Iagnemma factor graph, one state at a time. A WardFactorSource reads a drive log once
+// and knows, for every wheel sample k (a state), which factors belong to it: its encoder reading,
+// the IMU and GNSS samples nearest to it in time, the weak-constraint soft priors on it, and for
+// k > 0 the dynamics and disturbance random walk from state k-1. The whole-log problem adds every
+// step; the sliding window adds steps as they arrive and marginalizes the oldest. One source of
+// factors, so the batch and window problems cannot drift apart.
+#pragma once
+
+#include <ceres/problem.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "io/drive_log.h"
+#include "factors/ward_state.h"
+#include "model/model_config.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+
+struct WardProblemOptions {
+  VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
+  bool use_gps = true;
+  // |w| below this reads as a stopped wheel (weak constraints 1 and 4), as in the EKF.
+  double wheel_still_radps = EkfOptions().wheel_still_radps;
+  // Huber scale of the disturbance random walk, in standard deviations of one step.
+  double disturbance_huber_sigmas = 3.0;
+  // Cauchy scale of the disturbance decay prior (weak constraint 2), in its standard deviations:
+  // quadratic near zero (a creeping disturbance decays), nearly flat far out (a hold-back's
+  // disturbance, which the accelerometer and the tire law insist on, is left alone).
+  double decay_cauchy_sigmas = 1.0;
+  // Density (m/s^2 sqrt(s)) of that prior. The EKF's WC2 applies only under its conditions with
+  // WeakConstraintConfig::sd_act_quickly; this always-on robust form is stronger near zero.
+  double decay_sd_density = 0.1;
+};
+
+// A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).
+struct AddedFactor {
+  const char* kind;
+  ceres::ResidualBlockId id;
+};
+
+// How many factors of each kind went in, for the report.
+struct FactorCounts {
+  long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, oppose_motion = 0,
+       act_quickly = 0, at_rest = 0, bounds = 0;
+  std::string Describe() const;
+};
+
+class WardFactorSource {
+ public:
+  // Throws std::invalid_argument when the EKF run has no estimates (no wheel data).
+  WardFactorSource(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
+                   const WardProblemOptions& options);
+
+  size_t size() const { return times_.size(); }
+  double time(size_t k) const { return times_[k]; }
+  const std::vector<double>& times() const { return times_; }
+  // The EKF's estimate at state k: the initial value of the state.
+  const EkfEstimate& initial(size_t k) const { return ekf_.estimates[k]; }
+  // The measured driven-side wheel speeds [left, right] at state k.
+  const std::array<double, 2>& wheel_speeds(size_t k) const { return wheel_speeds_[k]; }
+
+  // Gaussian prior on state k from the EKF's estimate and standard deviation there: the start of
+  // the whole-log problem, or of a window that has no marginal prior to carry.
+  void AddStatePrior(size_t k, double* x, ceres::Problem* problem,
+                     std::vector<AddedFactor>* added) const;
+  // Weak prior on the constant IMU offsets [c_ax, c_gz] around the given values.
+  void AddOffsetPrior(const std::array<double, 2>& mean, double* offsets, ceres::Problem* problem,
+                      std::vector<AddedFactor>* added) const;
+  // Every factor of state k: measurements nearest to it, weak-constraint priors on it and, for
+  // k > 0, the dynamics and disturbance walk from state k-1 (previous; ignored when k == 0).
+  void AddStep(size_t k, double* previous, double* x, double* offsets, ceres::Problem* problem,
+               std::vector<AddedFactor>* added, FactorCounts* counts) const;
+
+ private:
+  struct Context;
+  Context ContextAt(double t) const;
+
+  const DriveLog& log_;
+  const ModelConfig& model_;
+  const FilterResult& ekf_;
+  WardProblemOptions options_;
+  ward::Params params_;
+  std::vector<double> times_;
+  std::vector<std::array<double, 2>> wheel_speeds_;
+  std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving
+  // IMU and GNSS samples attached to state k: [imu_begin_[k], imu_begin_[k + 1]), same for GNSS.
+  std::vector<size_t> imu_begin_, gps_begin_;
+  double imu_period_s_ = 0.01;
+};
+
+}  // namespace slipgraph
