@@ -15,5 +15,6 @@ void RegisterSimulateCommand(CLI::App* app, int* status);
 void RegisterFilterCommand(CLI::App* app, int* status);
 void RegisterEvaluateCommand(CLI::App* app, int* status);
 void RegisterSmoothCommand(CLI::App* app, int* status);
+void RegisterOnlineCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

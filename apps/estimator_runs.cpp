@@ -12,6 +12,21 @@
 
 namespace slipgraph {
 
+CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
+                              const std::string& description, EstimatorRunOptions* run,
+                              bool* no_gps) {
+  run->name = name;
+  CLI::App* cmd = app->add_subcommand(name, description);
+  cmd->add_option("LOG", run->log, "Log or suite directory (default: the bundled sample)");
+  cmd->add_option("--model", run->model, "Model YAML overriding the vehicle's nominal values");
+  cmd->add_flag("--no-gps", *no_gps, "Leave GNSS out");
+  cmd->add_flag("--skip-bad", run->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->add_option("--out", run->out,
+                  "Estimate CSV (a suite: a directory, one CSV per log); default ./<log>_" + name +
+                      ".csv or ./<suite>_" + name + "/");
+  return cmd;
+}
+
 void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate) {
   namespace fs = std::filesystem;
   const std::string path = options.log.empty() ? DefaultLogPath() : options.log;
@@ -31,9 +46,8 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
     const std::string file =
         suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
     std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";
-    FilterResult rows;
-    rows.estimates = estimate(log, model, std::cerr);
-    WriteEkfEstimates(rows, file);
+    const EstimatorOutput output = estimate(log, model, std::cerr);
+    WriteEstimates(output.estimates, file, output.extra);
     if (!log.truth.empty()) {
       Evaluation ev = Evaluate(log, ReadNumericTable(file));
       ev.name = log_dir + " against truth";

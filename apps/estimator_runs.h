@@ -3,6 +3,7 @@
 // when the log has truth, print how the estimates compare with it (as `evaluate` would).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -10,7 +11,7 @@
 
 #include "io/drive_log.h"
 #include "model/model_config.h"
-#include "solvers/ward_ekf.h"
+#include "solvers/ekf_runner.h"
 
 namespace slipgraph {
 
@@ -22,9 +23,21 @@ struct EstimatorRunOptions {
   std::string name;  // "filter", "smooth": the default output suffix and report prefix
 };
 
+// What an estimator gives for one log: its estimates and any columns of its own.
+struct EstimatorOutput {
+  std::vector<EkfEstimate> estimates;
+  std::vector<ExtraColumn> extra;
+};
+
 // `estimate` runs one log and writes its own report lines to `report`.
-using Estimator = std::function<std::vector<EkfEstimate>(
-    const DriveLog& log, const ModelConfig& model, std::ostream& report)>;
+using Estimator = std::function<EstimatorOutput(const DriveLog& log, const ModelConfig& model,
+                                                std::ostream& report)>;
+
+// Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
+// --skip-bad, --out); the caller adds its own and sets the callback.
+CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
+                              const std::string& description, EstimatorRunOptions* run,
+                              bool* no_gps);
 
 void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate);
 

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterSimulateCommand(&app, &status);
   slipgraph::RegisterFilterCommand(&app, &status);
   slipgraph::RegisterSmoothCommand(&app, &status);
+  slipgraph::RegisterOnlineCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

@@ -11,18 +11,10 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     int threads = 1;
   };
   auto options = std::make_shared<Options>();
-  options->run.name = "smooth";
-  CLI::App* cmd = app->add_subcommand(
-      "smooth", "Post-process a whole log with the Ceres batch smoother (EKF-initialised)");
-  cmd->add_option("LOG", options->run.log, "Log or suite directory (default: the bundled sample)");
-  cmd->add_option("--model", options->run.model,
-                  "Model YAML overriding the vehicle's nominal values");
-  cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
-  cmd->add_flag("--skip-bad", options->run.skip_bad, "Drop bad input rows, with a warning each");
+  CLI::App* cmd = AddEstimatorCommand(
+      app, "smooth", "Post-process a whole log with the Ceres batch smoother (EKF-initialised)",
+      &options->run, &options->no_gps);
   cmd->add_option("--threads", options->threads, "Solver threads")->check(CLI::PositiveNumber);
-  cmd->add_option("--out", options->run.out,
-                  "Estimate CSV (a suite: a directory, one CSV per log); default "
-                  "./<log>_smooth.csv or ./<suite>_smooth/");
   cmd->callback([options, status]() {
     BatchSmootherOptions smoother_options;
     smoother_options.filter.use_gps = !options->no_gps;
@@ -31,7 +23,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
                          [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
                            const SmootherResult result = SmoothBatch(log, model, smoother_options);
                            report << DescribeSmootherRun(result);
-                           return result.estimates;
+                           return EstimatorOutput{result.estimates, {}};
                          });
     *status = 0;
   });

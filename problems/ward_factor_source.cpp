@@ -236,8 +236,8 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
       nullptr, x);
   ++counts->bounds;
 
-  // Dynamics from state k-1.
-  if (k == 0) return;
+  // Dynamics from state k-1 (none for the first state of a problem).
+  if (k == 0 || previous == nullptr) return;
   const double dt = times_[k] - times_[k - 1];
   if (dt <= 0.0) return;
   // The attitude at t_{k-1}; the accelerometer sample that ends the interval (its mean over it).

@@ -5,38 +5,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "solvers/smoothed_detection.h"
+
 namespace slipgraph {
-namespace {
 
 using namespace ward;  // NOLINT: state indices
-
-// Non-causal detection on smoothed states: slip of the driven sides above the threshold, the
-// wheels turning, not braking, for at least min_duration.
-void DetectImmobilization(const ModelConfig& model, const Vehicle& vehicle, double min_duration_s,
-                          std::vector<EkfEstimate>* estimates) {
-  std::vector<bool> raw(estimates->size(), false);
-  for (size_t k = 0; k < estimates->size(); ++k) {
-    EkfEstimate& e = (*estimates)[k];
-    const InstantSlip instant =
-        ComputeInstantSlip(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m,
-                           e.x[kVbx], e.x[kYawRate], e.x[kOmegaLeft], e.x[kOmegaRight]);
-    e.slip = instant.estimate;
-    e.slip.slip_ema = 0.5 * (e.slip.slip_left + e.slip.slip_right);  // smoothed: no EMA needed
-    raw[k] = instant.wheels_turning && !e.slip.braking && e.slip.slip_ema > e.slip.threshold;
-  }
-  // Keep runs that last at least min_duration.
-  size_t k = 0;
-  while (k < raw.size()) {
-    size_t end = k;
-    while (end < raw.size() && raw[end]) ++end;
-    const bool keep = end > k && (*estimates)[end - 1].t - (*estimates)[k].t >= min_duration_s;
-    for (size_t i = k; i < end; ++i) (*estimates)[i].slip.immobilized = keep;
-    if (end == k) (*estimates)[k].slip.immobilized = false;
-    k = std::max(end, k + 1);
-  }
-}
-
-}  // namespace
 
 SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
                            const BatchSmootherOptions& options) {
@@ -117,7 +90,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
       result.notes.push_back("covariance recovery failed (rank-deficient?): EKF sd reported");
     }
   }
-  DetectImmobilization(model, log.vehicle, options.min_immobilized_s, &result.estimates);
+  DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s, &result.estimates);
   result.notes.insert(result.notes.begin(), problem->counts.Describe());
   return result;
 }

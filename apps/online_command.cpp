@@ -1,0 +1,72 @@
+#include <iostream>
+
+#include "apps/commands.h"
+#include "apps/estimator_runs.h"
+#include "evaluation/evaluation.h"
+#include "solvers/window_smoother.h"
+
+namespace slipgraph {
+
+void RegisterOnlineCommand(CLI::App* app, int* status) {
+  struct Options {
+    EstimatorRunOptions run;
+    bool no_gps = false;
+    WindowSmootherOptions window;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = AddEstimatorCommand(
+      app, "online",
+      "Online estimation: the EKF at every sample and a sliding-window smoother behind it "
+      "(refined estimates with their lag)",
+      &options->run, &options->no_gps);
+  cmd->add_option("--window", options->window.window_s, "Window length, s")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--update-every", options->window.update_every,
+                  "Wheel samples between window solves")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--iterations", options->window.max_iterations,
+                  "Gauss-Newton iterations per window solve")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("!--no-covariance", options->window.covariance,
+                "Skip the window's marginal covariance (report the EKF's sd)");
+  cmd->footer(
+      "The estimate file's standard columns are the window's refined estimates; ekf_* columns "
+      "hold the front end's estimate at the same sample, lag_s when the refined one became "
+      "final, from_filter 1 where a failed window left the EKF's estimate.");
+  cmd->callback([options, status]() {
+    options->window.filter.use_gps = !options->no_gps;
+    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
+                                           std::ostream& report) {
+      const WindowSmootherResult result = SmoothWindowed(log, model, options->window);
+      report << DescribeWindowRun(result);
+      if (!log.truth.empty()) {
+        Evaluation ekf = Evaluate(log, EstimateTable(result.ekf.estimates));
+        ekf.name = "EKF front end of " + log.directory + " against truth";
+        PrintEvaluation(ekf, std::cout);
+      }
+      EstimatorOutput output{result.estimates, {}};
+      std::vector<ExtraColumn> extra = {{"ekf_v_bx", {}},        {"ekf_sd_v_bx", {}},
+                                        {"ekf_a_dist", {}},      {"ekf_sd_a_dist", {}},
+                                        {"ekf_slip_ema", {}},    {"ekf_immobilized", {}},
+                                        {"lag_s", result.lag_s}, {"from_filter", {}}};
+      for (size_t k = 0; k < result.estimates.size(); ++k) {
+        const EkfEstimate& e = result.ekf.estimates[k];
+        extra[0].values.push_back(e.x[ward::kVbx]);
+        extra[1].values.push_back(e.sd[ward::kVbx]);
+        extra[2].values.push_back(e.x[ward::kAdist]);
+        extra[3].values.push_back(e.sd[ward::kAdist]);
+        extra[4].values.push_back(e.slip.slip_ema);
+        extra[5].values.push_back(e.slip.immobilized ? 1.0 : 0.0);
+        extra[7].values.push_back(result.from_filter[k] ? 1.0 : 0.0);
+      }
+      output.extra = std::move(extra);
+      return output;
+    });
+    *status = 0;
+  });
+}
+
+}  // namespace slipgraph

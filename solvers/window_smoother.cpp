@@ -1,0 +1,245 @@
+#include "solvers/window_smoother.h"
+
+#include <ceres/covariance.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <sstream>
+
+#include "problems/marginalization.h"
+#include "solvers/smoothed_detection.h"
+
+namespace slipgraph {
+namespace {
+
+using namespace ward;  // NOLINT: state indices
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+class Window {
+ public:
+  Window(const WardFactorSource& source, const WindowSmootherOptions& options,
+         WindowSmootherResult* result)
+      : source_(source), options_(options), result_(result), problem_(ProblemOptions()) {
+    solver_options_.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver_options_.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+    solver_options_.max_num_iterations = options.max_iterations;
+    solver_options_.num_threads = 1;
+    solver_options_.logging_type = ceres::SILENT;
+    solver_options_.function_tolerance = 1e-10;
+    solver_options_.gradient_tolerance = 1e-10;
+    solver_options_.parameter_tolerance = 1e-10;
+    // Causal start: the offsets the EKF had at the first state.
+    const EkfEstimate& first = source.initial(0);
+    offsets_ = {first.accel_offset_mps2, first.gyro_offset_radps};
+    problem_.AddParameterBlock(offsets_.data(), 2);
+    source_.AddOffsetPrior(offsets_, offsets_.data(), &problem_, &added_);
+  }
+
+  // Adds wheel sample k (the next one) as a state, initialised from the EKF, with its factors.
+  void Push(size_t k) {
+    const bool first = states_.empty();
+    if (first) first_ = k;
+    states_.emplace_back();
+    std::copy(source_.initial(k).x.begin(), source_.initial(k).x.end(), states_.back().begin());
+    double* x = states_.back().data();
+    problem_.AddParameterBlock(x, kStateSize);
+    if (first) source_.AddStatePrior(k, x, &problem_, &added_);
+    double* previous = first ? nullptr : states_[states_.size() - 2].data();
+    source_.AddStep(k, previous, x, offsets_.data(), &problem_, &added_, &counts_);
+    added_.clear();
+  }
+
+  // Solves and moves every state older than the window out (all of them when final).
+  void Update(bool final) {
+    const Clock::time_point start = Clock::now();
+    const std::deque<std::array<double, kStateSize>> before = states_;
+    const std::array<double, 2> offsets_before = offsets_;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options_, &problem_, &summary);
+    ++result_->updates;
+    bool failed = !summary.IsSolutionUsable();
+    if (failed) {
+      states_ = before;  // same addresses: the deque's elements are assigned in place
+      offsets_ = offsets_before;
+      ++result_->failed_updates;
+      Note("window ending at t=" + std::to_string(NewestTime()) + " s failed (" +
+           summary.message + "): its leaving states are the EKF's");
+    } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+      ++result_->unconverged_updates;
+    }
+    const double newest = NewestTime();
+    size_t leaving = 0;
+    while (leaving < states_.size() &&
+           (final || source_.time(first_ + leaving) < newest - options_.window_s)) {
+      ++leaving;
+    }
+    double update_ms = MillisecondsSince(start);
+    std::vector<std::array<double, kStateSize>> sd(leaving);
+    const bool have_sd = !failed && leaving > 0 && options_.covariance && Covariance(leaving, &sd);
+
+    const Clock::time_point marginalization_start = Clock::now();
+    for (size_t i = 0; i < leaving; ++i) {
+      const size_t k = first_;
+      EkfEstimate e = source_.initial(k);
+      if (!failed) {
+        std::copy(states_.front().begin(), states_.front().end(), e.x.begin());
+        e.accel_offset_mps2 = offsets_[0];
+        e.gyro_offset_radps = offsets_[1];
+        if (have_sd) e.sd = sd[i];
+      }
+      result_->estimates[k] = e;
+      result_->lag_s[k] = newest - source_.time(k);
+      result_->from_filter[k] = failed;
+      if (final) {
+        states_.pop_front();
+        ++first_;
+        continue;
+      }
+      Marginalization m;
+      if (!failed) {
+        m = Marginalize(problem_, {states_.front().data()});
+        if (!m.prior) {
+          ++result_->failed_marginalizations;
+          Note("marginalizing t=" + std::to_string(source_.time(k)) + " s failed (" + m.error +
+               "): the window restarts from an EKF prior");
+          failed = true;
+        }
+      }
+      problem_.RemoveParameterBlock(states_.front().data());
+      states_.pop_front();
+      ++first_;
+      if (m.prior && !m.kept.empty()) problem_.AddResidualBlock(m.prior.release(), nullptr, m.kept);
+    }
+    if (failed && !states_.empty() && leaving > 0) {
+      source_.AddStatePrior(first_, states_.front().data(), &problem_, &added_);
+      added_.clear();
+    }
+    update_ms += MillisecondsSince(marginalization_start);
+    if (!final) result_->update_ms.push_back(update_ms);
+  }
+
+  const FactorCounts& counts() const { return counts_; }
+
+ private:
+  static ceres::Problem::Options ProblemOptions() {
+    ceres::Problem::Options options;
+    options.enable_fast_removal = true;
+    return options;
+  }
+
+  double NewestTime() const { return source_.time(first_ + states_.size() - 1); }
+
+  // Marginal sd of the `leaving` oldest states, from the window's information.
+  bool Covariance(size_t leaving, std::vector<std::array<double, kStateSize>>* sd) {
+    const Clock::time_point start = Clock::now();
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::SPARSE_QR;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<std::pair<const double*, const double*>> blocks;
+    for (size_t i = 0; i < leaving; ++i) blocks.emplace_back(states_[i].data(), states_[i].data());
+    const bool ok = covariance.Compute(blocks, &problem_);
+    if (ok) {
+      double block[kStateSize * kStateSize];
+      for (size_t i = 0; i < leaving; ++i) {
+        covariance.GetCovarianceBlock(states_[i].data(), states_[i].data(), block);
+        for (int j = 0; j < kStateSize; ++j) {
+          (*sd)[i][j] = std::sqrt(std::max(0.0, block[j * kStateSize + j]));
+        }
+      }
+    } else if (result_->covariance_failures++ == 0) {
+      Note("covariance recovery failed in a window (rank-deficient?): the EKF's sd stands there");
+    }
+    result_->covariance_ms.push_back(MillisecondsSince(start));
+    return ok;
+  }
+
+  void Note(const std::string& text) {
+    if (result_->notes.size() < 50) result_->notes.push_back(text);
+  }
+
+  const WardFactorSource& source_;
+  const WindowSmootherOptions& options_;
+  WindowSmootherResult* result_;
+  ceres::Problem problem_;
+  ceres::Solver::Options solver_options_;
+  std::deque<std::array<double, kStateSize>> states_;
+  std::array<double, 2> offsets_{};
+  size_t first_ = 0;  // log index of states_.front()
+  std::vector<AddedFactor> added_;
+  FactorCounts counts_;
+};
+
+}  // namespace
+
+WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
+                                    const WindowSmootherOptions& options) {
+  WindowSmootherResult result;
+  result.ekf = RunEkf(log, model, options.filter);
+  result.estimates = result.ekf.estimates;
+  const size_t n = result.ekf.estimates.size();
+  result.lag_s.assign(n, 0.0);
+  result.from_filter.assign(n, true);
+  for (const std::string& effect : model.effects) {
+    result.notes.push_back("effect '" + effect +
+                           "' is named in the model but has no factor yet: ignored");
+  }
+  if (n < 2) {
+    result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
+    return result;
+  }
+  WardProblemOptions problem_options = options.problem;
+  problem_options.use_gps = options.filter.use_gps;
+  problem_options.velocity_model = options.filter.ekf.velocity_model;
+  problem_options.wheel_still_radps = options.filter.ekf.wheel_still_radps;
+  const WardFactorSource source(log, model, result.ekf, problem_options);
+  Window window(source, options, &result);
+  const size_t every = static_cast<size_t>(std::max(1, options.update_every));
+  for (size_t k = 0; k < n; ++k) {
+    window.Push(k);
+    if ((k + 1) % every == 0 && k + 1 < n) window.Update(false);
+  }
+  window.Update(true);
+  DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
+                                       &result.estimates);
+  result.notes.insert(result.notes.begin(), window.counts().Describe());
+  return result;
+}
+
+namespace {
+
+double Percentile(std::vector<double> values, double p) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  const size_t i = std::min(values.size() - 1, static_cast<size_t>(p * (values.size() - 1) + 0.5));
+  return values[i];
+}
+
+}  // namespace
+
+std::string DescribeWindowRun(const WindowSmootherResult& result) {
+  std::ostringstream out;
+  const long from_filter = std::count(result.from_filter.begin(), result.from_filter.end(), true);
+  out << "window smoother: " << result.updates << " updates, " << result.failed_updates
+      << " failed, " << result.unconverged_updates << " at the iteration bound, "
+      << result.failed_marginalizations << " failed marginalizations; " << from_filter
+      << " samples carry the EKF's estimate\n";
+  out << "  update latency (solve + marginalization): p50 " << Percentile(result.update_ms, 0.5)
+      << " ms, p99 " << Percentile(result.update_ms, 0.99) << " ms; covariance p50 "
+      << Percentile(result.covariance_ms, 0.5) << " ms, p99 "
+      << Percentile(result.covariance_ms, 0.99) << " ms\n";
+  if (!result.lag_s.empty()) {
+    out << "  lag of the refined estimate: median " << Percentile(result.lag_s, 0.5) << " s\n";
+  }
+  for (const std::string& note : result.notes) out << "  " << note << "\n";
+  return out.str();
+}
+
+}  // namespace slipgraph

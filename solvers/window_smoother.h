@@ -1,0 +1,55 @@
+// Online estimation: a fixed-lag sliding-window smoother behind the EKF. The window holds the
+// states of the last `window_s` seconds (Ward model, the same factors as the batch problem, from
+// WardFactorSource) and the IMU offsets; every `update_every` wheel samples it takes the new
+// states (initialised from the EKF), solves with a bounded number of Gauss-Newton iterations,
+// and marginalizes the states older than the window into a MarginalPrior (Schur complement), so
+// their information stays. A state's refined estimate is final when it leaves the window: its lag
+// is the time from the sample to that moment.
+//
+// Failures: a solve that is not usable restores the pre-solve values; states that leave a failed
+// window are reported with the EKF's estimate (flagged), are never marginalized, and the window
+// restarts from an EKF prior on its new oldest state. Every such event is counted and noted.
+//
+// Causality: a state's factors include the IMU samples nearest to it, up to half a wheel cycle
+// after it, so the window runs one wheel cycle behind the newest sample.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/drive_log.h"
+#include "model/model_config.h"
+#include "problems/ward_factor_source.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+
+struct WindowSmootherOptions {
+  double window_s = 2.0;   // states further than this behind the newest are marginalized
+  int update_every = 10;   // wheel samples between window solves (10 Hz at 100 Hz wheels)
+  int max_iterations = 5;  // bounded work per update
+  bool covariance = true;  // marginal sd of each state as it leaves (else the EKF's sd)
+  FilterRunOptions filter;
+  WardProblemOptions problem;
+  double min_immobilized_s = 0.1;  // as the batch smoother's post-processing detection
+};
+
+struct WindowSmootherResult {
+  // One per wheel sample: the window's estimate as it left (or the EKF's, see from_filter).
+  std::vector<EkfEstimate> estimates;
+  std::vector<double> lag_s;      // newest state time when the estimate became final, minus t
+  std::vector<bool> from_filter;  // true: the window failed there and the EKF estimate stands
+  FilterResult ekf;               // the streaming front end, at every sample
+  long updates = 0, failed_updates = 0, unconverged_updates = 0, failed_marginalizations = 0;
+  long covariance_failures = 0;
+  std::vector<double> update_ms;      // per update: solve and marginalization, wall time
+  std::vector<double> covariance_ms;  // per update: marginal covariance of the leaving states
+  std::vector<std::string> notes;
+};
+
+WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
+                                    const WindowSmootherOptions& options = {});
+
+std::string DescribeWindowRun(const WindowSmootherResult& result);
+
+}  // namespace slipgraph
