@@ -16,5 +16,6 @@ void RegisterFilterCommand(CLI::App* app, int* status);
 void RegisterEvaluateCommand(CLI::App* app, int* status);
 void RegisterSmoothCommand(CLI::App* app, int* status);
 void RegisterOnlineCommand(CLI::App* app, int* status);
+void RegisterCompareCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

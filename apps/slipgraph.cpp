@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterFilterCommand(&app, &status);
   slipgraph::RegisterSmoothCommand(&app, &status);
   slipgraph::RegisterOnlineCommand(&app, &status);
+  slipgraph::RegisterCompareCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

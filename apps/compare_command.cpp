@@ -1,0 +1,230 @@
+// `slipgraph compare`: the EKF front end, the sliding-window smoother and the batch smoother on
+// the same log(s), side by side against truth: a table on the terminal and a self-contained HTML
+// page with the estimates over time.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+
+#include "apps/commands.h"
+#include "evaluation/evaluation.h"
+#include "evaluation/html_report.h"
+#include "io/log_reader.h"
+#include "io/yaml_config.h"
+#include "solvers/batch_smoother.h"
+#include "solvers/window_smoother.h"
+
+namespace slipgraph {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct EstimatorRun {
+  std::string name;
+  std::vector<EkfEstimate> estimates;
+  double seconds = 0.0;
+  std::string report;
+};
+
+std::string Format(const char* format, double value) {
+  if (!std::isfinite(value)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+std::vector<std::string> Row(const std::string& name, const Evaluation& ev, double seconds) {
+  return {name,
+          Format("%.4f", ev.velocity_rmse),
+          Format("%.3f", ev.disturbance_rmse),
+          std::to_string(ev.detected()) + "/" + std::to_string(ev.events.size()),
+          Format("%.3f", ev.mean_detection_delay_s()),
+          Format("%.3f", 100.0 * ev.false_immobilized_fraction()),
+          Format("%.2f", ev.velocity_mean_nees),
+          Format("%.1f", 100.0 * ev.nees_within_95_fraction()),
+          Format("%.2f", seconds)};
+}
+
+const std::vector<std::string> kHeader = {
+    "estimator", "v RMSE m/s", "a_dist RMSE m/s^2", "detected", "mean delay s",
+    "false immobilized %", "v NEES mean", "NEES within 95 % (%)", "time s"};
+
+void PrintTable(const std::vector<std::vector<std::string>>& rows, std::ostream& out) {
+  out << "|";
+  for (const std::string& h : kHeader) out << " " << h << " |";
+  out << "\n|";
+  for (size_t i = 0; i < kHeader.size(); ++i) out << "---|";
+  out << "\n";
+  for (const auto& row : rows) {
+    out << "|";
+    for (const std::string& cell : row) out << " " << cell << " |";
+    out << "\n";
+  }
+}
+
+const char* kColors[] = {"#d62728", "#2ca02c", "#1f77b4"};  // EKF, window, batch
+
+void AddPlots(const DriveLog& log, const std::vector<EstimatorRun>& runs, HtmlReport* html) {
+  std::vector<std::pair<double, double>> shaded;
+  for (const Event& e : log.events) shaded.emplace_back(e.t_start, e.t_end);
+  Plot v{"body velocity v_bx", "m/s", {}, shaded};
+  Plot a{"disturbance a_dist", "m/s^2", {}, shaded};
+  Plot slip{"mean driven slip (EKF: its EMA; clipped to [-1, 2]) and immobilized flags", "-", {},
+            shaded};
+  if (!log.truth.empty()) {
+    PlotSeries tv{"truth", {}, {}, "#000000"}, ta{"truth", {}, {}, "#000000"},
+        ts{"truth", {}, {}, "#000000"};
+    for (const TruthSample& s : log.truth) {
+      tv.t.push_back(s.t);
+      tv.y.push_back(s.vx);
+      ta.t.push_back(s.t);
+      ta.y.push_back(s.a_dist);
+      double sum = 0.0;
+      int count = 0;
+      for (double value : s.slip) {
+        if (std::isfinite(value)) sum += value, ++count;
+      }
+      ts.t.push_back(s.t);
+      ts.y.push_back(count > 0 ? std::clamp(sum / count, -1.0, 2.0) : std::nan(""));
+    }
+    v.series.push_back(tv);
+    a.series.push_back(ta);
+    slip.series.push_back(ts);
+  }
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const bool last = r + 1 == runs.size();
+    PlotSeries sv{runs[r].name, {}, {}, kColors[r % 3], !last};
+    PlotSeries sa = sv, ss = sv, flag{runs[r].name + " immobilized", {}, {}, kColors[r % 3], true};
+    for (const EkfEstimate& e : runs[r].estimates) {
+      sv.t.push_back(e.t);
+      sv.y.push_back(e.x[ward::kVbx]);
+      sa.t.push_back(e.t);
+      sa.y.push_back(e.x[ward::kAdist]);
+      ss.t.push_back(e.t);
+      // Slip at walking pace and below is encoder noise over a tiny speed: clipped for display.
+      ss.y.push_back(std::clamp(e.slip.slip_ema, -1.0, 2.0));
+      flag.t.push_back(e.t);
+      flag.y.push_back(e.slip.immobilized ? 1.1 + 0.05 * r : std::nan(""));
+      if (last) {
+        sv.sd.push_back(e.sd[ward::kVbx]);
+        sa.sd.push_back(e.sd[ward::kAdist]);
+      }
+    }
+    v.series.push_back(sv);
+    a.series.push_back(sa);
+    slip.series.push_back(ss);
+    slip.series.push_back(flag);
+  }
+  html->Figure(v);
+  html->Figure(a);
+  html->Figure(slip);
+}
+
+}  // namespace
+
+void RegisterCompareCommand(CLI::App* app, int* status) {
+  struct Options {
+    std::string log, model, html;
+    bool no_gps = false, skip_bad = false, no_plots = false;
+    WindowSmootherOptions window;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app->add_subcommand(
+      "compare", "EKF vs sliding-window smoother vs batch smoother (vs truth): table and HTML");
+  cmd->add_option("LOG", options->log, "Log or suite directory (default: the bundled sample)");
+  cmd->add_option("--model", options->model, "Model YAML overriding the vehicle's nominal values");
+  cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
+  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->add_option("--window", options->window.window_s, "Window length, s")->capture_default_str();
+  cmd->add_option("--html", options->html,
+                  "Report page (default ./<log>_compare.html); plots of every log in it");
+  cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
+  cmd->callback([options, status]() {
+    namespace fs = std::filesystem;
+    const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
+    const std::string name = fs::path(path).filename().string();
+    const std::string html_path =
+        options->html.empty() ? name + "_compare.html" : options->html;
+    ReadOptions read_options;
+    read_options.skip_bad = options->skip_bad;
+    HtmlReport html("slipgraph compare: " + name);
+    std::map<std::string, std::vector<Evaluation>> by_estimator;
+    std::map<std::string, double> seconds;
+    const std::vector<std::string> names = {"EKF", "window", "batch"};
+    std::string log_sections;
+    for (const std::string& log_dir : ListLogs(path)) {
+      const DriveLog log = ReadDriveLog(log_dir, read_options);
+      for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+      const ModelConfig model = options->model.empty()
+                                    ? DefaultModelConfig(log.vehicle)
+                                    : ReadModelYaml(options->model, log.vehicle);
+      std::vector<EstimatorRun> runs(3);
+      FilterRunOptions filter;
+      filter.use_gps = !options->no_gps;
+      Clock::time_point start = Clock::now();
+      const FilterResult ekf = RunEkf(log, model, filter);
+      runs[0] = {"EKF", ekf.estimates,
+                 std::chrono::duration<double>(Clock::now() - start).count(),
+                 DescribeFilterRun(ekf)};
+      WindowSmootherOptions window = options->window;
+      window.filter = filter;
+      start = Clock::now();
+      const WindowSmootherResult windowed = SmoothWindowed(log, model, window);
+      runs[1] = {"window", windowed.estimates,
+                 std::chrono::duration<double>(Clock::now() - start).count(),
+                 DescribeWindowRun(windowed)};
+      BatchSmootherOptions batch;
+      batch.filter = filter;
+      start = Clock::now();
+      const SmootherResult smoothed = SmoothBatch(log, model, batch);
+      runs[2] = {"batch", smoothed.estimates,
+                 std::chrono::duration<double>(Clock::now() - start).count(),
+                 DescribeSmootherRun(smoothed)};
+      std::cerr << "compare: " << log_dir << "\n";
+      html.Heading(log_dir, 2);
+      if (!log.truth.empty()) {
+        std::vector<std::vector<std::string>> rows;
+        for (const EstimatorRun& run : runs) {
+          const Evaluation ev = Evaluate(log, EstimateTable(run.estimates));
+          by_estimator[run.name].push_back(ev);
+          seconds[run.name] += run.seconds;
+          rows.push_back(Row(run.name, ev, run.seconds));
+        }
+        html.Table(kHeader, rows);
+      } else {
+        html.Paragraph("No truth.csv: the estimates are compared with each other only.");
+      }
+      html.Preformatted(runs[1].report + runs[2].report);
+      if (!options->no_plots) AddPlots(log, runs, &html);
+    }
+    if (!by_estimator.empty()) {
+      std::vector<std::vector<std::string>> rows;
+      for (const std::string& estimator : names) {
+        rows.push_back(Row(estimator, Combine(by_estimator[estimator], name),
+                           seconds[estimator]));
+      }
+      std::cout << name << " (" << by_estimator["EKF"].size()
+                << " log(s)) against truth; window and batch times include their EKF run\n";
+      PrintTable(rows, std::cout);
+      HtmlReport summary = html;  // the summary goes first on the page
+      HtmlReport page("slipgraph compare: " + name);
+      page.Heading("All logs", 2);
+      page.Paragraph(std::to_string(by_estimator["EKF"].size()) +
+                     " log(s). Window and batch times include their own EKF run. The window "
+                     "smoother's estimates are each state's value as it left the window "
+                     "(lag = window length).");
+      page.Table(kHeader, rows);
+      page.Append(summary);
+      page.Write(html_path);
+    } else {
+      std::cout << name << ": no truth in the log(s); see the plots\n";
+      html.Write(html_path);
+    }
+    std::cout << "report: " << html_path << "\n";
+    *status = 0;
+  });
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,53 @@
+// Self-contained HTML reports with inline SVG plots: no scripts, no external files, so a report
+// opens anywhere and can be attached to an issue. Used by `compare` (and the later workbench
+// reports). Long series are reduced per pixel column to their minimum and maximum, so spikes
+// survive and a 35-minute log still makes a small page.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace slipgraph {
+
+struct PlotSeries {
+  std::string label;
+  std::vector<double> t, y;  // NaN values break the line
+  std::string color = "#1f77b4";
+  bool dashed = false;
+  std::vector<double> sd;  // optional: a +-2 sd band around y, same length
+};
+
+struct Plot {
+  std::string title;
+  std::string y_label;
+  std::vector<PlotSeries> series;
+  std::vector<std::pair<double, double>> shaded;  // time intervals to shade (e.g. events)
+};
+
+// One plot as an <svg> element (width x height pixels).
+std::string RenderSvg(const Plot& plot, int width = 960, int height = 260);
+
+std::string HtmlEscape(const std::string& text);
+
+class HtmlReport {
+ public:
+  explicit HtmlReport(std::string title);
+  void Heading(const std::string& text, int level = 2);
+  void Paragraph(const std::string& text);
+  void Preformatted(const std::string& text);
+  void Table(const std::vector<std::string>& header,
+             const std::vector<std::vector<std::string>>& rows);
+  void Figure(const Plot& plot);
+  // Appends another report's body (not its title).
+  void Append(const HtmlReport& other) { body_ += other.body_; }
+  std::string Html() const;
+  // Throws std::runtime_error naming the path when it cannot be written.
+  void Write(const std::string& path) const;
+
+ private:
+  std::string title_;
+  std::string body_;
+};
+
+}  // namespace slipgraph
