@@ -226,9 +226,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
         nullptr, x);
     ++counts->at_rest;
   }
-  Add("act_quickly", DisturbanceDecayPrior::Create(options_.decay_sd_density / root_dt),
-      new ceres::CauchyLoss(options_.decay_cauchy_sigmas), x);
-  ++counts->act_quickly;
+  if (!(ekf_.estimates[k].slip.slip_ema > options_.decay_max_slip)) {
+    Add("act_quickly", DisturbanceDecayPrior::Create(options_.decay_sd_density / root_dt),
+        new ceres::CauchyLoss(options_.decay_cauchy_sigmas), x);
+    ++counts->act_quickly;
+  }
   Add("bound",
       BoundPrior::Create(
           {wc.max_v_bx_mps, wc.max_accel_bias_mps2, wc.max_a_dist_mps2, wc.max_gyro_bias_radps},

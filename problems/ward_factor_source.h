@@ -9,6 +9,7 @@
 #include <ceres/problem.h>
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct WardProblemOptions {
   // Density (m/s^2 sqrt(s)) of that prior. The EKF's WC2 applies only under its conditions with
   // WeakConstraintConfig::sd_act_quickly; this always-on robust form is stronger near zero.
   double decay_sd_density = 0.1;
+  // Weak constraint 2 applies only while the slip is small (Ward & Iagnemma Table I): the prior
+  // is left out where the EKF's slip EMA exceeds this.
+  double decay_max_slip = std::numeric_limits<double>::infinity();
 };
 
 // A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).

@@ -1,10 +1,10 @@
 #include "solvers/batch_smoother.h"
 
-#include <ceres/covariance.h>
-
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "solvers/chain_covariance.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
@@ -68,26 +68,21 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     e.gyro_offset_radps = problem->offsets[1];
   }
   if (options.covariance) {
-    ceres::Covariance::Options covariance_options;
-    covariance_options.algorithm_type = ceres::SPARSE_QR;
-    covariance_options.num_threads = options.threads;
-    ceres::Covariance covariance(covariance_options);
-    std::vector<std::pair<const double*, const double*>> blocks;
-    blocks.reserve(n);
-    for (size_t k = 0; k < n; ++k) {
-      blocks.emplace_back(problem->states[k].data(), problem->states[k].data());
-    }
-    result.covariance_ok = covariance.Compute(blocks, problem->problem.get());
-    if (result.covariance_ok) {
-      double block[kStateSize * kStateSize];
+    std::vector<double*> states;
+    states.reserve(n);
+    for (size_t k = 0; k < n; ++k) states.push_back(problem->states[k].data());
+    const ChainCovariance covariance =
+        ComputeChainCovariance(problem->problem.get(), states, {problem->offsets.data()});
+    result.covariance_ok = covariance.ok;
+    if (covariance.ok) {
       for (size_t k = 0; k < n; ++k) {
-        covariance.GetCovarianceBlock(problem->states[k].data(), problem->states[k].data(), block);
         for (int i = 0; i < kStateSize; ++i) {
-          result.estimates[k].sd[i] = std::sqrt(std::max(0.0, block[i * kStateSize + i]));
+          result.estimates[k].sd[i] = std::sqrt(std::max(0.0, covariance.states[k](i, i)));
         }
       }
     } else {
-      result.notes.push_back("covariance recovery failed (rank-deficient?): EKF sd reported");
+      result.notes.push_back("covariance recovery failed (" + covariance.error +
+                             "): EKF sd reported");
     }
   }
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s, &result.estimates);

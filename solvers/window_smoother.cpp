@@ -1,6 +1,5 @@
 #include "solvers/window_smoother.h"
 
-#include <ceres/covariance.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
@@ -11,6 +10,7 @@
 #include <sstream>
 
 #include "problems/marginalization.h"
+#include "solvers/chain_covariance.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
@@ -140,22 +140,19 @@ class Window {
   // Marginal sd of the `leaving` oldest states, from the window's information.
   bool Covariance(size_t leaving, std::vector<std::array<double, kStateSize>>* sd) {
     const Clock::time_point start = Clock::now();
-    ceres::Covariance::Options covariance_options;
-    covariance_options.algorithm_type = ceres::SPARSE_QR;
-    ceres::Covariance covariance(covariance_options);
-    std::vector<std::pair<const double*, const double*>> blocks;
-    for (size_t i = 0; i < leaving; ++i) blocks.emplace_back(states_[i].data(), states_[i].data());
-    const bool ok = covariance.Compute(blocks, &problem_);
+    std::vector<double*> states;
+    for (auto& x : states_) states.push_back(x.data());
+    const ChainCovariance covariance = ComputeChainCovariance(&problem_, states, {offsets_.data()});
+    const bool ok = covariance.ok;
     if (ok) {
-      double block[kStateSize * kStateSize];
       for (size_t i = 0; i < leaving; ++i) {
-        covariance.GetCovarianceBlock(states_[i].data(), states_[i].data(), block);
         for (int j = 0; j < kStateSize; ++j) {
-          (*sd)[i][j] = std::sqrt(std::max(0.0, block[j * kStateSize + j]));
+          (*sd)[i][j] = std::sqrt(std::max(0.0, covariance.states[i](j, j)));
         }
       }
     } else if (result_->covariance_failures++ == 0) {
-      Note("covariance recovery failed in a window (rank-deficient?): the EKF's sd stands there");
+      Note("covariance recovery failed in a window (" + covariance.error +
+           "): the EKF's sd stands there");
     }
     result_->covariance_ms.push_back(MillisecondsSince(start));
     return ok;

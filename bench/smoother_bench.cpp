@@ -1,0 +1,138 @@
+// Batch smoother time and peak memory against log length, and the window smoother's update
+// latency. Prints figures (docs/benchmarks.md records them with this command):
+//
+//   build/bench/smoother_bench batch MINUTES [--no-covariance]   one length per process (peak RSS)
+//   build/bench/smoother_bench window [ITERATIONS...]              2 s window at 100 Hz
+//
+// For the batch it also times a hand-written block-tridiagonal Cholesky of a system with the
+// same number of 7-dimensional states: the floor one Gauss-Newton step could reach.
+#include <sys/resource.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bench/long_drive.h"
+#include "sim/simulation.h"
+#include "solvers/batch_smoother.h"
+#include "solvers/window_smoother.h"
+
+namespace slipgraph {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Block = Eigen::Matrix<double, 7, 7>;
+
+double Seconds(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double PeakRssMb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
+}
+
+// Cholesky of a block-tridiagonal SPD matrix (n diagonal 7x7 blocks), in place: the floor for
+// one Gauss-Newton step on a chain of n states. Returns seconds.
+double BlockTridiagonalCholesky(size_t n) {
+  std::mt19937 rng(1);
+  std::normal_distribution<double> normal;
+  std::vector<Block> diagonal(n), lower(n);  // lower[i]: block (i+1, i)
+  for (size_t i = 0; i < n; ++i) {
+    Block a;
+    for (int r = 0; r < 7; ++r)
+      for (int c = 0; c < 7; ++c) a(r, c) = normal(rng);
+    diagonal[i] = a * a.transpose() + 30.0 * Block::Identity();
+    for (int r = 0; r < 7; ++r)
+      for (int c = 0; c < 7; ++c) lower[i](r, c) = 0.5 * normal(rng);
+  }
+  const Clock::time_point start = Clock::now();
+  for (size_t i = 0; i < n; ++i) {
+    if (i > 0) diagonal[i] -= lower[i - 1] * lower[i - 1].transpose();
+    Eigen::LLT<Block> llt(diagonal[i]);
+    diagonal[i] = llt.matrixL();
+    if (i + 1 < n) {
+      // L_{i+1,i} = A_{i+1,i} L_ii^{-T}
+      lower[i] = llt.matrixL().solve(lower[i].transpose()).transpose();
+    }
+  }
+  const double seconds = Seconds(start);
+  volatile double sink = diagonal.back()(0, 0);
+  (void)sink;
+  return seconds;
+}
+
+int Batch(double minutes, bool covariance) {
+  const sim::SimResult sim = sim::Simulate(LongDrive(minutes), 1);
+  const double rss_log = PeakRssMb();
+  BatchSmootherOptions options;
+  options.covariance = covariance;
+  options.max_iterations = 50;
+  const Clock::time_point start = Clock::now();
+  const SmootherResult result = SmoothBatch(sim.log, DefaultModelConfig(sim.log.vehicle), options);
+  const double total = Seconds(start);
+  double iteration_s = 0.0;
+  for (const ceres::IterationSummary& it : result.summary.iterations) {
+    iteration_s += it.iteration_time_in_seconds;
+  }
+  const int iterations = std::max<int>(1, result.summary.iterations.size() - 1);
+  iteration_s /= iterations;
+  const double floor_s = BlockTridiagonalCholesky(result.estimates.size());
+  std::printf(
+      "| %5.1f | %8zu | %7.2f | %3d | %7.3f | %8.4f | %6.1f | %7.0f | %7.0f | %s |\n",
+      minutes, result.estimates.size(), total, iterations, iteration_s, floor_s,
+      iteration_s / floor_s, rss_log, PeakRssMb(),
+      result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"));
+  return 0;
+}
+
+double Percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
+}
+
+int Window(const std::vector<int>& iterations) {
+  const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
+  const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
+  std::printf("| iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  for (int n : iterations) {
+    WindowSmootherOptions options;
+    options.max_iterations = n;
+    const WindowSmootherResult r = SmoothWindowed(sim.log, model, options);
+    std::printf("| %d | %zu | %.2f | %.2f | %.2f | %.2f |\n", n, r.update_ms.size(),
+                Percentile(r.update_ms, 0.5), Percentile(r.update_ms, 0.99),
+                Percentile(r.covariance_ms, 0.5), Percentile(r.covariance_ms, 0.99));
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace slipgraph
+
+int main(int argc, char** argv) {
+  if (argc >= 3 && std::strcmp(argv[1], "batch") == 0) {
+    const bool covariance = !(argc >= 4 && std::strcmp(argv[3], "--no-covariance") == 0);
+    return slipgraph::Batch(std::atof(argv[2]), covariance);
+  }
+  if (argc >= 2 && std::strcmp(argv[1], "window") == 0) {
+    std::vector<int> iterations;
+    for (int i = 2; i < argc; ++i) iterations.push_back(std::atoi(argv[i]));
+    if (iterations.empty()) iterations = {1, 2, 5};
+    return slipgraph::Window(iterations);
+  }
+  std::fprintf(stderr,
+               "usage: smoother_bench batch MINUTES [--no-covariance] | window [ITERATIONS...]\n"
+               "batch prints: | minutes | states | total s | iterations | s/iteration | "
+               "block-tridiagonal Cholesky s | ratio | RSS after simulation MB | peak RSS MB | "
+               "covariance |\n");
+  return 2;
+}

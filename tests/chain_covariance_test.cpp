@@ -1,0 +1,113 @@
+// ChainCovariance against ceres::Covariance on the Ward problem of a short simulated log, and
+// its refusal of a problem that is not a chain.
+#include "solvers/chain_covariance.h"
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/covariance.h>
+#include <ceres/solver.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "problems/ward_batch_problem.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+
+namespace slipgraph {
+namespace {
+
+TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
+  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
+  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  // 4 s around the start of motion: 400 states, small enough for SPARSE_QR.
+  const auto cut = [](auto* samples) {
+    samples->erase(std::remove_if(samples->begin(), samples->end(),
+                                  [](const auto& s) { return s.t < 2.0 || s.t > 6.0; }),
+                   samples->end());
+  };
+  cut(&log.wheels);
+  cut(&log.imu);
+  cut(&log.gps);
+  cut(&log.attitude);
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult ekf = RunEkf(log, model);
+  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf);
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, problem->problem.get(), &summary);
+
+  std::vector<double*> states;
+  for (auto& x : problem->states) states.push_back(x.data());
+  const ChainCovariance chain =
+      ComputeChainCovariance(problem->problem.get(), states, {problem->offsets.data()});
+  ASSERT_TRUE(chain.ok) << chain.error;
+
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::SPARSE_QR;
+  ceres::Covariance covariance(covariance_options);
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (size_t k = 0; k < states.size(); k += 37) blocks.emplace_back(states[k], states[k]);
+  blocks.emplace_back(problem->offsets.data(), problem->offsets.data());
+  ASSERT_TRUE(covariance.Compute(blocks, problem->problem.get()));
+  for (size_t k = 0; k < states.size(); k += 37) {
+    Eigen::Matrix<double, 7, 7, Eigen::RowMajor> expected;
+    covariance.GetCovarianceBlock(states[k], states[k], expected.data());
+    for (int i = 0; i < 7; ++i) {
+      for (int j = 0; j < 7; ++j) {
+        const double scale = std::sqrt(expected(i, i) * expected(j, j));
+        EXPECT_NEAR(chain.states[k](i, j), expected(i, j), 1e-6 * scale)
+            << "state " << k << " (" << i << ", " << j << ")";
+      }
+    }
+  }
+  Eigen::Matrix<double, 2, 2, Eigen::RowMajor> offsets;
+  covariance.GetCovarianceBlock(problem->offsets.data(), problem->offsets.data(), offsets.data());
+  EXPECT_NEAR(chain.globals(0, 0), offsets(0, 0), 1e-6 * offsets(0, 0));
+  EXPECT_NEAR(chain.globals(1, 1), offsets(1, 1), 1e-6 * offsets(1, 1));
+}
+
+struct Link {
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* r) const {
+    r[0] = b[0] - a[0];
+    return true;
+  }
+};
+struct Anchor {
+  template <typename T>
+  bool operator()(const T* a, T* r) const {
+    r[0] = a[0];
+    return true;
+  }
+};
+
+TEST(ChainCovariance, RefusesALinkThatSkipsAState) {
+  ceres::Problem problem;
+  double x[3] = {0.0, 0.0, 0.0};
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Anchor, 1, 1>(new Anchor), nullptr, x);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Link, 1, 1, 1>(new Link), nullptr, x,
+                           x + 1);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Link, 1, 1, 1>(new Link), nullptr, x,
+                           x + 2);
+  const ChainCovariance chain = ComputeChainCovariance(&problem, {x, x + 1, x + 2}, {});
+  EXPECT_FALSE(chain.ok);
+  EXPECT_NE(chain.error.find("not a chain"), std::string::npos);
+}
+
+TEST(ChainCovariance, RandomWalkVariancesByHand) {
+  // x0 ~ N(0, 1), x_{k+1} - x_k ~ N(0, 1): var(x_k) = k + 1.
+  ceres::Problem problem;
+  double x[4] = {0.0, 0.0, 0.0, 0.0};
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Anchor, 1, 1>(new Anchor), nullptr, x);
+  for (int k = 0; k < 3; ++k) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Link, 1, 1, 1>(new Link), nullptr,
+                             x + k, x + k + 1);
+  }
+  const ChainCovariance chain = ComputeChainCovariance(&problem, {x, x + 1, x + 2, x + 3}, {});
+  ASSERT_TRUE(chain.ok) << chain.error;
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(chain.states[k](0, 0), k + 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace slipgraph
