@@ -226,7 +226,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
         nullptr, x);
     ++counts->at_rest;
   }
-  if (!(ekf_.estimates[k].slip.slip_ema > options_.decay_max_slip)) {
+  // Slip is meaningless on (nearly) stopped wheels: there the prior stays on.
+  const double surface_mps = 0.5 * params_.wheel_radius_m * std::abs(w[0] + w[1]);
+  const bool slipping = ekf_.estimates[k].slip.slip_ema >= wc.slip_threshold &&
+                        surface_mps > model_.immobilization.min_wheel_speed_mps;
+  if (!slipping) {
     Add("act_quickly", DisturbanceDecayPrior::Create(options_.decay_sd_density / root_dt),
         new ceres::CauchyLoss(options_.decay_cauchy_sigmas), x);
     ++counts->act_quickly;

@@ -32,7 +32,7 @@ TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
   EXPECT_EQ(ev.detected(), 1);
   EXPECT_EQ(ev.false_immobilized_samples, 0);
   // Issue 5's post-processing target on this log: both RMSEs at most 0.7 x the EKF's (measured
-  // 0.011 vs 0.027 m/s and 0.31 vs 0.61 m/s^2).
+  // 0.011 vs 0.027 m/s and 0.28 vs 0.61 m/s^2).
   EXPECT_LT(ev.velocity_rmse, 0.7 * filter.velocity_rmse);
   EXPECT_LT(ev.disturbance_rmse, 0.7 * filter.disturbance_rmse);
 }
