@@ -1,6 +1,7 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "solvers/batch_smoother.h"
+#include "solvers/window_smoother.h"
 
 namespace slipgraph {
 
@@ -9,22 +10,43 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     EstimatorRunOptions run;
     bool no_gps = false;
     int threads = 1;
+    double chunk_min = 0.0;
+    double overlap_s = 60.0;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
       app, "smooth", "Post-process a whole log with the Ceres batch smoother (EKF-initialised)",
       &options->run, &options->no_gps);
   cmd->add_option("--threads", options->threads, "Solver threads")->check(CLI::PositiveNumber);
+  cmd->add_option("--chunk", options->chunk_min,
+                  "Chunked mode for long logs: solve this many minutes at a time, joined to the "
+                  "next chunk by a marginal prior (memory bounded by one chunk)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--overlap", options->overlap_s,
+                  "Chunked mode: seconds of look-ahead every estimate has before it is final")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([options, status]() {
     BatchSmootherOptions smoother_options;
     smoother_options.filter.use_gps = !options->no_gps;
     smoother_options.threads = options->threads;
-    RunEstimatorOverLogs(options->run,
-                         [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
-                           const SmootherResult result = SmoothBatch(log, model, smoother_options);
-                           report << DescribeSmootherRun(result);
-                           return EstimatorOutput{result.estimates, {}};
-                         });
+    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
+                                           std::ostream& report) {
+      if (options->chunk_min > 0.0) {
+        const double rate_hz =
+            log.wheels.size() > 1
+                ? (log.wheels.size() - 1) / (log.wheels.back().t - log.wheels.front().t)
+                : 100.0;
+        const WindowSmootherResult result = SmoothWindowed(
+            log, model,
+            ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
+        report << DescribeWindowRun(result);
+        return EstimatorOutput{result.estimates, {}};
+      }
+      const SmootherResult result = SmoothBatch(log, model, smoother_options);
+      report << DescribeSmootherRun(result);
+      return EstimatorOutput{result.estimates, {}};
+    });
     *status = 0;
   });
 }

@@ -210,6 +210,19 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   return result;
 }
 
+WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double wheel_rate_hz,
+                                     const BatchSmootherOptions& batch) {
+  WindowSmootherOptions options;
+  options.window_s = overlap_s;
+  options.update_every = std::max(1, static_cast<int>(chunk_min * 60.0 * wheel_rate_hz));
+  options.max_iterations = batch.max_iterations;
+  options.covariance = batch.covariance;
+  options.filter = batch.filter;
+  options.problem = batch.problem;
+  options.min_immobilized_s = batch.min_immobilized_s;
+  return options;
+}
+
 namespace {
 
 double Percentile(std::vector<double> values, double p) {

@@ -20,6 +20,7 @@
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "problems/ward_factor_source.h"
+#include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 
 namespace slipgraph {
@@ -49,6 +50,14 @@ struct WindowSmootherResult {
 
 WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
                                     const WindowSmootherOptions& options = {});
+
+// Chunked batch mode for logs too long for one problem: the window machinery with chunks of
+// `chunk_min` minutes solved to convergence, each state final once `overlap_s` of later data has
+// been seen (its lag), older states marginalized into the prior that joins the chunks. Memory is
+// bounded by one chunk plus the overlap.
+// wheel_rate_hz: the log's wheel-sample rate (states per second).
+WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double wheel_rate_hz,
+                                     const BatchSmootherOptions& batch);
 
 std::string DescribeWindowRun(const WindowSmootherResult& result);
 
