@@ -3,6 +3,7 @@
 //
 //   build/bench/smoother_bench batch MINUTES [--no-covariance]   one length per process (peak RSS)
 //   build/bench/smoother_bench window [ITERATIONS...]              2 s window at 100 Hz
+//   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES      chunked mode, 60 s overlap
 //
 // For the batch it also times a hand-written block-tridiagonal Cholesky of a system with the
 // same number of 7-dimensional states: the floor one Gauss-Newton step could reach.
@@ -94,6 +95,25 @@ int Batch(double minutes, bool covariance) {
   return 0;
 }
 
+// Chunked mode on a long log: chunks of chunk_min minutes, 60 s of look-ahead.
+int Chunked(double minutes, double chunk_min) {
+  const Clock::time_point sim_start = Clock::now();
+  const sim::SimResult sim = sim::Simulate(LongDrive(minutes), 1);
+  const double sim_s = Seconds(sim_start);
+  const double rss_log = PeakRssMb();
+  const Clock::time_point start = Clock::now();
+  const WindowSmootherResult result =
+      SmoothWindowed(sim.log, DefaultModelConfig(sim.log.vehicle),
+                     ChunkedOptions(chunk_min, 60.0, 100.0, BatchSmootherOptions()));
+  const double total = Seconds(start);
+  const long from_filter = std::count(result.from_filter.begin(), result.from_filter.end(), true);
+  std::printf("| %.0f | %zu | %.1f | %ld | %.0f | %.0f | %.0f | %ld | %ld |\n", minutes,
+              result.estimates.size(), chunk_min, result.updates, sim_s, total, PeakRssMb(),
+              result.failed_updates, from_filter);
+  (void)rss_log;
+  return 0;
+}
+
 double Percentile(std::vector<double> v, double p) {
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
@@ -123,6 +143,9 @@ int main(int argc, char** argv) {
     const bool covariance = !(argc >= 4 && std::strcmp(argv[3], "--no-covariance") == 0);
     return slipgraph::Batch(std::atof(argv[2]), covariance);
   }
+  if (argc >= 4 && std::strcmp(argv[1], "chunked") == 0) {
+    return slipgraph::Chunked(std::atof(argv[2]), std::atof(argv[3]));
+  }
   if (argc >= 2 && std::strcmp(argv[1], "window") == 0) {
     std::vector<int> iterations;
     for (int i = 2; i < argc; ++i) iterations.push_back(std::atoi(argv[i]));
@@ -130,7 +153,10 @@ int main(int argc, char** argv) {
     return slipgraph::Window(iterations);
   }
   std::fprintf(stderr,
-               "usage: smoother_bench batch MINUTES [--no-covariance] | window [ITERATIONS...]\n"
+               "usage: smoother_bench batch MINUTES [--no-covariance] | window [ITERATIONS...] | "
+               "chunked MINUTES CHUNK_MINUTES\n"
+               "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
+               "| peak RSS MB | failed chunks | samples left at the EKF |\n"
                "batch prints: | minutes | states | total s | iterations | s/iteration | "
                "block-tridiagonal Cholesky s | ratio | RSS after simulation MB | peak RSS MB | "
                "covariance |\n");
