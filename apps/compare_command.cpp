@@ -138,7 +138,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
   cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->add_option("--window", options->window.window_s, "Window length, s")->capture_default_str();
-  cmd->add_option("--html", options->html,
+  cmd->add_option("--report,--html", options->html,
                   "Report page (default ./<log>_compare.html); plots of every log in it");
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
   cmd->callback([options, status]() {
