@@ -1,6 +1,10 @@
 #include "problems/ward_batch_problem.h"
 
+#include <ceres/manifold.h>
+
 #include <algorithm>
+
+#include "factors/diagonal_prior.h"
 
 namespace slipgraph {
 
@@ -26,12 +30,43 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   for (size_t k = 0; k < n; ++k) problem.AddParameterBlock(out->states[k].data(), ward::kStateSize);
   problem.AddParameterBlock(out->offsets.data(), 2);
 
+  for (const std::string& name : model.effects) {
+    const int index = ModelEffectIndex(name);
+    if (index < 0) {
+      out->ignored_effects.push_back(name);
+    } else if (std::find(out->active_effects.begin(), out->active_effects.end(), index) ==
+               out->active_effects.end()) {
+      out->active_effects.push_back(index);
+    }
+  }
+  std::sort(out->active_effects.begin(), out->active_effects.end());
+  double* effects = nullptr;
   std::vector<AddedFactor> added;
+  if (!out->active_effects.empty()) {
+    effects = out->effects.data();
+    problem.AddParameterBlock(effects, kModelEffectCount);
+    std::vector<int> inactive;
+    for (int i = 0; i < kModelEffectCount; ++i) {
+      if (std::find(out->active_effects.begin(), out->active_effects.end(), i) ==
+          out->active_effects.end()) {
+        inactive.push_back(i);
+      }
+    }
+    if (!inactive.empty()) {
+      problem.SetManifold(effects, new ceres::SubsetManifold(kModelEffectCount, inactive));
+    }
+    // A weak prior: each magnitude's scale, several times what the catalogue calls typical.
+    added.push_back({"effect_prior",
+                     problem.AddResidualBlock(
+                         DiagonalPrior<kModelEffectCount>::Create({0.0, 0.0, 0.0, 0.0},
+                                                                  kModelEffectPriorSd),
+                         nullptr, effects)});
+  }
   source.AddStatePrior(0, out->states[0].data(), &problem, &added);
   source.AddOffsetPrior(out->offsets, out->offsets.data(), &problem, &added);
   for (size_t k = 0; k < n; ++k) {
     source.AddStep(k, k > 0 ? out->states[k - 1].data() : nullptr, out->states[k].data(),
-                   out->offsets.data(), &problem, &added, &out->counts);
+                   out->offsets.data(), effects, &problem, &added, &out->counts);
   }
   for (const AddedFactor& factor : added) out->blocks[factor.kind].push_back(factor.id);
   return out;

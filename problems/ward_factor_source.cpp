@@ -12,6 +12,7 @@
 #include "factors/diagonal_prior.h"
 #include "factors/disturbance_decay_prior.h"
 #include "factors/disturbance_walk_factor.h"
+#include "factors/effect_accelerometer_factor.h"
 #include "factors/encoder_factor.h"
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"
@@ -83,7 +84,15 @@ std::string FactorCounts::Describe() const {
 
 WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model,
                                    const FilterResult& ekf, const WardProblemOptions& options)
-    : log_(log), model_(model), ekf_(ekf), options_(options), params_(MakeParams(log.vehicle, model)) {
+    : log_(log),
+      model_(model),
+      ekf_(ekf),
+      options_(options),
+      params_(MakeParams(log.vehicle, model)),
+      tire_uncertainty_(model.tire_uncertainty) {
+  if (std::isfinite(options.tire_law_correlation_time_s)) {
+    tire_uncertainty_.correlation_time_s = options.tire_law_correlation_time_s;
+  }
   if (ekf.estimates.empty()) throw std::invalid_argument("the EKF produced no estimates");
   const size_t n = ekf.estimates.size();
   times_.resize(n);
@@ -156,8 +165,8 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
 }
 
 void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* offsets,
-                               ceres::Problem* problem, std::vector<AddedFactor>* added,
-                               FactorCounts* counts) const {
+                               double* effects, ceres::Problem* problem,
+                               std::vector<AddedFactor>* added, FactorCounts* counts) const {
   const Params& params = params_;
   const SensorNoise& noise = model_.measurement;
   const ProcessNoiseConfig& q = model_.process;
@@ -180,12 +189,17 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     double sd_a = noise.imu_sd_accel_mps2;
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       sd_a = std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(), c.attitude,
-                                                           params, model_.tire_uncertainty,
-                                                           imu_period_s_));
+                                                           params, tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {
-      Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,
-          x, offsets);
+      if (effects != nullptr) {
+        Add("accelerometer",
+            EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr, x,
+            offsets, effects);
+      } else {
+        Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
+            nullptr, x, offsets);
+      }
       ++counts->accelerometer;
     }
     if (std::isfinite(imu.gz)) {

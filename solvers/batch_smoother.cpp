@@ -16,10 +16,6 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   SmootherResult result;
   result.ekf = RunEkf(log, model, options.filter);
   result.estimates = result.ekf.estimates;
-  for (const std::string& effect : model.effects) {
-    result.notes.push_back("effect '" + effect +
-                           "' is named in the model but has no factor yet: ignored");
-  }
   if (result.ekf.estimates.size() < 2) {
     result.used_fallback = true;
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
@@ -31,6 +27,10 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   problem_options.wheel_still_radps = options.filter.ekf.wheel_still_radps;
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, model, result.ekf, problem_options);
+  for (const std::string& effect : problem->ignored_effects) {
+    result.notes.push_back("effect '" + effect +
+                           "' is named in the model but has no model term yet: ignored");
+  }
 
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
@@ -60,6 +60,11 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
                            std::to_string(options.max_iterations) +
                            " iterations; its last iterate is reported");
   }
+  result.final_cost = result.summary.final_cost;
+  for (int index : problem->active_effects) {
+    result.effects.push_back(
+        {ModelEffectNames()[index], problem->effects[index], std::nan("")});
+  }
   const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
     EkfEstimate& e = result.estimates[k];
@@ -71,10 +76,15 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     std::vector<double*> states;
     states.reserve(n);
     for (size_t k = 0; k < n; ++k) states.push_back(problem->states[k].data());
+    std::vector<double*> globals = {problem->offsets.data()};
+    if (!problem->active_effects.empty()) globals.push_back(problem->effects.data());
     const ChainCovariance covariance =
-        ComputeChainCovariance(problem->problem.get(), states, {problem->offsets.data()});
+        ComputeChainCovariance(problem->problem.get(), states, globals);
     result.covariance_ok = covariance.ok;
     if (covariance.ok) {
+      for (size_t e = 0; e < result.effects.size(); ++e) {
+        result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));
+      }
       for (size_t k = 0; k < n; ++k) {
         for (int i = 0; i < kStateSize; ++i) {
           result.estimates[k].sd[i] = std::sqrt(std::max(0.0, covariance.states[k](i, i)));
@@ -95,6 +105,9 @@ std::string DescribeSmootherRun(const SmootherResult& result) {
   out << "smoother: " << result.summary.BriefReport() << "\n";
   out << "  " << (result.used_fallback ? "FALLBACK to the EKF" : "smoothed estimates")
       << ", covariance " << (result.covariance_ok ? "recovered" : "not recovered") << "\n";
+  for (const EffectEstimate& e : result.effects) {
+    out << "  effect " << e.name << ": " << e.value << " +- " << e.sd << "\n";
+  }
   for (const std::string& note : result.notes) out << "  " << note << "\n";
   return out.str();
 }

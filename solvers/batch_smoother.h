@@ -27,9 +27,18 @@ struct BatchSmootherOptions {
   double min_immobilized_s = 0.1;
 };
 
+// A model effect's estimated magnitude (factors/model_effects.h), in the catalogue's unit.
+struct EffectEstimate {
+  std::string name;
+  double value = 0.0;
+  double sd = 0.0;  // NaN when the covariance was not recovered
+};
+
 struct SmootherResult {
   std::vector<EkfEstimate> estimates;  // same layout as the EKF's, one per wheel sample
   FilterResult ekf;                    // the initialising filter run
+  std::vector<EffectEstimate> effects;  // the model's effects that have a model term
+  double final_cost = 0.0;              // the solution's cost (for likelihood-ratio tests)
   ceres::Solver::Summary summary;
   bool used_fallback = false;  // true: estimates are the EKF's (see notes)
   bool covariance_ok = false;

@@ -19,7 +19,7 @@ ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vecto
   }
   const int m = problem->ParameterBlockSize(states[0]);
   int g = 0;
-  for (double* p : globals) g += problem->ParameterBlockSize(p);
+  for (double* p : globals) g += problem->ParameterBlockTangentSize(p);
   for (double* x : states) {
     if (problem->ParameterBlockSize(x) != m) {
       out.error = "the states differ in size";

@@ -1,0 +1,47 @@
+// The accelerometer factor of a model with physical effects switched on (factors/model_effects.h):
+//
+//   r = (a_x - (f_tire(x; theta) + c_ax + b_ax + a_dist)) / sd_a
+//
+// Parameter blocks: x_k (7), IMU offsets [c_ax, c_gz] (2), effect magnitudes theta
+// (kModelEffectCount; the problem holds the inactive ones constant at 0). With theta = 0 it is
+// AccelerometerFactor exactly (tested).
+#pragma once
+
+#include <ceres/autodiff_cost_function.h>
+
+#include "factors/model_effects.h"
+
+namespace slipgraph {
+
+struct EffectAccelerometerFactor {
+  EffectAccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
+                            double accel_x_mps2, double sd_mps2)
+      : params_(params),
+        attitude_(attitude),
+        measured_(accel_x_mps2),
+        sqrt_information_(1.0 / sd_mps2) {}
+
+  template <typename T>
+  bool operator()(const T* x, const T* offsets, const T* theta, T* residual) const {
+    const T predicted = TireBalanceWithEffects(x, attitude_, params_, theta) + offsets[0] +
+                        x[ward::kAccelBias] + x[ward::kAdist];
+    residual[0] = sqrt_information_ * (measured_ - predicted);
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const ward::Params& params,
+                                     const ward::Attitude<double>& attitude, double accel_x_mps2,
+                                     double sd_mps2) {
+    return new ceres::AutoDiffCostFunction<EffectAccelerometerFactor, 1, ward::kStateSize, 2,
+                                           kModelEffectCount>(
+        new EffectAccelerometerFactor(params, attitude, accel_x_mps2, sd_mps2));
+  }
+
+ private:
+  ward::Params params_;
+  ward::Attitude<double> attitude_;
+  double measured_;
+  double sqrt_information_;
+};
+
+}  // namespace slipgraph

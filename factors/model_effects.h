@@ -1,0 +1,74 @@
+// Physical effects as model terms: the estimator-side form of the catalogue's effects
+// (model/effect_catalogue), each with one magnitude theta (0 = absent) in the unit the catalogue
+// gives. They act on the tire-law balance the accelerometer sees,
+//
+//   a_x = f_tire(x') + c_ax + b_ax + a_dist + sum_e a_e(theta_e, x),
+//
+// where x' is the state with the wheel speeds scaled by (1 + wheel_radius_error) and the
+// traction scaled by (1 - slope_slip |phi|):
+//
+//   quadratic_drag      a = -theta v |v| / m                       (N s^2/m^2)
+//   turn_slip           a = -theta g |yaw rate| sgn~(v)            (s/rad)
+//   slope_slip          traction x (1 - theta |phi|)               (1/rad)
+//   wheel_radius_error  effective radius r (1 + theta)             (fraction)
+//
+// sgn~ is the Jet-safe saturated sign the simulator uses. Templated on the state's and the
+// magnitudes' scalar, so the Ceres factor and any other caller share one copy. The other
+// catalogue effects have no model term yet (ModelEffectIndex returns -1 for them).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "factors/smooth_math.h"
+#include "factors/ward_dynamics.h"
+
+namespace slipgraph {
+
+enum ModelEffect { kQuadraticDrag = 0, kTurnSlip, kSlopeSlip, kWheelRadiusError, kModelEffectCount };
+
+inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
+  static const std::array<const char*, kModelEffectCount> kNames = {
+      "quadratic_drag", "turn_slip", "slope_slip", "wheel_radius_error"};
+  return kNames;
+}
+
+// Index of a catalogue effect among the model terms, or -1 when it has none yet.
+inline int ModelEffectIndex(const std::string& name) {
+  for (int i = 0; i < kModelEffectCount; ++i) {
+    if (name == ModelEffectNames()[i]) return i;
+  }
+  return -1;
+}
+
+// Standard deviations of the weak prior on each magnitude (around 0) when the effect is switched
+// on: several times the catalogue's typical value, so the data decide.
+constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0, 0.3};
+
+// Rate of the saturated sign of v (1/(m/s)), as the simulator's effects use it.
+constexpr double kModelEffectSignRate = 20.0;
+
+// The accelerometer's model prediction without offsets, biases and a_dist: f_tire with the
+// effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0).
+template <typename T>
+inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitude,
+                                const ward::Params& p, const T* theta) {
+  using R = T;
+  using std::abs;
+  R state[ward::kStateSize];
+  for (int i = 0; i < ward::kStateSize; ++i) state[i] = x[i];
+  const R radius_scale = R(1.0) + theta[kWheelRadiusError];
+  state[ward::kOmegaLeft] *= radius_scale;
+  state[ward::kOmegaRight] *= radius_scale;
+  const ward::TireForces<R> forces = ward::ComputeTireForces(state, attitude, p);
+  const double phi = std::abs(WardPitchUphillRad(attitude.pitch_rad));
+  const R traction_n = forces.traction_left_n + forces.traction_right_n;
+  const R v = state[ward::kVbx];
+  return forces.f_tire_mps2 - theta[kSlopeSlip] * phi * traction_n / p.mass_kg -
+         theta[kQuadraticDrag] * v * abs(v) / p.mass_kg -
+         theta[kTurnSlip] * p.gravity_mps2 * abs(state[ward::kYawRate]) *
+             SignedSaturation(v, kModelEffectSignRate);
+}
+
+}  // namespace slipgraph
