@@ -17,5 +17,6 @@ void RegisterEvaluateCommand(CLI::App* app, int* status);
 void RegisterSmoothCommand(CLI::App* app, int* status);
 void RegisterOnlineCommand(CLI::App* app, int* status);
 void RegisterCompareCommand(CLI::App* app, int* status);
+void RegisterCalibrateCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

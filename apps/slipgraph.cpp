@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterSmoothCommand(&app, &status);
   slipgraph::RegisterOnlineCommand(&app, &status);
   slipgraph::RegisterCompareCommand(&app, &status);
+  slipgraph::RegisterCalibrateCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

@@ -129,6 +129,14 @@ std::string RenderSvg(const Plot& plot, int width, int height) {
   yr.lo -= pad;
   yr.hi += pad;
   const int pw = width - kLeft - kRight, ph = height - kTop - kBottom;
+  if (plot.equal_axes) {  // widen the tighter axis so one unit is as long on both
+    const double per_px = std::max((tr.hi - tr.lo) / pw, (yr.hi - yr.lo) / ph);
+    const double tc = 0.5 * (tr.lo + tr.hi), yc = 0.5 * (yr.lo + yr.hi);
+    tr.lo = tc - 0.5 * per_px * pw;
+    tr.hi = tc + 0.5 * per_px * pw;
+    yr.lo = yc - 0.5 * per_px * ph;
+    yr.hi = yc + 0.5 * per_px * ph;
+  }
   const auto X = [&](double t) { return kLeft + (t - tr.lo) / (tr.hi - tr.lo) * pw; };
   const auto Y = [&](double y) { return kTop + (yr.hi - y) / (yr.hi - yr.lo) * ph; };
   for (const auto& [a, b] : plot.shaded) {
@@ -154,7 +162,7 @@ std::string RenderSvg(const Plot& plot, int width, int height) {
         << "\" text-anchor=\"middle\">" << Number(v) << "</text>\n";
   }
   svg << "<text x=\"" << kLeft + pw / 2 << "\" y=\"" << height - 4
-      << "\" text-anchor=\"middle\">t (s)</text>\n";
+      << "\" text-anchor=\"middle\">" << HtmlEscape(plot.x_label) << "</text>\n";
   svg << "<text transform=\"translate(14," << kTop + ph / 2
       << ") rotate(-90)\" text-anchor=\"middle\">" << HtmlEscape(plot.y_label) << "</text>\n";
   // Series: bands first, then lines, then the legend.
@@ -178,6 +186,17 @@ std::string RenderSvg(const Plot& plot, int width, int height) {
         << "\" fill-opacity=\"0.15\" stroke=\"none\"/>\n";
   }
   for (const PlotSeries& s : plot.series) {
+    if (s.points) {
+      const size_t n = std::min(s.t.size(), s.y.size());
+      const size_t stride = std::max<size_t>(1, n / 2000);
+      for (size_t i = 0; i < n; i += stride) {
+        if (!std::isfinite(s.t[i]) || !std::isfinite(s.y[i])) continue;
+        svg << "<circle cx=\"" << X(s.t[i]) << "\" cy=\"" << Y(s.y[i]) << "\" r=\"1.5\" fill=\""
+            << s.color << "\" fill-opacity=\"0.6\"/>";
+      }
+      svg << "\n";
+      continue;
+    }
     std::ostringstream path;
     bool pen_down = false;
     for (const auto& [t, y] : Reduce(s.t, s.y, tr.lo, tr.hi, pw)) {

@@ -16,6 +16,7 @@ struct PlotSeries {
   std::string color = "#1f77b4";
   bool dashed = false;
   std::vector<double> sd;  // optional: a +-2 sd band around y, same length
+  bool points = false;     // a scatter of dots instead of a line (at most ~2000 drawn)
 };
 
 struct Plot {
@@ -23,6 +24,8 @@ struct Plot {
   std::string y_label;
   std::vector<PlotSeries> series;
   std::vector<std::pair<double, double>> shaded;  // time intervals to shade (e.g. events)
+  std::string x_label = "t (s)";
+  bool equal_axes = false;  // same scale on x and y (scatter of 2-D errors)
 };
 
 // One plot as an <svg> element (width x height pixels).

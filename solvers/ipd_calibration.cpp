@@ -1,0 +1,273 @@
+#include "solvers/ipd_calibration.h"
+
+#include <ceres/jet.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "io/measurement_stream.h"
+
+namespace slipgraph {
+namespace {
+
+using ipd::kAlphaSize;
+using AlphaVector = Eigen::Matrix<double, kAlphaSize, 1>;
+using AlphaMatrix = Eigen::Matrix<double, kAlphaSize, kAlphaSize>;
+
+double PoseSd(double stated, double floor) {
+  return std::isfinite(stated) && stated > floor ? stated : floor;
+}
+
+// The six unique entries of a symmetric 3x3 (xx, xy, xt, yy, yt, tt), eq. (24).
+Eigen::Matrix<double, 6, 1> Unique(const Eigen::Matrix3d& m) {
+  Eigen::Matrix<double, 6, 1> v;
+  v << m(0, 0), m(0, 1), m(0, 2), m(1, 1), m(1, 2), m(2, 2);
+  return v;
+}
+
+// Covariance of the scatter matrix's unique entries for a zero-mean Gaussian residual with
+// covariance R, eqs. (26)-(27): C(ab, cd) = C(a,c) C(b,d) + C(a,d) C(b,c).
+Eigen::Matrix<double, 6, 6> ScatterCovariance(const Eigen::Matrix3d& R) {
+  static const int kPairs[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  Eigen::Matrix<double, 6, 6> out;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      const int a = kPairs[i][0], b = kPairs[i][1], c = kPairs[j][0], d = kPairs[j][1];
+      out(i, j) = R(a, c) * R(b, d) + R(a, d) * R(b, c);
+    }
+  }
+  return out;
+}
+
+// H P H' of a segment's prediction, in its (along, cross, heading) axes.
+Eigen::Matrix3d ParameterCovariance(const IpdSegment& seg, const AlphaVector& alpha,
+                                    const AlphaMatrix& P, const IpdOptions& options) {
+  using Jet = ceres::Jet<double, kAlphaSize>;
+  Jet alpha_jet[kAlphaSize];
+  for (int i = 0; i < kAlphaSize; ++i) alpha_jet[i] = Jet(alpha[i], i);
+  Jet predicted[3];
+  ipd::PredictSegment(seg.steps, alpha_jet, options.gravity_mps2, predicted);
+  Eigen::Matrix<double, 3, kAlphaSize> H;
+  for (int r = 0; r < 3; ++r) H.row(r) = predicted[r].v.transpose();
+  const double length = std::hypot(predicted[0].a, predicted[1].a);
+  const double ux = length > 0.01 ? predicted[0].a / length : 1.0;
+  const double uy = length > 0.01 ? predicted[1].a / length : 0.0;
+  Eigen::Matrix3d rotation;
+  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
+  return rotation * H * P * H.transpose() * rotation.transpose();
+}
+
+}  // namespace
+
+std::vector<IpdSegment> BuildIpdSegments(const DriveLog& log, const IpdOptions& options) {
+  if (log.wheels.size() < 2) throw std::invalid_argument(log.directory + ": no wheel data");
+  if (log.pose.size() < 2) {
+    throw std::invalid_argument(log.directory +
+                                ": no pose.csv (IPD calibration needs measured poses)");
+  }
+  const double r = log.vehicle.wheel_radius_m, c = log.vehicle.track_width_m;
+  std::vector<IpdSegment> segments;
+  size_t next_start = 0;
+  size_t wheel = 0, attitude = 0;
+  double last_start = -1e300;
+  for (size_t i = 0; i < log.pose.size(); ++i) {
+    const PoseSample& p0 = log.pose[i];
+    if (p0.t < last_start + options.spacing_s - 1e-9) continue;
+    // The end: the pose sample nearest t0 + segment_s.
+    size_t j = std::max(i + 1, next_start);
+    while (j + 1 < log.pose.size() &&
+           std::abs(log.pose[j + 1].t - (p0.t + options.segment_s)) <
+               std::abs(log.pose[j].t - (p0.t + options.segment_s))) {
+      ++j;
+    }
+    next_start = j;
+    if (j >= log.pose.size() || log.pose[j].t - p0.t < 0.5 * options.segment_s) break;
+    const PoseSample& p1 = log.pose[j];
+    last_start = p0.t;
+    IpdSegment seg;
+    seg.t_start = p0.t;
+    seg.t_end = p1.t;
+    seg.measured = ipd::RelativePose(p0.x, p0.y, p0.yaw, p1.x, p1.y, p1.yaw);
+    const auto sigma = [&](const PoseSample& p) {
+      const double sxy = std::max(PoseSd(p.sd_x, options.min_pose_sd_m),
+                                  PoseSd(p.sd_y, options.min_pose_sd_m));
+      const double syaw = PoseSd(p.sd_yaw, 1e-4);
+      return Eigen::Vector3d(sxy * sxy, sxy * sxy, syaw * syaw).asDiagonal().toDenseMatrix();
+    };
+    seg.sigma_start = sigma(p0);
+    seg.sigma_end = sigma(p1);
+    while (wheel > 0 && log.wheels[wheel].t > seg.t_start) --wheel;
+    while (wheel + 1 < log.wheels.size() && log.wheels[wheel + 1].t <= seg.t_start) ++wheel;
+    for (size_t k = wheel; k < log.wheels.size() && log.wheels[k].t < seg.t_end; ++k) {
+      const double t_from = std::max(log.wheels[k].t, seg.t_start);
+      const double t_to =
+          k + 1 < log.wheels.size() ? std::min(log.wheels[k + 1].t, seg.t_end) : seg.t_end;
+      if (t_to <= t_from) continue;
+      const SideSpeeds w = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
+      ipd::OdometryStep step{t_to - t_from, 0.5 * r * (w.left_radps + w.right_radps),
+                             r * (w.right_radps - w.left_radps) / c, 0.0, 0.0};
+      while (attitude + 1 < log.attitude.size() && log.attitude[attitude + 1].t <= t_from) {
+        ++attitude;
+      }
+      if (!log.attitude.empty() && log.attitude[attitude].t <= t_from + 1e-9) {
+        step.roll_rad = log.attitude[attitude].roll;
+        step.pitch_rad = log.attitude[attitude].pitch;
+      }
+      if (std::isfinite(step.v_x_mps) && std::isfinite(step.v_yaw_radps)) seg.steps.push_back(step);
+    }
+    if (!seg.steps.empty()) segments.push_back(std::move(seg));
+  }
+  return segments;
+}
+
+PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alpha,
+                                   const IpdOptions& options, const Eigen::Vector3d& q) {
+  double predicted[3];
+  ipd::PredictSegment(segment.steps, alpha, options.gravity_mps2, predicted);
+  PredictionError e;
+  e.t_start = segment.t_start;
+  const double ex = segment.measured[0] - predicted[0];
+  const double ey = segment.measured[1] - predicted[1];
+  const double length = std::hypot(predicted[0], predicted[1]);
+  const double ux = length > 0.01 ? predicted[0] / length : 1.0;
+  const double uy = length > 0.01 ? predicted[1] / length : 0.0;
+  e.along_m = ex * ux + ey * uy;
+  e.cross_m = -ex * uy + ey * ux;
+  e.heading_rad = std::remainder(segment.measured[2] - predicted[2], 2.0 * M_PI);
+  // The covariance in (along, cross, heading) axes.
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
+  e.predicted_covariance =
+      rotation *
+      ipd::PredictionCovariance(segment.steps, alpha, options.gravity_mps2, segment.sigma_start,
+                                segment.sigma_end)
+          .Total(q) *
+      rotation.transpose();
+  return e;
+}
+
+PredictionStats Summarize(const std::vector<PredictionError>& errors) {
+  PredictionStats s;
+  s.segments = errors.size();
+  if (errors.empty()) return s;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d predicted = Eigen::Matrix3d::Zero();
+  for (const PredictionError& e : errors) {
+    s.mean_position_error_m += std::hypot(e.along_m, e.cross_m);
+    s.mean_heading_error_rad += std::abs(e.heading_rad);
+    mean += Eigen::Vector3d(e.along_m, e.cross_m, e.heading_rad);
+    predicted += e.predicted_covariance;
+  }
+  const double n = static_cast<double>(errors.size());
+  s.mean_position_error_m /= n;
+  s.mean_heading_error_rad /= n;
+  mean /= n;
+  predicted /= n;
+  Eigen::Matrix3d sample = Eigen::Matrix3d::Zero();
+  for (const PredictionError& e : errors) {
+    const Eigen::Vector3d d = Eigen::Vector3d(e.along_m, e.cross_m, e.heading_rad) - mean;
+    sample += d * d.transpose();
+  }
+  sample /= std::max(1.0, n - 1.0);
+  s.sd_along_m = std::sqrt(sample(0, 0));
+  s.sd_cross_m = std::sqrt(sample(1, 1));
+  s.sd_heading_rad = std::sqrt(sample(2, 2));
+  for (int i = 0; i < 3; ++i) s.predicted_over_sample[i] = predicted(i, i) / sample(i, i);
+  return s;
+}
+
+IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options) {
+  IpdCalibrationResult result;
+  result.segments = BuildIpdSegments(log, options);
+  const std::vector<IpdSegment>& segments = result.segments;
+  AlphaVector alpha = AlphaVector::Zero();
+  AlphaMatrix P = AlphaMatrix::Identity() * options.alpha_prior_sd * options.alpha_prior_sd;
+  Eigen::Vector3d q = options.q_initial;
+  Eigen::Matrix3d Pq = Eigen::Matrix3d::Identity() * options.q_prior_sd * options.q_prior_sd;
+  double last_update_t = segments.empty() ? 0.0 : segments.front().t_start;
+  const std::array<double, kAlphaSize> zero{};
+  size_t next_update = 0;
+  long rejected = 0;
+
+  // Segment j's update, applied once its end pose is measured.
+  const auto update = [&](const IpdSegment& seg) {
+    const double elapsed = std::max(0.0, seg.t_end - last_update_t);
+    last_update_t = std::max(last_update_t, seg.t_end);
+    P += AlphaMatrix::Identity() * options.alpha_walk_sd * options.alpha_walk_sd * elapsed;  // (29)
+    Pq += Eigen::Matrix3d::Identity() * options.q_walk_sd * options.q_walk_sd * elapsed;
+    // h(alpha) and H = dh/dalpha by automatic differentiation (30)-(31).
+    using Jet = ceres::Jet<double, kAlphaSize>;
+    Jet alpha_jet[kAlphaSize];
+    for (int i = 0; i < kAlphaSize; ++i) alpha_jet[i] = Jet(alpha[i], i);
+    Jet predicted[3];
+    ipd::PredictSegment(seg.steps, alpha_jet, options.gravity_mps2, predicted);
+    Eigen::Vector3d residual;
+    Eigen::Matrix<double, 3, kAlphaSize> H;
+    for (int r = 0; r < 3; ++r) {
+      residual[r] = seg.measured[r] - predicted[r].a;
+      H.row(r) = predicted[r].v.transpose();
+    }
+    residual[2] = std::remainder(residual[2], 2.0 * M_PI);
+    const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
+        seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
+    const Eigen::Matrix3d R = terms.Total(q);
+    const Eigen::Matrix3d HPH = H * P * H.transpose();  // the prior's share of the residual
+    const Eigen::Matrix3d S = HPH + R;
+    const Eigen::LDLT<Eigen::Matrix3d> S_ldlt(S);
+    // A 3-dof chi-square gate at 99.99 %: a pose glitch must not wreck the model.
+    if (residual.dot(S_ldlt.solve(residual)) > 21.1) {
+      ++rejected;
+      return;
+    }
+    const Eigen::Matrix<double, kAlphaSize, 3> K = P * H.transpose() * S_ldlt.solve(Eigen::Matrix3d::Identity());
+    alpha += K * residual;                                                      // (33)
+    const AlphaMatrix I_KH = AlphaMatrix::Identity() - K * H;
+    P = I_KH * P * I_KH.transpose() + K * R * K.transpose();  // (34), Joseph form
+
+    if (options.calibrate_q) {
+      // Stochastic calibration, eqs. (18)-(27), on the residual left by the systematic model.
+      const Eigen::Matrix<double, 6, 1> z =
+          Unique(residual * residual.transpose()) - Unique(terms.measurement + HPH);
+      Eigen::Matrix<double, 6, 3> J;
+      for (int i = 0; i < 3; ++i) J.col(i) = Unique(terms.input[i]);
+      const Eigen::Matrix<double, 6, 6> Rz = ScatterCovariance(S);
+      const Eigen::Matrix<double, 6, 6> Sz = J * Pq * J.transpose() + Rz;
+      const Eigen::Matrix<double, 3, 6> Kz = Pq * J.transpose() * Sz.ldlt().solve(
+                                                                  Eigen::Matrix<double, 6, 6>::Identity());
+      q += Kz * (z - J * q);
+      Pq = (Eigen::Matrix3d::Identity() - Kz * J) * Pq;
+      q = q.cwiseMax(1e-9);  // densities stay positive
+    }
+    result.update_t.push_back(seg.t_end);
+    std::array<double, kAlphaSize> a;
+    for (int i = 0; i < kAlphaSize; ++i) a[i] = alpha[i];
+    result.alpha.push_back(a);
+    result.q.push_back(q);
+  };
+
+  for (size_t i = 0; i < segments.size(); ++i) {
+    // Updates from every segment that has ended by the time this one starts.
+    while (next_update < i && segments[next_update].t_end <= segments[i].t_start + 1e-9) {
+      update(segments[next_update++]);
+    }
+    result.no_slip.push_back(EvaluatePrediction(segments[i], zero.data(), options, q));
+    PredictionError e = EvaluatePrediction(segments[i], alpha.data(), options, q);
+    e.predicted_covariance += ParameterCovariance(segments[i], alpha, P, options);
+    result.calibrated.push_back(e);
+  }
+  while (next_update < segments.size()) update(segments[next_update++]);
+  for (int i = 0; i < kAlphaSize; ++i) {
+    result.final_alpha[i] = alpha[i];
+    result.final_alpha_sd[i] = std::sqrt(P(i, i));
+  }
+  result.final_q = q;
+  if (rejected > 0) {
+    result.notes.push_back(std::to_string(rejected) +
+                           " segment(s) rejected by the 99.99 % innovation gate");
+  }
+  return result;
+}
+
+}  // namespace slipgraph

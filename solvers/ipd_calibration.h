@@ -1,0 +1,91 @@
+// Online slip-model identification by Integrated Perturbative Dynamics (Rogers-Marcovitz,
+// Seegmiller & Kelly). The log is cut into overlapping path segments between pose measurements
+// (2 s long, one starting every `spacing_s`); each segment's end pose is predicted from odometry,
+// the measured roll/pitch and the current slip parameters alpha (factors/ipd_segment.h) and,
+// when the segment ends, compared with the measured relative pose:
+//
+// - systematic: an identification EKF on the 13 alpha (eqs. 28-34): alpha constant plus a
+//   random walk (so terrain changes are followed), H = d h / d alpha by automatic
+//   differentiation, R = R_sys of eq. (15) with the current Q;
+// - stochastic: a linear Kalman filter on the diagonal of Q (eqs. 18-27): the observation is the
+//   residual's scatter matrix r r' (6 unique entries), its model R_sys(q) is linear in q with the
+//   Jacobian of eq. (21), and its noise follows eqs. (26)-(27) for a zero-mean Gaussian residual.
+//
+// Every prediction is scored *before* its segment updates the filters (online), against the
+// no-slip model (alpha = 0): along-track, cross-track and heading errors of the 2 s prediction.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "factors/ipd_segment.h"
+#include "io/drive_log.h"
+
+namespace slipgraph {
+
+struct IpdOptions {
+  double segment_s = 2.0;  // path segment length (prediction horizon)
+  double spacing_s = 0.5;  // a new segment starts this often (segments overlap)
+  double gravity_mps2 = 9.80665;
+  double alpha_prior_sd = 0.5;       // initial sd of each alpha (alpha starts at 0, as the paper)
+  double alpha_walk_sd = 0.005;      // random walk of each alpha per sqrt(s): terrain changes
+  Eigen::Vector3d q_initial{1e-3, 1e-3, 1e-3};  // initial Q diagonal ((m/s)^2 s, ..., (rad/s)^2 s)
+  double q_prior_sd = 1e-3;          // initial sd of each q
+  double q_walk_sd = 1e-5;           // random walk of each q per sqrt(s)
+  bool calibrate_q = true;
+  double min_pose_sd_m = 0.005;      // floor for the measured poses' stated sd
+};
+
+// One path segment: odometry steps between two pose measurements, and their relative pose.
+struct IpdSegment {
+  double t_start = 0.0, t_end = 0.0;
+  std::vector<ipd::OdometryStep> steps;
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero();  // rho_start^-1 (+) rho_end
+  Eigen::Matrix3d sigma_start = Eigen::Matrix3d::Zero(), sigma_end = Eigen::Matrix3d::Zero();
+};
+
+// Throws InputError-like std::invalid_argument when the log lacks wheels or pose.
+std::vector<IpdSegment> BuildIpdSegments(const DriveLog& log, const IpdOptions& options);
+
+// Error of one 2 s prediction: measured minus predicted, position split along and across the
+// predicted displacement (along the start heading when it is shorter than 1 cm).
+struct PredictionError {
+  double t_start = 0.0;
+  double along_m = 0.0, cross_m = 0.0, heading_rad = 0.0;
+  Eigen::Matrix3d predicted_covariance = Eigen::Matrix3d::Zero();  // R_sys with the current Q
+};
+
+PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alpha,
+                                   const IpdOptions& options, const Eigen::Vector3d& q);
+
+struct PredictionStats {
+  size_t segments = 0;
+  double mean_position_error_m = 0.0;
+  double sd_along_m = 0.0, sd_cross_m = 0.0;
+  double mean_heading_error_rad = 0.0;
+  double sd_heading_rad = 0.0;
+  // Mean predicted covariance against the sample covariance of (along, cross, heading), per
+  // diagonal entry: predicted / sample (1 = calibrated).
+  Eigen::Vector3d predicted_over_sample = Eigen::Vector3d::Constant(std::nan(""));
+};
+PredictionStats Summarize(const std::vector<PredictionError>& errors);
+
+struct IpdCalibrationResult {
+  std::vector<IpdSegment> segments;
+  std::vector<PredictionError> no_slip;     // alpha = 0
+  std::vector<PredictionError> calibrated;  // alpha as known when the segment started
+  std::vector<double> update_t;             // time of each update (a segment's end)
+  std::vector<std::array<double, ipd::kAlphaSize>> alpha;  // after each update
+  std::vector<Eigen::Vector3d> q;                          // after each update
+  std::array<double, ipd::kAlphaSize> final_alpha{};
+  std::array<double, ipd::kAlphaSize> final_alpha_sd{};
+  Eigen::Vector3d final_q = Eigen::Vector3d::Zero();
+  std::vector<std::string> notes;
+};
+
+IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options = {});
+
+}  // namespace slipgraph
