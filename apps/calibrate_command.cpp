@@ -14,6 +14,7 @@
 #include "io/csv_writer.h"
 #include "io/log_reader.h"
 #include "solvers/ipd_calibration.h"
+#include "solvers/ipd_graph_calibration.h"
 
 namespace slipgraph {
 namespace {
@@ -80,6 +81,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
     std::string log, out, method = "ekf";
     bool json = false, skip_bad = false;
     IpdOptions ipd;
+    IpdGraphOptions graph;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -87,7 +89,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
   cmd->add_option("LOG", options->log, "Log with wheels.csv, pose.csv and attitude.csv")
       ->required();
   cmd->add_option("--method", options->method,
-                  "ekf: the paper's online identification EKF (window and batch: not yet)")
+                  "ekf: the paper's online identification EKF; window: Ceres, sliding window with marginalization (online); batch: Ceres, whole log (post-processing)")
       ->check(CLI::IsMember({"ekf", "window", "batch"}))
       ->capture_default_str();
   cmd->add_option("--out", options->out,
@@ -97,21 +99,23 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
       ->capture_default_str();
   cmd->add_option("--spacing", options->ipd.spacing_s, "A new segment starts every, s")
       ->capture_default_str();
+  cmd->add_option("--block", options->graph.block_s,
+                  "window/batch: seconds of driving per alpha block")
+      ->capture_default_str();
+  cmd->add_option("--window", options->graph.window_s, "window: seconds of alpha blocks kept")
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
-    if (options->method != "ekf") {
-      std::cerr << "calibrate: --method " << options->method
-                << " is not built yet; use --method ekf\n";
-      *status = 2;
-      return;
-    }
     ReadOptions read_options;
     read_options.skip_bad = options->skip_bad;
     const DriveLog log = ReadDriveLog(options->log, read_options);
     for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
-    const IpdCalibrationResult result = CalibrateIpdEkf(log, options->ipd);
+    const IpdCalibrationResult result =
+        options->method == "ekf"      ? CalibrateIpdEkf(log, options->ipd)
+        : options->method == "window" ? CalibrateIpdWindow(log, options->ipd, options->graph)
+                                      : CalibrateIpdBatch(log, options->ipd, options->graph);
     const std::string out = options->out.empty()
                                 ? fs::path(options->log).filename().string() + "_calibrate"
                                 : options->out;
@@ -158,7 +162,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
     };
     html.Table({"model", "mean position error m", "sd along m", "sd cross m",
                 "mean |heading error| rad"},
-               {row("no slip", no_slip), row("calibrated (EKF)", calibrated)});
+               {row("no slip", no_slip), row("calibrated (" + options->method + ")", calibrated)});
     html.Figure(Scatter("no-slip model: 2 s prediction errors", result.no_slip, "#7f7f7f"));
     html.Figure(Scatter("calibrated online: 2 s prediction errors", result.calibrated, "#1f77b4"));
     Plot alpha_plot{"slip parameters over time", "alpha", {}, {}};
@@ -184,9 +188,10 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
     } else {
       std::printf("| model | mean position error m | sd along m | sd cross m | mean |heading| rad |\n");
       std::printf("|---|---|---|---|---|\n");
-      for (const auto& [name, s] : {std::pair<const char*, PredictionStats>{"no slip", no_slip},
-                                    {"calibrated (EKF)", calibrated}}) {
-        std::printf("| %s | %.4f | %.4f | %.4f | %.4f |\n", name, s.mean_position_error_m,
+      const std::string calibrated_name = "calibrated (" + options->method + ")";
+      for (const auto& [name, s] : {std::pair<std::string, PredictionStats>{"no slip", no_slip},
+                                    {calibrated_name, calibrated}}) {
+        std::printf("| %s | %.4f | %.4f | %.4f | %.4f |\n", name.c_str(), s.mean_position_error_m,
                     s.sd_along_m, s.sd_cross_m, s.mean_heading_error_rad);
       }
       std::printf("predicted / sample variance (along, cross, heading): %.2f %.2f %.2f\n",

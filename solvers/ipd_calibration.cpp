@@ -41,24 +41,6 @@ Eigen::Matrix<double, 6, 6> ScatterCovariance(const Eigen::Matrix3d& R) {
   return out;
 }
 
-// H P H' of a segment's prediction, in its (along, cross, heading) axes.
-Eigen::Matrix3d ParameterCovariance(const IpdSegment& seg, const AlphaVector& alpha,
-                                    const AlphaMatrix& P, const IpdOptions& options) {
-  using Jet = ceres::Jet<double, kAlphaSize>;
-  Jet alpha_jet[kAlphaSize];
-  for (int i = 0; i < kAlphaSize; ++i) alpha_jet[i] = Jet(alpha[i], i);
-  Jet predicted[3];
-  ipd::PredictSegment(seg.steps, alpha_jet, options.gravity_mps2, predicted);
-  Eigen::Matrix<double, 3, kAlphaSize> H;
-  for (int r = 0; r < 3; ++r) H.row(r) = predicted[r].v.transpose();
-  const double length = std::hypot(predicted[0].a, predicted[1].a);
-  const double ux = length > 0.01 ? predicted[0].a / length : 1.0;
-  const double uy = length > 0.01 ? predicted[1].a / length : 0.0;
-  Eigen::Matrix3d rotation;
-  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
-  return rotation * H * P * H.transpose() * rotation.transpose();
-}
-
 }  // namespace
 
 std::vector<IpdSegment> BuildIpdSegments(const DriveLog& log, const IpdOptions& options) {
@@ -148,6 +130,31 @@ PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alph
   return e;
 }
 
+Eigen::Matrix<double, 3, kAlphaSize> PredictionJacobian(const IpdSegment& seg, const double* alpha,
+                                                        const IpdOptions& options) {
+  using Jet = ceres::Jet<double, kAlphaSize>;
+  Jet alpha_jet[kAlphaSize];
+  for (int i = 0; i < kAlphaSize; ++i) alpha_jet[i] = Jet(alpha[i], i);
+  Jet predicted[3];
+  ipd::PredictSegment(seg.steps, alpha_jet, options.gravity_mps2, predicted);
+  Eigen::Matrix<double, 3, kAlphaSize> H;
+  for (int r = 0; r < 3; ++r) H.row(r) = predicted[r].v.transpose();
+  return H;
+}
+
+Eigen::Matrix3d ParameterCovariance(const IpdSegment& seg, const double* alpha,
+                                    const AlphaMatrix& P, const IpdOptions& options) {
+  double predicted[3];
+  ipd::PredictSegment(seg.steps, alpha, options.gravity_mps2, predicted);
+  const Eigen::Matrix<double, 3, kAlphaSize> H = PredictionJacobian(seg, alpha, options);
+  const double length = std::hypot(predicted[0], predicted[1]);
+  const double ux = length > 0.01 ? predicted[0] / length : 1.0;
+  const double uy = length > 0.01 ? predicted[1] / length : 0.0;
+  Eigen::Matrix3d rotation;
+  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
+  return rotation * H * P * H.transpose() * rotation.transpose();
+}
+
 PredictionStats Summarize(const std::vector<PredictionError>& errors) {
   PredictionStats s;
   s.segments = errors.size();
@@ -178,14 +185,38 @@ PredictionStats Summarize(const std::vector<PredictionError>& errors) {
   return s;
 }
 
+StochasticCalibrator::StochasticCalibrator(const IpdOptions& options)
+    : options_(options),
+      q_(options.q_initial),
+      P_(Eigen::Matrix3d::Identity() * options.q_prior_sd * options.q_prior_sd) {}
+
+void StochasticCalibrator::Update(const Eigen::Vector3d& residual,
+                                  const ipd::PredictionCovarianceTerms& terms,
+                                  const Eigen::Matrix3d& parameter_covariance, double elapsed_s) {
+  P_ += Eigen::Matrix3d::Identity() * options_.q_walk_sd * options_.q_walk_sd * elapsed_s;
+  // Observation: the scatter matrix less what the poses and alpha's uncertainty explain.
+  const Eigen::Matrix<double, 6, 1> z = Unique(residual * residual.transpose()) -
+                                        Unique(terms.measurement + parameter_covariance);
+  Eigen::Matrix<double, 6, 3> J;  // eq. (21)
+  for (int i = 0; i < 3; ++i) J.col(i) = Unique(terms.input[i]);
+  const Eigen::Matrix<double, 6, 6> Rz =
+      ScatterCovariance(terms.Total(q_) + parameter_covariance);  // eqs. (26)-(27)
+  const Eigen::Matrix<double, 6, 6> S = J * P_ * J.transpose() + Rz;
+  const Eigen::Matrix<double, 3, 6> K =
+      P_ * J.transpose() * S.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity());
+  q_ += K * (z - J * q_);
+  P_ = (Eigen::Matrix3d::Identity() - K * J) * P_;
+  q_ = q_.cwiseMax(1e-9);  // densities stay positive
+}
+
 IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options) {
   IpdCalibrationResult result;
   result.segments = BuildIpdSegments(log, options);
   const std::vector<IpdSegment>& segments = result.segments;
   AlphaVector alpha = AlphaVector::Zero();
   AlphaMatrix P = AlphaMatrix::Identity() * options.alpha_prior_sd * options.alpha_prior_sd;
-  Eigen::Vector3d q = options.q_initial;
-  Eigen::Matrix3d Pq = Eigen::Matrix3d::Identity() * options.q_prior_sd * options.q_prior_sd;
+  StochasticCalibrator stochastic(options);
+  Eigen::Vector3d q = stochastic.q();
   double last_update_t = segments.empty() ? 0.0 : segments.front().t_start;
   const std::array<double, kAlphaSize> zero{};
   size_t next_update = 0;
@@ -196,7 +227,6 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     const double elapsed = std::max(0.0, seg.t_end - last_update_t);
     last_update_t = std::max(last_update_t, seg.t_end);
     P += AlphaMatrix::Identity() * options.alpha_walk_sd * options.alpha_walk_sd * elapsed;  // (29)
-    Pq += Eigen::Matrix3d::Identity() * options.q_walk_sd * options.q_walk_sd * elapsed;
     // h(alpha) and H = dh/dalpha by automatic differentiation (30)-(31).
     using Jet = ceres::Jet<double, kAlphaSize>;
     Jet alpha_jet[kAlphaSize];
@@ -226,20 +256,8 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     const AlphaMatrix I_KH = AlphaMatrix::Identity() - K * H;
     P = I_KH * P * I_KH.transpose() + K * R * K.transpose();  // (34), Joseph form
 
-    if (options.calibrate_q) {
-      // Stochastic calibration, eqs. (18)-(27), on the residual left by the systematic model.
-      const Eigen::Matrix<double, 6, 1> z =
-          Unique(residual * residual.transpose()) - Unique(terms.measurement + HPH);
-      Eigen::Matrix<double, 6, 3> J;
-      for (int i = 0; i < 3; ++i) J.col(i) = Unique(terms.input[i]);
-      const Eigen::Matrix<double, 6, 6> Rz = ScatterCovariance(S);
-      const Eigen::Matrix<double, 6, 6> Sz = J * Pq * J.transpose() + Rz;
-      const Eigen::Matrix<double, 3, 6> Kz = Pq * J.transpose() * Sz.ldlt().solve(
-                                                                  Eigen::Matrix<double, 6, 6>::Identity());
-      q += Kz * (z - J * q);
-      Pq = (Eigen::Matrix3d::Identity() - Kz * J) * Pq;
-      q = q.cwiseMax(1e-9);  // densities stay positive
-    }
+    if (options.calibrate_q) stochastic.Update(residual, terms, HPH, elapsed);
+    q = stochastic.q();
     result.update_t.push_back(seg.t_end);
     std::array<double, kAlphaSize> a;
     for (int i = 0; i < kAlphaSize; ++i) a[i] = alpha[i];
@@ -254,7 +272,7 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     }
     result.no_slip.push_back(EvaluatePrediction(segments[i], zero.data(), options, q));
     PredictionError e = EvaluatePrediction(segments[i], alpha.data(), options, q);
-    e.predicted_covariance += ParameterCovariance(segments[i], alpha, P, options);
+    e.predicted_covariance += ParameterCovariance(segments[i], alpha.data(), P, options);
     result.calibrated.push_back(e);
   }
   while (next_update < segments.size()) update(segments[next_update++]);

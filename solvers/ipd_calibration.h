@@ -61,6 +61,16 @@ struct PredictionError {
 PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alpha,
                                    const IpdOptions& options, const Eigen::Vector3d& q);
 
+// d h / d alpha of a segment's prediction (3 x 13), by automatic differentiation.
+Eigen::Matrix<double, 3, ipd::kAlphaSize> PredictionJacobian(const IpdSegment& segment,
+                                                             const double* alpha,
+                                                             const IpdOptions& options);
+// H P H' of a segment's prediction in its (along, cross, heading) axes: what the uncertainty of
+// alpha adds to the predicted covariance.
+Eigen::Matrix3d ParameterCovariance(const IpdSegment& segment, const double* alpha,
+                                    const Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>& P,
+                                    const IpdOptions& options);
+
 struct PredictionStats {
   size_t segments = 0;
   double mean_position_error_m = 0.0;
@@ -87,5 +97,24 @@ struct IpdCalibrationResult {
 };
 
 IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options = {});
+
+// The stochastic calibration of eqs. (18)-(27): a linear Kalman filter on the diagonal of Q whose
+// observation is the scatter matrix of a segment's residual. Shared by the EKF and the Ceres
+// calibrations.
+class StochasticCalibrator {
+ public:
+  explicit StochasticCalibrator(const IpdOptions& options);
+  // residual: measured minus predicted; terms: the segment's covariance terms at the current
+  // alpha; parameter_covariance: H P H' of the alpha estimate (0 when unknown); elapsed: time
+  // since the last update (random walk of q).
+  void Update(const Eigen::Vector3d& residual, const ipd::PredictionCovarianceTerms& terms,
+              const Eigen::Matrix3d& parameter_covariance, double elapsed_s);
+  const Eigen::Vector3d& q() const { return q_; }
+
+ private:
+  IpdOptions options_;
+  Eigen::Vector3d q_;
+  Eigen::Matrix3d P_;
+};
 
 }  // namespace slipgraph

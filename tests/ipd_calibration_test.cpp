@@ -2,6 +2,7 @@
 // slip model on one terrain, and on ipd35 it beats the no-slip model by the paper's margins
 // (the full figures are in docs/ipd.md).
 #include "solvers/ipd_calibration.h"
+#include "solvers/ipd_graph_calibration.h"
 
 #include <gtest/gtest.h>
 
@@ -42,6 +43,10 @@ TEST(IpdCalibration, RecoversAKnownSlipModelOnOneTerrain) {
 TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   const DriveLog log = SimulateIpd(35.0, "");
   const IpdCalibrationResult result = CalibrateIpdEkf(log);
+  // The Ceres forms on the same log: the online window at least as good as the EKF (2 % slack
+  // on the mean position error), the batch (not causal) better.
+  const PredictionStats window = Summarize(CalibrateIpdWindow(log).calibrated);
+  const PredictionStats batch = Summarize(CalibrateIpdBatch(log).calibrated);
   const PredictionStats no_slip = Summarize(result.no_slip);
   const PredictionStats calibrated = Summarize(result.calibrated);
   // Measured (docs/ipd.md): 0.295 -> 0.083 m, heading 0.311 -> 0.056 rad, sd along 0.112 ->
@@ -53,7 +58,12 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   for (int i = 0; i < 2; ++i) {
     EXPECT_GT(calibrated.predicted_over_sample[i], 0.8);
     EXPECT_LT(calibrated.predicted_over_sample[i], 1.25);
+    EXPECT_GT(batch.predicted_over_sample[i], 0.8);
+    EXPECT_LT(batch.predicted_over_sample[i], 1.25);
   }
+  EXPECT_LT(window.mean_position_error_m, 1.02 * calibrated.mean_position_error_m);
+  EXPECT_LT(window.mean_heading_error_rad, 1.02 * calibrated.mean_heading_error_rad);
+  EXPECT_LT(batch.mean_position_error_m, calibrated.mean_position_error_m);
 }
 
 }  // namespace

@@ -101,3 +101,33 @@ TEST(IpdSegment, RelativePoseInTheStartFrame) {
 
 }  // namespace
 }  // namespace slipgraph
+
+#include "factors/ipd_segment_factor.h"
+#include "tests/factor_check.h"
+
+namespace slipgraph {
+namespace {
+
+TEST(IpdSegmentFactor, ResidualAndJacobian) {
+  std::vector<ipd::OdometryStep> steps;
+  for (int k = 0; k < 200; ++k) {
+    steps.push_back({0.01, 1.0, 0.3, 0.02, -0.05});
+  }
+  std::array<double, ipd::kAlphaSize> alpha{};
+  double predicted[3];
+  ipd::PredictSegment(steps, alpha.data(), 9.81, predicted);
+  // Measured: the no-slip prediction plus (0.1, 0, 0): residual = L^-1 (0.1, 0, 0).
+  const Eigen::Vector3d measured(predicted[0] + 0.1, predicted[1], predicted[2]);
+  const Eigen::Matrix3d covariance = Eigen::Vector3d(0.01, 0.04, 0.0001).asDiagonal();
+  const std::unique_ptr<ceres::CostFunction> f(
+      IpdSegmentFactor::Create(steps, measured, covariance, 9.81));
+  const std::vector<double> r = testing::Residuals(*f, {alpha.data()});
+  EXPECT_NEAR(r[0], 1.0, 1e-9);
+  EXPECT_NEAR(r[1], 0.0, 1e-9);
+  EXPECT_NEAR(r[2], 0.0, 1e-9);
+  for (int i = 0; i < ipd::kAlphaSize; ++i) alpha[i] = 0.02 * (i % 5) - 0.04;
+  testing::ExpectJacobiansMatchNumeric(*f, {alpha.data()});
+}
+
+}  // namespace
+}  // namespace slipgraph

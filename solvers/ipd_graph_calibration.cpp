@@ -1,0 +1,245 @@
+#include "solvers/ipd_graph_calibration.h"
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+
+#include "factors/diagonal_prior.h"
+#include "factors/ipd_segment_factor.h"
+#include "problems/marginalization.h"
+#include "solvers/chain_covariance.h"
+
+namespace slipgraph {
+namespace {
+
+using Alpha = std::array<double, ipd::kAlphaSize>;
+
+// (alpha_{j+1} - alpha_j) / sd: the slip model drifts as the terrain changes.
+struct AlphaWalk {
+  double inverse_sd;
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* r) const {
+    for (int i = 0; i < ipd::kAlphaSize; ++i) r[i] = (b[i] - a[i]) * inverse_sd;
+    return true;
+  }
+};
+
+ceres::Solver::Options SolverOptions(int max_iterations) {
+  ceres::Solver::Options o;
+  o.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  o.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  o.max_num_iterations = max_iterations;
+  o.logging_type = ceres::SILENT;
+  return o;
+}
+
+// The block index of time t (blocks of block_s from the log's first segment).
+int BlockOf(double t, double t0, double block_s) {
+  return std::max(0, static_cast<int>(std::floor((t - t0) / block_s)));
+}
+
+// Residual of a segment at alpha and its covariance terms (for Q), and the factor for it.
+struct SegmentFit {
+  Eigen::Vector3d residual;
+  ipd::PredictionCovarianceTerms terms;
+};
+SegmentFit Fit(const IpdSegment& seg, const Alpha& alpha, const IpdOptions& options) {
+  double predicted[3];
+  ipd::PredictSegment(seg.steps, alpha.data(), options.gravity_mps2, predicted);
+  SegmentFit f;
+  f.residual = seg.measured - Eigen::Vector3d(predicted[0], predicted[1], predicted[2]);
+  f.residual[2] = std::remainder(f.residual[2], 2.0 * M_PI);
+  f.terms = ipd::PredictionCovariance(seg.steps, alpha.data(), options.gravity_mps2,
+                                      seg.sigma_start, seg.sigma_end);
+  return f;
+}
+
+ceres::CostFunction* SegmentFactor(const IpdSegment& seg, const Alpha& alpha,
+                                   const IpdOptions& options, const Eigen::Vector3d& q) {
+  const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
+      seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
+  return IpdSegmentFactor::Create(seg.steps, seg.measured, terms.Total(q), options.gravity_mps2);
+}
+
+std::array<double, ipd::kAlphaSize> PriorSd(const IpdOptions& options) {
+  std::array<double, ipd::kAlphaSize> sd;
+  sd.fill(options.alpha_prior_sd);
+  return sd;
+}
+
+}  // namespace
+
+IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options,
+                                        const IpdGraphOptions& graph) {
+  IpdCalibrationResult result;
+  result.segments = BuildIpdSegments(log, options);
+  const std::vector<IpdSegment>& segments = result.segments;
+  if (segments.empty()) return result;
+  const double t0 = segments.front().t_start;
+  StochasticCalibrator stochastic(options);
+  ceres::Problem::Options problem_options;
+  problem_options.enable_fast_removal = true;
+  ceres::Problem problem(problem_options);
+  std::deque<Alpha> blocks;  // alpha blocks in the window, oldest first
+  int first_block = 0;       // block index of blocks.front()
+  Alpha latest{};            // the newest solved alpha (predictions use it)
+  Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize> latest_covariance =
+      Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>::Identity() *
+      options.alpha_prior_sd * options.alpha_prior_sd;
+  const Alpha zero{};
+  const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
+
+  size_t next_segment_to_add = 0;
+  size_t next_prediction = 0;
+  const int last_block = BlockOf(segments.back().t_end, t0, graph.block_s);
+  for (int j = 0; j <= last_block + 1; ++j) {
+    const double block_end = t0 + (j + 1) * graph.block_s;
+    // Predictions of segments starting before this block's solve use the newest solved alpha.
+    while (next_prediction < segments.size() && segments[next_prediction].t_start < block_end) {
+      const IpdSegment& seg = segments[next_prediction++];
+      result.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, stochastic.q()));
+      PredictionError e = EvaluatePrediction(seg, latest.data(), options, stochastic.q());
+      e.predicted_covariance += ParameterCovariance(seg, latest.data(), latest_covariance, options);
+      result.calibrated.push_back(e);
+    }
+    // Add alpha blocks up to j, each tied to the previous by the walk.
+    while (first_block + static_cast<int>(blocks.size()) <= j) {
+      blocks.push_back(blocks.empty() ? Alpha{} : blocks.back());
+      double* alpha = blocks.back().data();
+      problem.AddParameterBlock(alpha, ipd::kAlphaSize);
+      if (blocks.size() == 1 && first_block == 0) {
+        problem.AddResidualBlock(
+            DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)), nullptr, alpha);
+      } else if (blocks.size() > 1) {
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
+                                            ipd::kAlphaSize>(new AlphaWalk{walk_inverse_sd}),
+            nullptr, blocks[blocks.size() - 2].data(), alpha);
+      }
+    }
+    // Segments that have ended by the block's end, on the block of their midpoint.
+    bool added = false;
+    while (next_segment_to_add < segments.size() &&
+           segments[next_segment_to_add].t_end <= block_end) {
+      const IpdSegment& seg = segments[next_segment_to_add++];
+      const int b = BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s);
+      const int index = std::clamp(b - first_block, 0, static_cast<int>(blocks.size()) - 1);
+      // Q from the residual the segment leaves with the alpha known before it (as the EKF does).
+      if (options.calibrate_q) {
+        const SegmentFit fit = Fit(seg, latest, options);
+        const Eigen::Matrix<double, 3, ipd::kAlphaSize> H =
+            PredictionJacobian(seg, latest.data(), options);
+        stochastic.Update(fit.residual, fit.terms, H * latest_covariance * H.transpose(),
+                          options.spacing_s);
+      }
+      problem.AddResidualBlock(SegmentFactor(seg, blocks[index], options, stochastic.q()),
+                               nullptr, blocks[index].data());
+      added = true;
+    }
+    if (!added) continue;
+    ceres::Solver::Summary summary;
+    ceres::Solve(SolverOptions(graph.max_iterations), &problem, &summary);
+    if (!summary.IsSolutionUsable()) {
+      result.notes.push_back("block " + std::to_string(j) + ": solve failed (" + summary.message +
+                             "); alpha kept");
+      continue;
+    }
+    latest = blocks.back();
+    {
+      std::vector<double*> chain;
+      for (Alpha& a : blocks) chain.push_back(a.data());
+      const ChainCovariance covariance = ComputeChainCovariance(&problem, chain, {});
+      if (covariance.ok) latest_covariance = covariance.states.back();
+    }
+    result.update_t.push_back(block_end);
+    result.alpha.push_back(latest);
+    result.q.push_back(stochastic.q());
+    // Marginalize blocks older than the window.
+    while (static_cast<double>(blocks.size()) * graph.block_s > graph.window_s &&
+           blocks.size() > 1) {
+      Marginalization m = Marginalize(problem, {blocks.front().data()});
+      problem.RemoveParameterBlock(blocks.front().data());
+      blocks.pop_front();
+      ++first_block;
+      if (m.prior && !m.kept.empty()) {
+        problem.AddResidualBlock(m.prior.release(), nullptr, m.kept);
+      } else {
+        result.notes.push_back("marginalization failed (" + m.error +
+                               "): the window restarts from its prior");
+        problem.AddResidualBlock(
+            DiagonalPrior<ipd::kAlphaSize>::Create(blocks.front(), PriorSd(options)), nullptr,
+            blocks.front().data());
+      }
+    }
+  }
+  result.final_alpha = latest;
+  std::vector<double*> chain;
+  for (Alpha& a : blocks) chain.push_back(a.data());
+  const ChainCovariance covariance = ComputeChainCovariance(&problem, chain, {});
+  if (covariance.ok) {
+    for (int i = 0; i < ipd::kAlphaSize; ++i) {
+      result.final_alpha_sd[i] = std::sqrt(covariance.states.back()(i, i));
+    }
+  }
+  result.final_q = stochastic.q();
+  return result;
+}
+
+IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& options,
+                                       const IpdGraphOptions& graph) {
+  // Q first, from the online EKF's stochastic calibration; then every block at once.
+  const IpdCalibrationResult ekf = CalibrateIpdEkf(log, options);
+  IpdCalibrationResult result;
+  result.segments = ekf.segments;
+  const std::vector<IpdSegment>& segments = result.segments;
+  if (segments.empty()) return result;
+  const double t0 = segments.front().t_start;
+  const int n_blocks = BlockOf(segments.back().t_end, t0, graph.block_s) + 1;
+  std::vector<Alpha> blocks(n_blocks, Alpha{});
+  ceres::Problem problem;
+  const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
+  problem.AddResidualBlock(
+      DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)), nullptr,
+      blocks[0].data());
+  for (int j = 1; j < n_blocks; ++j) {
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
+                                        ipd::kAlphaSize>(new AlphaWalk{walk_inverse_sd}),
+        nullptr, blocks[j - 1].data(), blocks[j].data());
+  }
+  for (const IpdSegment& seg : segments) {
+    const int b = std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
+    problem.AddResidualBlock(SegmentFactor(seg, Alpha{}, options, ekf.final_q), nullptr,
+                             blocks[b].data());
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(SolverOptions(50), &problem, &summary);
+  if (!summary.IsSolutionUsable()) {
+    result = ekf;
+    result.notes.push_back("batch solve failed (" + summary.message + "): the EKF's result");
+    return result;
+  }
+  const Alpha zero{};
+  for (const IpdSegment& seg : segments) {
+    const int b = std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
+    result.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, ekf.final_q));
+    result.calibrated.push_back(EvaluatePrediction(seg, blocks[b].data(), options, ekf.final_q));
+  }
+  for (int j = 0; j < n_blocks; ++j) {
+    result.update_t.push_back(t0 + (j + 1) * graph.block_s);
+    result.alpha.push_back(blocks[j]);
+    result.q.push_back(ekf.final_q);
+  }
+  result.final_alpha = blocks.back();
+  result.final_q = ekf.final_q;
+  result.notes.push_back("batch: each segment predicted with the alpha of its own block "
+                         "(post-processing, not causal)");
+  return result;
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,26 @@
+// IPD slip-model identification as a Ceres factor graph (issue 7's "same as Ceres residual
+// blocks"), beside the paper's EKF (solvers/ipd_calibration.h).
+#pragma once
+
+#include "solvers/ipd_calibration.h"
+
+namespace slipgraph {
+
+// The Ceres form (factors/ipd_segment_factor.h): alpha as one 13-block per `block_s` of driving,
+// consecutive blocks tied by the random walk, one pose-residual factor per segment on the block
+// of its midpoint. "window" is online: after each block it solves the blocks of the last
+// `window_s` with at most `max_iterations` and marginalizes older blocks into a prior
+// (problems/marginalization); a segment is predicted with the newest solved block. "batch"
+// solves the whole log at once and predicts each segment with its own block (post-processing,
+// not causal). Q comes from StochasticCalibrator in both.
+struct IpdGraphOptions {
+  double block_s = 5.0;
+  double window_s = 60.0;
+  int max_iterations = 10;
+};
+IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options = {},
+                                        const IpdGraphOptions& graph = {});
+IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& options = {},
+                                       const IpdGraphOptions& graph = {});
+
+}  // namespace slipgraph
