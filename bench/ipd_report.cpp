@@ -1,0 +1,158 @@
+// IPD calibration figures on simulated tracked-vehicle logs (docs/ipd.md records them):
+//
+//   build/bench/ipd_report                 ipd35: the three methods, recovery after terrain changes
+//   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration time
+//
+// Terrain boundaries come from the simulated course (the estimators never see them): the time
+// the robot's travelled distance crosses a patch start. Recovery time after a boundary: the
+// first moment after it from which the mean position error of the next 5 s of predictions is
+// within 1.2 x the settled error (the mean from 20 s after the boundary to the next one);
+// 30 s when it does not get there within 30 s.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/ipd_calibration.h"
+#include "solvers/ipd_graph_calibration.h"
+
+namespace slipgraph {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::vector<double> BoundaryTimes(const sim::Scenario& sc, const DriveLog& log) {
+  std::vector<double> times;
+  double s = 0.0;
+  size_t next = 1;
+  for (size_t k = 1; k < log.truth.size() && next < sc.course.patches.size(); ++k) {
+    s += std::hypot(log.truth[k].x - log.truth[k - 1].x, log.truth[k].y - log.truth[k - 1].y);
+    if (s >= sc.course.patches[next].s_start_m) {
+      times.push_back(log.truth[k].t);
+      ++next;
+    }
+  }
+  return times;
+}
+
+void Report(const char* name, const IpdCalibrationResult& r, const std::vector<double>& boundaries,
+            double seconds) {
+  const PredictionStats a = Summarize(r.no_slip), b = Summarize(r.calibrated);
+  std::vector<double> error;
+  for (const PredictionError& e : r.calibrated) error.push_back(std::hypot(e.along_m, e.cross_m));
+  std::vector<double> recovery;
+  for (size_t i = 0; i < boundaries.size(); ++i) {
+    const double t_b = boundaries[i];
+    const double t_next = i + 1 < boundaries.size() ? boundaries[i + 1] : 1e300;
+    std::vector<double> settled;
+    for (size_t k = 0; k < error.size(); ++k) {
+      const double t = r.calibrated[k].t_start;
+      if (t > t_b + 20.0 && t < t_next) settled.push_back(error[k]);
+    }
+    double settled_mean = 0.0;
+    for (double x : settled) settled_mean += x / settled.size();
+    const double level = 1.2 * settled_mean;
+    double recovered = 30.0;
+    for (size_t k = 0; k < error.size(); ++k) {
+      const double t = r.calibrated[k].t_start;
+      if (t < t_b || t > t_b + 30.0) continue;
+      double sum = 0.0;
+      int n = 0;
+      for (size_t m = k; m < error.size() && r.calibrated[m].t_start < t + 5.0; ++m) {
+        sum += error[m];
+        ++n;
+      }
+      if (n > 0 && sum / n <= level) {
+        recovered = t - t_b;
+        break;
+      }
+    }
+    recovery.push_back(recovered);
+  }
+  double mean_recovery = 0.0, max_recovery = 0.0;
+  for (double x : recovery) mean_recovery += x / recovery.size(), max_recovery = std::max(max_recovery, x);
+  std::printf(
+      "| %s | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.2f %.2f %.2f | "
+      "%.1f / %.1f | %.2f |\n",
+      name, b.mean_position_error_m,
+      100.0 * (1.0 - b.mean_position_error_m / a.mean_position_error_m), b.sd_along_m,
+      100.0 * (1.0 - b.sd_along_m / a.sd_along_m), b.sd_cross_m,
+      100.0 * (1.0 - b.sd_cross_m / a.sd_cross_m), b.mean_heading_error_rad,
+      100.0 * (1.0 - b.mean_heading_error_rad / a.mean_heading_error_rad),
+      b.predicted_over_sample[0], b.predicted_over_sample[1], b.predicted_over_sample[2],
+      mean_recovery, max_recovery, seconds);
+}
+
+int Ipd35() {
+  const sim::ScenarioRun run = sim::ExpandScenario("ipd35", 1).at(0);
+  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const std::vector<double> boundaries = BoundaryTimes(run.scenario, log);
+  std::printf("ipd35 seed 1: %zu terrain boundaries\n\n", boundaries.size());
+  std::printf(
+      "| method | mean position error m (reduction) | sd along m | sd cross m | mean heading "
+      "error rad | predicted / sample variance (along, cross, heading) | recovery after a "
+      "boundary, mean / max s | time s |\n|---|---|---|---|---|---|---|---|\n");
+  const IpdCalibrationResult* no_slip = nullptr;
+  const std::vector<std::pair<const char*, std::function<IpdCalibrationResult()>>> methods = {
+      {"ekf", [&] { return CalibrateIpdEkf(log); }},
+      {"window", [&] { return CalibrateIpdWindow(log); }},
+      {"batch", [&] { return CalibrateIpdBatch(log); }}};
+  for (const auto& [name, calibrate] : methods) {
+    const Clock::time_point start = Clock::now();
+    const IpdCalibrationResult r = calibrate();
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    if (no_slip == nullptr) {
+      const PredictionStats a = Summarize(r.no_slip);
+      std::printf("| no slip | %.4f | %.4f | %.4f | %.4f | | | |\n", a.mean_position_error_m,
+                  a.sd_along_m, a.sd_cross_m, a.mean_heading_error_rad);
+      no_slip = &r;
+    }
+    Report(name, r, boundaries, seconds);
+  }
+  return 0;
+}
+
+// Fig. 3: a 5-minute grass drive; calibrate on the first T seconds, evaluate the frozen model
+// on the rest (holdout).
+int Holdout() {
+  sim::Scenario sc = sim::ExpandScenario("ipd35", 1).at(0).scenario;
+  sc.course.patches = {{0.0, sim::FindTerrain("grass")}};
+  double total = sc.rest_start_s;
+  size_t keep = 0;
+  while (keep < sc.commands.size() && total < 330.0 + 120.0) total += sc.commands[keep++].duration_s;
+  sc.commands.resize(keep);
+  const DriveLog log = sim::Simulate(sc, 3).log;
+  const IpdOptions options;
+  const IpdCalibrationResult full = CalibrateIpdEkf(log, options);
+  std::printf("| calibration time s | holdout mean position error m | holdout mean heading error rad |\n|---|---|---|\n");
+  for (double T : {0.0, 5.0, 10.0, 20.0, 40.0, 80.0, 160.0, 330.0}) {
+    // alpha as of T: the last update at or before T.
+    std::array<double, ipd::kAlphaSize> alpha{};
+    for (size_t k = 0; k < full.update_t.size() && full.update_t[k] <= sc.rest_start_s + T; ++k) {
+      alpha = full.alpha[k];
+    }
+    std::vector<PredictionError> holdout;
+    for (const IpdSegment& seg : full.segments) {
+      if (seg.t_start >= sc.rest_start_s + 330.0) {
+        holdout.push_back(EvaluatePrediction(seg, alpha.data(), options, full.final_q));
+      }
+    }
+    const PredictionStats s = Summarize(holdout);
+    std::printf("| %.0f | %.4f | %.4f |\n", T, s.mean_position_error_m, s.mean_heading_error_rad);
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace slipgraph
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "--holdout") == 0) return slipgraph::Holdout();
+  return slipgraph::Ipd35();
+}
