@@ -1,12 +1,12 @@
 // `slipgraph calibrate`: IPD slip-model identification (Rogers-Marcovitz et al.) on a log with
 // measured poses: alpha and Q over time, the 2 s prediction errors of the no-slip and the
 // calibrated model, and the paper's scatter figure in an HTML report.
+#include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <Eigen/Eigenvalues>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
@@ -89,7 +89,8 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
   cmd->add_option("LOG", options->log, "Log with wheels.csv, pose.csv and attitude.csv")
       ->required();
   cmd->add_option("--method", options->method,
-                  "ekf: the paper's online identification EKF; window: Ceres, sliding window with marginalization (online); batch: Ceres, whole log (post-processing)")
+                  "ekf: the paper's online identification EKF; window: Ceres, sliding window with "
+                  "marginalization (online); batch: Ceres, whole log (post-processing)")
       ->check(CLI::IsMember({"ekf", "window", "batch"}))
       ->capture_default_str();
   cmd->add_option("--out", options->out,
@@ -139,10 +140,10 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
       for (size_t k = 0; k < result.calibrated.size(); ++k) {
         const PredictionError& a = result.no_slip[k];
         const PredictionError& b = result.calibrated[k];
-        for (double v : {b.t_start, a.along_m, a.cross_m, a.heading_rad, b.along_m, b.cross_m,
-                         b.heading_rad, std::sqrt(b.predicted_covariance(0, 0)),
-                         std::sqrt(b.predicted_covariance(1, 1)),
-                         std::sqrt(b.predicted_covariance(2, 2))}) {
+        for (double v :
+             {b.t_start, a.along_m, a.cross_m, a.heading_rad, b.along_m, b.cross_m, b.heading_rad,
+              std::sqrt(b.predicted_covariance(0, 0)), std::sqrt(b.predicted_covariance(1, 1)),
+              std::sqrt(b.predicted_covariance(2, 2))}) {
           predictions << v;
         }
         predictions.EndRow();
@@ -160,9 +161,9 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
                                       std::to_string(s.sd_along_m), std::to_string(s.sd_cross_m),
                                       std::to_string(s.mean_heading_error_rad)};
     };
-    html.Table({"model", "mean position error m", "sd along m", "sd cross m",
-                "mean |heading error| rad"},
-               {row("no slip", no_slip), row("calibrated (" + options->method + ")", calibrated)});
+    html.Table(
+        {"model", "mean position error m", "sd along m", "sd cross m", "mean |heading error| rad"},
+        {row("no slip", no_slip), row("calibrated (" + options->method + ")", calibrated)});
     html.Figure(Scatter("no-slip model: 2 s prediction errors", result.no_slip, "#7f7f7f"));
     html.Figure(Scatter("calibrated online: 2 s prediction errors", result.calibrated, "#1f77b4"));
     Plot alpha_plot{"slip parameters over time", "alpha", {}, {}};
@@ -186,7 +187,8 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
                           {"notes", result.notes}};
       std::cout << j.dump(2) << "\n";
     } else {
-      std::printf("| model | mean position error m | sd along m | sd cross m | mean |heading| rad |\n");
+      std::printf(
+          "| model | mean position error m | sd along m | sd cross m | mean |heading| rad |\n");
       std::printf("|---|---|---|---|---|\n");
       const std::string calibrated_name = "calibrated (" + options->method + ")";
       for (const auto& [name, s] : {std::pair<std::string, PredictionStats>{"no slip", no_slip},

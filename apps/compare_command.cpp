@@ -48,7 +48,7 @@ std::vector<std::string> Row(const std::string& name, const Evaluation& ev, doub
 }
 
 const std::vector<std::string> kHeader = {
-    "estimator", "v RMSE m/s", "a_dist RMSE m/s^2", "detected", "mean delay s",
+    "estimator",           "v RMSE m/s",  "a_dist RMSE m/s^2",    "detected", "mean delay s",
     "false immobilized %", "v NEES mean", "NEES within 95 % (%)", "time s"};
 
 void PrintTable(const std::vector<std::vector<std::string>>& rows, std::ostream& out) {
@@ -71,8 +71,8 @@ void AddPlots(const DriveLog& log, const std::vector<EstimatorRun>& runs, HtmlRe
   for (const Event& e : log.events) shaded.emplace_back(e.t_start, e.t_end);
   Plot v{"body velocity v_bx", "m/s", {}, shaded};
   Plot a{"disturbance a_dist", "m/s^2", {}, shaded};
-  Plot slip{"mean driven slip (EKF: its EMA; clipped to [-1, 2]) and immobilized flags", "-", {},
-            shaded};
+  Plot slip{
+      "mean driven slip (EKF: its EMA; clipped to [-1, 2]) and immobilized flags", "-", {}, shaded};
   if (!log.truth.empty()) {
     PlotSeries tv{"truth", {}, {}, "#000000"}, ta{"truth", {}, {}, "#000000"},
         ts{"truth", {}, {}, "#000000"};
@@ -145,8 +145,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     namespace fs = std::filesystem;
     const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
     const std::string name = fs::path(path).filename().string();
-    const std::string html_path =
-        options->html.empty() ? name + "_compare.html" : options->html;
+    const std::string html_path = options->html.empty() ? name + "_compare.html" : options->html;
     ReadOptions read_options;
     read_options.skip_bad = options->skip_bad;
     HtmlReport html("slipgraph compare: " + name);
@@ -157,16 +156,14 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     for (const std::string& log_dir : ListLogs(path)) {
       const DriveLog log = ReadDriveLog(log_dir, read_options);
       for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
-      const ModelConfig model = options->model.empty()
-                                    ? DefaultModelConfig(log.vehicle)
-                                    : ReadModelYaml(options->model, log.vehicle);
+      const ModelConfig model = options->model.empty() ? DefaultModelConfig(log.vehicle)
+                                                       : ReadModelYaml(options->model, log.vehicle);
       std::vector<EstimatorRun> runs(3);
       FilterRunOptions filter;
       filter.use_gps = !options->no_gps;
       Clock::time_point start = Clock::now();
       const FilterResult ekf = RunEkf(log, model, filter);
-      runs[0] = {"EKF", ekf.estimates,
-                 std::chrono::duration<double>(Clock::now() - start).count(),
+      runs[0] = {"EKF", ekf.estimates, std::chrono::duration<double>(Clock::now() - start).count(),
                  DescribeFilterRun(ekf)};
       WindowSmootherOptions window = options->window;
       window.filter = filter;
@@ -202,8 +199,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     if (!by_estimator.empty()) {
       std::vector<std::vector<std::string>> rows;
       for (const std::string& estimator : names) {
-        rows.push_back(Row(estimator, Combine(by_estimator[estimator], name),
-                           seconds[estimator]));
+        rows.push_back(Row(estimator, Combine(by_estimator[estimator], name), seconds[estimator]));
       }
       std::cout << name << " (" << by_estimator["EKF"].size()
                 << " log(s)) against truth; window and batch times include their EKF run\n";

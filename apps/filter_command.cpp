@@ -10,9 +10,9 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
     bool no_gps = false;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* cmd =
-      AddEstimatorCommand(app, "filter", "Run the streaming EKF (Ward & Iagnemma) and write its estimates",
-                          &options->run, &options->no_gps);
+  CLI::App* cmd = AddEstimatorCommand(
+      app, "filter", "Run the streaming EKF (Ward & Iagnemma) and write its estimates",
+      &options->run, &options->no_gps);
   cmd->callback([options, status]() {
     FilterRunOptions run_options;
     run_options.use_gps = !options->no_gps;

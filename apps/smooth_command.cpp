@@ -30,23 +30,23 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     BatchSmootherOptions smoother_options;
     smoother_options.filter.use_gps = !options->no_gps;
     smoother_options.threads = options->threads;
-    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
-                                           std::ostream& report) {
-      if (options->chunk_min > 0.0) {
-        const double rate_hz =
-            log.wheels.size() > 1
-                ? (log.wheels.size() - 1) / (log.wheels.back().t - log.wheels.front().t)
-                : 100.0;
-        const WindowSmootherResult result = SmoothWindowed(
-            log, model,
-            ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
-        report << DescribeWindowRun(result);
-        return EstimatorOutput{result.estimates, {}};
-      }
-      const SmootherResult result = SmoothBatch(log, model, smoother_options);
-      report << DescribeSmootherRun(result);
-      return EstimatorOutput{result.estimates, {}};
-    });
+    RunEstimatorOverLogs(
+        options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
+          if (options->chunk_min > 0.0) {
+            const double rate_hz =
+                log.wheels.size() > 1
+                    ? (log.wheels.size() - 1) / (log.wheels.back().t - log.wheels.front().t)
+                    : 100.0;
+            const WindowSmootherResult result = SmoothWindowed(
+                log, model,
+                ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
+            report << DescribeWindowRun(result);
+            return EstimatorOutput{result.estimates, {}};
+          }
+          const SmootherResult result = SmoothBatch(log, model, smoother_options);
+          report << DescribeSmootherRun(result);
+          return EstimatorOutput{result.estimates, {}};
+        });
     *status = 0;
   });
 }

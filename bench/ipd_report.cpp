@@ -1,7 +1,8 @@
 // IPD calibration figures on simulated tracked-vehicle logs (docs/ipd.md records them):
 //
 //   build/bench/ipd_report                 ipd35: the three methods, recovery after terrain changes
-//   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration time
+//   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration
+//   time
 //
 // Terrain boundaries come from the simulated course (the estimators never see them): the time
 // the robot's travelled distance crosses a patch start. Recovery time after a boundary: the
@@ -76,7 +77,8 @@ void Report(const char* name, const IpdCalibrationResult& r, const std::vector<d
     recovery.push_back(recovered);
   }
   double mean_recovery = 0.0, max_recovery = 0.0;
-  for (double x : recovery) mean_recovery += x / recovery.size(), max_recovery = std::max(max_recovery, x);
+  for (double x : recovery)
+    mean_recovery += x / recovery.size(), max_recovery = std::max(max_recovery, x);
   std::printf(
       "| %s | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.2f %.2f %.2f | "
       "%.1f / %.1f | %.2f |\n",
@@ -125,12 +127,15 @@ int Holdout() {
   sc.course.patches = {{0.0, sim::FindTerrain("grass")}};
   double total = sc.rest_start_s;
   size_t keep = 0;
-  while (keep < sc.commands.size() && total < 330.0 + 120.0) total += sc.commands[keep++].duration_s;
+  while (keep < sc.commands.size() && total < 330.0 + 120.0)
+    total += sc.commands[keep++].duration_s;
   sc.commands.resize(keep);
   const DriveLog log = sim::Simulate(sc, 3).log;
   const IpdOptions options;
   const IpdCalibrationResult full = CalibrateIpdEkf(log, options);
-  std::printf("| calibration time s | holdout mean position error m | holdout mean heading error rad |\n|---|---|---|\n");
+  std::printf(
+      "| calibration time s | holdout mean position error m | holdout mean heading error rad "
+      "|\n|---|---|---|\n");
   for (double T : {0.0, 5.0, 10.0, 20.0, 40.0, 80.0, 160.0, 330.0}) {
     // alpha as of T: the last update at or before T.
     std::array<double, ipd::kAlphaSize> alpha{};

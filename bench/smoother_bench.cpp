@@ -87,11 +87,10 @@ int Batch(double minutes, bool covariance) {
   const int iterations = std::max<int>(1, result.summary.iterations.size() - 1);
   iteration_s /= iterations;
   const double floor_s = BlockTridiagonalCholesky(result.estimates.size());
-  std::printf(
-      "| %5.1f | %8zu | %7.2f | %3d | %7.3f | %8.4f | %6.1f | %7.0f | %7.0f | %s |\n",
-      minutes, result.estimates.size(), total, iterations, iteration_s, floor_s,
-      iteration_s / floor_s, rss_log, PeakRssMb(),
-      result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"));
+  std::printf("| %5.1f | %8zu | %7.2f | %3d | %7.3f | %8.4f | %6.1f | %7.0f | %7.0f | %s |\n",
+              minutes, result.estimates.size(), total, iterations, iteration_s, floor_s,
+              iteration_s / floor_s, rss_log, PeakRssMb(),
+              result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"));
   return 0;
 }
 
@@ -122,7 +121,8 @@ double Percentile(std::vector<double> v, double p) {
 int Window(const std::vector<int>& iterations) {
   const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
   const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
-  std::printf("| iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms |\n");
+  std::printf(
+      "| iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (int n : iterations) {
     WindowSmootherOptions options;
@@ -152,13 +152,14 @@ int main(int argc, char** argv) {
     if (iterations.empty()) iterations = {1, 2, 5};
     return slipgraph::Window(iterations);
   }
-  std::fprintf(stderr,
-               "usage: smoother_bench batch MINUTES [--no-covariance] | window [ITERATIONS...] | "
-               "chunked MINUTES CHUNK_MINUTES\n"
-               "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
-               "| peak RSS MB | failed chunks | samples left at the EKF |\n"
-               "batch prints: | minutes | states | total s | iterations | s/iteration | "
-               "block-tridiagonal Cholesky s | ratio | RSS after simulation MB | peak RSS MB | "
-               "covariance |\n");
+  std::fprintf(
+      stderr,
+      "usage: smoother_bench batch MINUTES [--no-covariance] | window [ITERATIONS...] | "
+      "chunked MINUTES CHUNK_MINUTES\n"
+      "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
+      "| peak RSS MB | failed chunks | samples left at the EKF |\n"
+      "batch prints: | minutes | states | total s | iterations | s/iteration | "
+      "block-tridiagonal Cholesky s | ratio | RSS after simulation MB | peak RSS MB | "
+      "covariance |\n");
   return 2;
 }

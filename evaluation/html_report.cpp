@@ -86,11 +86,20 @@ std::string HtmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -161,8 +170,8 @@ std::string RenderSvg(const Plot& plot, int width, int height) {
         << kTop + ph << "\" stroke=\"#eee\"/><text x=\"" << X(v) << "\" y=\"" << kTop + ph + 14
         << "\" text-anchor=\"middle\">" << Number(v) << "</text>\n";
   }
-  svg << "<text x=\"" << kLeft + pw / 2 << "\" y=\"" << height - 4
-      << "\" text-anchor=\"middle\">" << HtmlEscape(plot.x_label) << "</text>\n";
+  svg << "<text x=\"" << kLeft + pw / 2 << "\" y=\"" << height - 4 << "\" text-anchor=\"middle\">"
+      << HtmlEscape(plot.x_label) << "</text>\n";
   svg << "<text transform=\"translate(14," << kTop + ph / 2
       << ") rotate(-90)\" text-anchor=\"middle\">" << HtmlEscape(plot.y_label) << "</text>\n";
   // Series: bands first, then lines, then the legend.
@@ -227,8 +236,8 @@ HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
 
 void HtmlReport::Heading(const std::string& text, int level) {
   level = std::clamp(level, 1, 4);
-  body_ += "<h" + std::to_string(level) + ">" + HtmlEscape(text) + "</h" + std::to_string(level) +
-           ">\n";
+  body_ +=
+      "<h" + std::to_string(level) + ">" + HtmlEscape(text) + "</h" + std::to_string(level) + ">\n";
 }
 
 void HtmlReport::Paragraph(const std::string& text) {

@@ -26,7 +26,13 @@
 
 namespace slipgraph {
 
-enum ModelEffect { kQuadraticDrag = 0, kTurnSlip, kSlopeSlip, kWheelRadiusError, kModelEffectCount };
+enum ModelEffect {
+  kQuadraticDrag = 0,
+  kTurnSlip,
+  kSlopeSlip,
+  kWheelRadiusError,
+  kModelEffectCount
+};
 
 inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
   static const std::array<const char*, kModelEffectCount> kNames = {

@@ -52,9 +52,8 @@ Marginalization Marginalize(const ceres::Problem& problem, const std::vector<dou
       jacobians.emplace_back(rows, problem.ParameterBlockSize(p));
     }
     for (size_t i = 0; i < parameters.size(); ++i) {
-      jacobian_ptrs.push_back(problem.IsParameterBlockConstant(parameters[i])
-                                  ? nullptr
-                                  : jacobians[i].data());
+      jacobian_ptrs.push_back(
+          problem.IsParameterBlockConstant(parameters[i]) ? nullptr : jacobians[i].data());
     }
     Eigen::VectorXd residual(rows);
     double cost = 0.0;
@@ -91,8 +90,8 @@ Marginalization Marginalize(const ceres::Problem& problem, const std::vector<dou
   for (int i = 0; i < m; ++i) {
     if (s[i] > floor && s[i] > 0.0) s_inv[i] = 1.0 / s[i];
   }
-  const Eigen::MatrixXd Hmm_inv = eigen.eigenvectors() * s_inv.asDiagonal() *
-                                  eigen.eigenvectors().transpose();
+  const Eigen::MatrixXd Hmm_inv =
+      eigen.eigenvectors() * s_inv.asDiagonal() * eigen.eigenvectors().transpose();
   const Eigen::MatrixXd Hkm = H.bottomLeftCorner(k, m);
   const Eigen::MatrixXd H_prior = H.bottomRightCorner(k, k) - Hkm * Hmm_inv * Hkm.transpose();
   const Eigen::VectorXd b_prior = b.tail(k) - Hkm * Hmm_inv * b.head(m);

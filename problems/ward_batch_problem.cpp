@@ -56,11 +56,10 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
       problem.SetManifold(effects, new ceres::SubsetManifold(kModelEffectCount, inactive));
     }
     // A weak prior: each magnitude's scale, several times what the catalogue calls typical.
-    added.push_back({"effect_prior",
-                     problem.AddResidualBlock(
-                         DiagonalPrior<kModelEffectCount>::Create({0.0, 0.0, 0.0, 0.0},
-                                                                  kModelEffectPriorSd),
-                         nullptr, effects)});
+    added.push_back(
+        {"effect_prior", problem.AddResidualBlock(DiagonalPrior<kModelEffectCount>::Create(
+                                                      {0.0, 0.0, 0.0, 0.0}, kModelEffectPriorSd),
+                                                  nullptr, effects)});
   }
   source.AddStatePrior(0, out->states[0].data(), &problem, &added);
   source.AddOffsetPrior(out->offsets, out->offsets.data(), &problem, &added);

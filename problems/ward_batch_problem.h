@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "io/drive_log.h"
 #include "factors/model_effects.h"
+#include "io/drive_log.h"
 #include "model/model_config.h"
 #include "problems/ward_factor_source.h"
 #include "solvers/ekf_runner.h"
@@ -22,14 +22,14 @@
 namespace slipgraph {
 
 struct WardProblem {
-  std::vector<double> times;                        // state times: the wheel samples
-  std::vector<std::array<double, 7>> states;        // parameter blocks, one per time
-  std::array<double, 2> offsets{};                  // [c_ax, c_gz]
+  std::vector<double> times;                  // state times: the wheel samples
+  std::vector<std::array<double, 7>> states;  // parameter blocks, one per time
+  std::array<double, 2> offsets{};            // [c_ax, c_gz]
   // Magnitudes of the model effects (factors/model_effects.h); a parameter block only when the
   // model switches one on (`active`), the others held at 0.
   std::array<double, kModelEffectCount> effects{};
   std::vector<int> active_effects;
-  std::vector<std::string> ignored_effects;  // named in the model, no model term yet
+  std::vector<std::string> ignored_effects;         // named in the model, no model term yet
   std::vector<std::array<double, 2>> wheel_speeds;  // measured driven-side speeds per state
   std::unique_ptr<ceres::Problem> problem;
   // Residual blocks by factor kind ("dynamics", "accelerometer", ...), for cost breakdowns.

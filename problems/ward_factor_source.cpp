@@ -146,9 +146,9 @@ void WardFactorSource::AddStatePrior(size_t k, double* x, ceres::Problem* proble
     mean[i] = ekf_.estimates[k].x[i];
     sd[i] = std::max(ekf_.estimates[k].sd[i], 1e-6);
   }
-  added->push_back({"first_state_prior", problem->AddResidualBlock(
-                                             DiagonalPrior<kStateSize>::Create(mean, sd), nullptr,
-                                             x)});
+  added->push_back(
+      {"first_state_prior",
+       problem->AddResidualBlock(DiagonalPrior<kStateSize>::Create(mean, sd), nullptr, x)});
 }
 
 void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double* offsets,
@@ -156,12 +156,11 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
                                       std::vector<AddedFactor>* added) const {
   const SensorNoise& noise = model_.measurement;
   const ProcessNoiseConfig& q = model_.process;
-  added->push_back(
-      {"offset_prior", problem->AddResidualBlock(
-                           DiagonalPrior<2>::Create(
-                               mean, {noise.imu_sd_accel_mps2 + q.accel_bias_sd_mps2,
-                                      noise.imu_sd_gyro_radps + q.gyro_bias_sd_radps}),
-                           nullptr, offsets)});
+  added->push_back({"offset_prior", problem->AddResidualBlock(
+                                        DiagonalPrior<2>::Create(
+                                            mean, {noise.imu_sd_accel_mps2 + q.accel_bias_sd_mps2,
+                                                   noise.imu_sd_gyro_radps + q.gyro_bias_sd_radps}),
+                                        nullptr, offsets)});
 }
 
 void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* offsets,
@@ -188,17 +187,17 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     const Context c = ContextAt(imu.t);
     double sd_a = noise.imu_sd_accel_mps2;
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
-      sd_a = std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(), c.attitude,
-                                                           params, tire_uncertainty_, imu_period_s_));
+      sd_a =
+          std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(), c.attitude,
+                                                        params, tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {
       if (effects != nullptr) {
-        Add("accelerometer",
-            EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr, x,
-            offsets, effects);
+        Add("accelerometer", EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
+            nullptr, x, offsets, effects);
       } else {
-        Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
-            nullptr, x, offsets);
+        Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,
+            x, offsets);
       }
       ++counts->accelerometer;
     }
@@ -225,14 +224,14 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
   }
 
   // Weak constraints as soft priors, their densities scaled by the state's cycle time.
-  const double dt_cycle = k + 1 < n ? times_[k + 1] - times_[k]
-                                    : (k > 0 ? times_[k] - times_[k - 1] : 0.01);
+  const double dt_cycle =
+      k + 1 < n ? times_[k + 1] - times_[k] : (k > 0 ? times_[k] - times_[k - 1] : 0.01);
   const double root_dt = std::sqrt(std::max(dt_cycle, 1e-6));
   const double still = options_.wheel_still_radps;
   const double vel_dir = DriveDirection(w[0], w[1], still);
   if (vel_dir != 0.0) {
-    Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, wc.sd_oppose_motion / root_dt),
-        nullptr, x);
+    Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, wc.sd_oppose_motion / root_dt), nullptr,
+        x);
     ++counts->oppose_motion;
   }
   if (stopped_since_[k] >= 0.0 && times_[k] - stopped_since_[k] >= wc.stop_time_s) {

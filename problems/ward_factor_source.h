@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "io/drive_log.h"
 #include "factors/ward_state.h"
+#include "io/drive_log.h"
 #include "model/model_config.h"
 #include "solvers/ekf_runner.h"
 

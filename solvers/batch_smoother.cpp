@@ -62,8 +62,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   }
   result.final_cost = result.summary.final_cost;
   for (int index : problem->active_effects) {
-    result.effects.push_back(
-        {ModelEffectNames()[index], problem->effects[index], std::nan("")});
+    result.effects.push_back({ModelEffectNames()[index], problem->effects[index], std::nan("")});
   }
   const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
@@ -95,7 +94,8 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
                              "): EKF sd reported");
     }
   }
-  DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s, &result.estimates);
+  DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
+                                       &result.estimates);
   result.notes.insert(result.notes.begin(), problem->counts.Describe());
   return result;
 }

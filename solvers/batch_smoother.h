@@ -35,8 +35,8 @@ struct EffectEstimate {
 };
 
 struct SmootherResult {
-  std::vector<EkfEstimate> estimates;  // same layout as the EKF's, one per wheel sample
-  FilterResult ekf;                    // the initialising filter run
+  std::vector<EkfEstimate> estimates;   // same layout as the EKF's, one per wheel sample
+  FilterResult ekf;                     // the initialising filter run
   std::vector<EffectEstimate> effects;  // the model's effects that have a model term
   double final_cost = 0.0;              // the solution's cost (for likelihood-ratio tests)
   ceres::Solver::Summary summary;

@@ -27,9 +27,9 @@ namespace slipgraph {
 
 struct ChainCovariance {
   bool ok = false;
-  std::string error;                     // why not (not a chain, not positive definite)
-  std::vector<Eigen::MatrixXd> states;   // cov(x_k), one per state
-  Eigen::MatrixXd globals;               // cov of the global parameters, stacked (tangent space)
+  std::string error;                    // why not (not a chain, not positive definite)
+  std::vector<Eigen::MatrixXd> states;  // cov(x_k), one per state
+  Eigen::MatrixXd globals;              // cov of the global parameters, stacked (tangent space)
 };
 
 // `states` in chain order; `globals` may be empty. All blocks must be in `problem`, not constant.

@@ -59,9 +59,8 @@ std::vector<IpdSegment> BuildIpdSegments(const DriveLog& log, const IpdOptions& 
     if (p0.t < last_start + options.spacing_s - 1e-9) continue;
     // The end: the pose sample nearest t0 + segment_s.
     size_t j = std::max(i + 1, next_start);
-    while (j + 1 < log.pose.size() &&
-           std::abs(log.pose[j + 1].t - (p0.t + options.segment_s)) <
-               std::abs(log.pose[j].t - (p0.t + options.segment_s))) {
+    while (j + 1 < log.pose.size() && std::abs(log.pose[j + 1].t - (p0.t + options.segment_s)) <
+                                          std::abs(log.pose[j].t - (p0.t + options.segment_s))) {
       ++j;
     }
     next_start = j;
@@ -73,8 +72,8 @@ std::vector<IpdSegment> BuildIpdSegments(const DriveLog& log, const IpdOptions& 
     seg.t_end = p1.t;
     seg.measured = ipd::RelativePose(p0.x, p0.y, p0.yaw, p1.x, p1.y, p1.yaw);
     const auto sigma = [&](const PoseSample& p) {
-      const double sxy = std::max(PoseSd(p.sd_x, options.min_pose_sd_m),
-                                  PoseSd(p.sd_y, options.min_pose_sd_m));
+      const double sxy =
+          std::max(PoseSd(p.sd_x, options.min_pose_sd_m), PoseSd(p.sd_y, options.min_pose_sd_m));
       const double syaw = PoseSd(p.sd_yaw, 1e-4);
       return Eigen::Vector3d(sxy * sxy, sxy * sxy, syaw * syaw).asDiagonal().toDenseMatrix();
     };
@@ -121,12 +120,11 @@ PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alph
   // The covariance in (along, cross, heading) axes.
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
-  e.predicted_covariance =
-      rotation *
-      ipd::PredictionCovariance(segment.steps, alpha, options.gravity_mps2, segment.sigma_start,
-                                segment.sigma_end)
-          .Total(q) *
-      rotation.transpose();
+  e.predicted_covariance = rotation *
+                           ipd::PredictionCovariance(segment.steps, alpha, options.gravity_mps2,
+                                                     segment.sigma_start, segment.sigma_end)
+                               .Total(q) *
+                           rotation.transpose();
   return e;
 }
 
@@ -195,8 +193,8 @@ void StochasticCalibrator::Update(const Eigen::Vector3d& residual,
                                   const Eigen::Matrix3d& parameter_covariance, double elapsed_s) {
   P_ += Eigen::Matrix3d::Identity() * options_.q_walk_sd * options_.q_walk_sd * elapsed_s;
   // Observation: the scatter matrix less what the poses and alpha's uncertainty explain.
-  const Eigen::Matrix<double, 6, 1> z = Unique(residual * residual.transpose()) -
-                                        Unique(terms.measurement + parameter_covariance);
+  const Eigen::Matrix<double, 6, 1> z =
+      Unique(residual * residual.transpose()) - Unique(terms.measurement + parameter_covariance);
   Eigen::Matrix<double, 6, 3> J;  // eq. (21)
   for (int i = 0; i < 3; ++i) J.col(i) = Unique(terms.input[i]);
   const Eigen::Matrix<double, 6, 6> Rz =
@@ -251,8 +249,9 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
       ++rejected;
       return;
     }
-    const Eigen::Matrix<double, kAlphaSize, 3> K = P * H.transpose() * S_ldlt.solve(Eigen::Matrix3d::Identity());
-    alpha += K * residual;                                                      // (33)
+    const Eigen::Matrix<double, kAlphaSize, 3> K =
+        P * H.transpose() * S_ldlt.solve(Eigen::Matrix3d::Identity());
+    alpha += K * residual;  // (33)
     const AlphaMatrix I_KH = AlphaMatrix::Identity() - K * H;
     P = I_KH * P * I_KH.transpose() + K * R * K.transpose();  // (34), Joseph form
 

@@ -30,13 +30,13 @@ struct IpdOptions {
   double segment_s = 2.0;  // path segment length (prediction horizon)
   double spacing_s = 0.5;  // a new segment starts this often (segments overlap)
   double gravity_mps2 = 9.80665;
-  double alpha_prior_sd = 0.5;       // initial sd of each alpha (alpha starts at 0, as the paper)
-  double alpha_walk_sd = 0.005;      // random walk of each alpha per sqrt(s): terrain changes
+  double alpha_prior_sd = 0.5;   // initial sd of each alpha (alpha starts at 0, as the paper)
+  double alpha_walk_sd = 0.005;  // random walk of each alpha per sqrt(s): terrain changes
   Eigen::Vector3d q_initial{1e-3, 1e-3, 1e-3};  // initial Q diagonal ((m/s)^2 s, ..., (rad/s)^2 s)
-  double q_prior_sd = 1e-3;          // initial sd of each q
-  double q_walk_sd = 1e-5;           // random walk of each q per sqrt(s)
+  double q_prior_sd = 1e-3;                     // initial sd of each q
+  double q_walk_sd = 1e-5;                      // random walk of each q per sqrt(s)
   bool calibrate_q = true;
-  double min_pose_sd_m = 0.005;      // floor for the measured poses' stated sd
+  double min_pose_sd_m = 0.005;  // floor for the measured poses' stated sd
 };
 
 // One path segment: odometry steps between two pose measurements, and their relative pose.
@@ -67,9 +67,9 @@ Eigen::Matrix<double, 3, ipd::kAlphaSize> PredictionJacobian(const IpdSegment& s
                                                              const IpdOptions& options);
 // H P H' of a segment's prediction in its (along, cross, heading) axes: what the uncertainty of
 // alpha adds to the predicted covariance.
-Eigen::Matrix3d ParameterCovariance(const IpdSegment& segment, const double* alpha,
-                                    const Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>& P,
-                                    const IpdOptions& options);
+Eigen::Matrix3d ParameterCovariance(
+    const IpdSegment& segment, const double* alpha,
+    const Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>& P, const IpdOptions& options);
 
 struct PredictionStats {
   size_t segments = 0;

@@ -89,8 +89,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
   int first_block = 0;       // block index of blocks.front()
   Alpha latest{};            // the newest solved alpha (predictions use it)
   Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize> latest_covariance =
-      Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>::Identity() *
-      options.alpha_prior_sd * options.alpha_prior_sd;
+      Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>::Identity() * options.alpha_prior_sd *
+      options.alpha_prior_sd;
   const Alpha zero{};
   const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
 
@@ -113,8 +113,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       double* alpha = blocks.back().data();
       problem.AddParameterBlock(alpha, ipd::kAlphaSize);
       if (blocks.size() == 1 && first_block == 0) {
-        problem.AddResidualBlock(
-            DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)), nullptr, alpha);
+        problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
+                                 nullptr, alpha);
       } else if (blocks.size() > 1) {
         problem.AddResidualBlock(
             new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
@@ -137,8 +137,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
         stochastic.Update(fit.residual, fit.terms, H * latest_covariance * H.transpose(),
                           options.spacing_s);
       }
-      problem.AddResidualBlock(SegmentFactor(seg, blocks[index], options, stochastic.q()),
-                               nullptr, blocks[index].data());
+      problem.AddResidualBlock(SegmentFactor(seg, blocks[index], options, stochastic.q()), nullptr,
+                               blocks[index].data());
       added = true;
     }
     if (!added) continue;
@@ -203,9 +203,8 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   std::vector<Alpha> blocks(n_blocks, Alpha{});
   ceres::Problem problem;
   const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
-  problem.AddResidualBlock(
-      DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)), nullptr,
-      blocks[0].data());
+  problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
+                           nullptr, blocks[0].data());
   for (int j = 1; j < n_blocks; ++j) {
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
@@ -213,7 +212,8 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
         nullptr, blocks[j - 1].data(), blocks[j].data());
   }
   for (const IpdSegment& seg : segments) {
-    const int b = std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
+    const int b =
+        std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
     problem.AddResidualBlock(SegmentFactor(seg, Alpha{}, options, ekf.final_q), nullptr,
                              blocks[b].data());
   }
@@ -226,7 +226,8 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   }
   const Alpha zero{};
   for (const IpdSegment& seg : segments) {
-    const int b = std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
+    const int b =
+        std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
     result.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, ekf.final_q));
     result.calibrated.push_back(EvaluatePrediction(seg, blocks[b].data(), options, ekf.final_q));
   }
@@ -237,8 +238,9 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   }
   result.final_alpha = blocks.back();
   result.final_q = ekf.final_q;
-  result.notes.push_back("batch: each segment predicted with the alpha of its own block "
-                         "(post-processing, not causal)");
+  result.notes.push_back(
+      "batch: each segment predicted with the alpha of its own block "
+      "(post-processing, not causal)");
   return result;
 }
 

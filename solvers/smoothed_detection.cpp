@@ -6,8 +6,9 @@ namespace slipgraph {
 
 using namespace ward;  // NOLINT: state indices
 
-void DetectImmobilizationOnSmoothedStates(const ModelConfig& model, const Vehicle& vehicle, double min_duration_s,
-                          std::vector<EkfEstimate>* estimates) {
+void DetectImmobilizationOnSmoothedStates(const ModelConfig& model, const Vehicle& vehicle,
+                                          double min_duration_s,
+                                          std::vector<EkfEstimate>* estimates) {
   std::vector<bool> raw(estimates->size(), false);
   for (size_t k = 0; k < estimates->size(); ++k) {
     EkfEstimate& e = (*estimates)[k];

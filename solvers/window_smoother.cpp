@@ -70,8 +70,8 @@ class Window {
       states_ = before;  // same addresses: the deque's elements are assigned in place
       offsets_ = offsets_before;
       ++result_->failed_updates;
-      Note("window ending at t=" + std::to_string(NewestTime()) + " s failed (" +
-           summary.message + "): its leaving states are the EKF's");
+      Note("window ending at t=" + std::to_string(NewestTime()) + " s failed (" + summary.message +
+           "): its leaving states are the EKF's");
     } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
       ++result_->unconverged_updates;
     }

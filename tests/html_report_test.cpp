@@ -56,7 +56,7 @@ TEST(RenderSvg, ReducesLongSeriesButKeepsTheirExtremes) {
     s.y.push_back(i == 123456 ? 50.0 : std::sin(i * 0.001));
   }
   const std::string svg = RenderSvg(Plot{"long", "-", {s}, {}});
-  EXPECT_LT(svg.size(), 200000u);  // a few points per pixel column, not 200 k
+  EXPECT_LT(svg.size(), 200000u);                  // a few points per pixel column, not 200 k
   EXPECT_NE(svg.find(">40<"), std::string::npos);  // the spike sets the axis
   // and is drawn: the line reaches the top of the plot (y pixel near the top margin).
   const size_t path = svg.find("<path d=\"");

@@ -2,12 +2,12 @@
 // slip model on one terrain, and on ipd35 it beats the no-slip model by the paper's margins
 // (the full figures are in docs/ipd.md).
 #include "solvers/ipd_calibration.h"
-#include "solvers/ipd_graph_calibration.h"
 
 #include <gtest/gtest.h>
 
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "solvers/ipd_graph_calibration.h"
 
 namespace slipgraph {
 namespace {
@@ -17,7 +17,8 @@ DriveLog SimulateIpd(double minutes, const std::string& terrain) {
   if (!terrain.empty()) sc.course.patches = {{0.0, sim::FindTerrain(terrain)}};
   double total = sc.rest_start_s;
   size_t keep = 0;
-  while (keep < sc.commands.size() && total < minutes * 60.0) total += sc.commands[keep++].duration_s;
+  while (keep < sc.commands.size() && total < minutes * 60.0)
+    total += sc.commands[keep++].duration_s;
   sc.commands.resize(keep);
   DriveLog log = sim::Simulate(sc, 7).log;
   log.directory = "ipd";
@@ -52,7 +53,7 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   // Measured (docs/ipd.md): 0.295 -> 0.083 m, heading 0.311 -> 0.056 rad, sd along 0.112 ->
   // 0.061, cross 0.263 -> 0.088 m; predicted / sample variance 1.09, 1.06, 0.54.
   EXPECT_LT(calibrated.mean_position_error_m, 0.32 * no_slip.mean_position_error_m);  // 68 %
-  EXPECT_LT(calibrated.sd_cross_m, 0.4 * no_slip.sd_cross_m);                        // 60 %
+  EXPECT_LT(calibrated.sd_cross_m, 0.4 * no_slip.sd_cross_m);                         // 60 %
   EXPECT_LT(calibrated.mean_heading_error_rad, 0.2 * no_slip.mean_heading_error_rad);
   EXPECT_LT(calibrated.sd_along_m, 0.6 * no_slip.sd_along_m);  // the paper's 60 % is not reached
   for (int i = 0; i < 2; ++i) {

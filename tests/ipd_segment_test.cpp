@@ -68,7 +68,8 @@ TEST(IpdSegment, AlphaJacobianMatchesCentralDifferences) {
     ipd::PredictSegment(steps, plus.data(), 9.81, p);
     ipd::PredictSegment(steps, minus.data(), 9.81, m);
     for (int r = 0; r < 3; ++r) {
-      EXPECT_NEAR(pose_jet[r].v[i], (p[r] - m[r]) / (2.0 * h), 1e-6) << "row " << r << " alpha " << i;
+      EXPECT_NEAR(pose_jet[r].v[i], (p[r] - m[r]) / (2.0 * h), 1e-6)
+          << "row " << r << " alpha " << i;
     }
   }
 }

@@ -123,10 +123,12 @@ TEST(ChunkedSmoother, MatchesTheWholeLogSolution) {
   double worst_v = 0.0, worst_a = 0.0, worst_sd = 0.0, worst_sd_t = 0.0, sq_v = 0.0;
   for (size_t k = 0; k < batch.estimates.size(); ++k) {
     sq_v += std::pow(chunked.estimates[k].x[kVbx] - batch.estimates[k].x[kVbx], 2);
-    worst_v = std::max(worst_v, std::abs(chunked.estimates[k].x[kVbx] - batch.estimates[k].x[kVbx]));
+    worst_v =
+        std::max(worst_v, std::abs(chunked.estimates[k].x[kVbx] - batch.estimates[k].x[kVbx]));
     worst_a =
         std::max(worst_a, std::abs(chunked.estimates[k].x[kAdist] - batch.estimates[k].x[kAdist]));
-    const double sd_gap = std::abs(chunked.estimates[k].sd[kVbx] / batch.estimates[k].sd[kVbx] - 1.0);
+    const double sd_gap =
+        std::abs(chunked.estimates[k].sd[kVbx] / batch.estimates[k].sd[kVbx] - 1.0);
     if (sd_gap > worst_sd) {
       worst_sd = sd_gap;
       worst_sd_t = batch.estimates[k].t;
