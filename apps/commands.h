@@ -18,5 +18,6 @@ void RegisterSmoothCommand(CLI::App* app, int* status);
 void RegisterOnlineCommand(CLI::App* app, int* status);
 void RegisterCompareCommand(CLI::App* app, int* status);
 void RegisterCalibrateCommand(CLI::App* app, int* status);
+void RegisterSinkageCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterOnlineCommand(&app, &status);
   slipgraph::RegisterCompareCommand(&app, &status);
   slipgraph::RegisterCalibrateCommand(&app, &status);
+  slipgraph::RegisterSinkageCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,97 @@
+// `slipgraph sinkage`: Wilcox's slippage and sinkage estimate for a 6-wheel articulated rover
+// (the paper's histogram MAP algorithm, per side), with the left/right consistency check and,
+// when the log has truth, the odometry error and sinkage RMSE.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.h"
+#include "io/csv_writer.h"
+#include "io/log_reader.h"
+#include "solvers/wilcox_baseline.h"
+
+namespace slipgraph {
+
+void RegisterSinkageCommand(CLI::App* app, int* status) {
+  struct Options {
+    std::string log, out;
+    bool json = false, skip_bad = false;
+    WilcoxOptions wilcox;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app->add_subcommand(
+      "sinkage", "Slippage and sinkage of an articulated rover from wheel-profile matching (Wilcox)");
+  cmd->add_option("LOG", options->log, "rocker_bogie6 log with articulation.csv and range.csv")
+      ->required();
+  cmd->add_option("--out", options->out,
+                  "Directory for cycles.csv (default ./<log>_sinkage)");
+  cmd->add_option("--prior", options->wilcox.prior_fraction,
+                  "sd of the advance prior, as a fraction of the rim motion")
+      ->capture_default_str();
+  cmd->add_option("--bin", options->wilcox.bin_m, "Histogram bin, m")->capture_default_str();
+  cmd->add_flag("--json", options->json, "Print one JSON object");
+  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->callback([options, status]() {
+    namespace fs = std::filesystem;
+    ReadOptions read_options;
+    read_options.skip_bad = options->skip_bad;
+    const DriveLog log = ReadDriveLog(options->log, read_options);
+    for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+    const WilcoxResult result = EstimateWilcoxBaseline(log, options->wilcox);
+    const std::string out = options->out.empty()
+                                ? fs::path(options->log).filename().string() + "_sinkage"
+                                : options->out;
+    fs::create_directories(out);
+    {
+      CsvWriter csv((fs::path(out) / "cycles.csv").string(),
+                    {"t", "side", "rim_m", "advance_m", "slip", "sinkage_front_m"});
+      for (const WilcoxSide& side : result.sides) {
+        for (const WilcoxCycle& c : side.cycles) {
+          csv << c.t << side.side << c.rim_m << c.advance_m
+              << (c.rim_m > 0.0 ? 1.0 - c.advance_m / c.rim_m : 0.0) << c.sinkage_front_m;
+          csv.EndRow();
+        }
+      }
+    }
+    const bool truth = !log.truth.empty();
+    const WilcoxScore score = ScoreWilcox(log, result);
+    nlohmann::json j;
+    j["sides_agree"] = result.sides_agree;
+    j["agreement"] = result.agreement;
+    for (const WilcoxSide& side : result.sides) {
+      j["sides"][side.side] = {
+          {"total_advance_m", side.total_advance_m},
+          {"total_rim_m", side.total_rim_m},
+          {"slip", side.total_rim_m > 0.0 ? 1.0 - side.total_advance_m / side.total_rim_m : 0.0},
+          {"mean_sinkage_m", side.mean_sinkage_m}};
+    }
+    if (truth) {
+      j["odometry_error_fraction"] = score.odometry_error_fraction;
+      j["rim_odometry_error_fraction"] = score.rim_odometry_error_fraction;
+      j["sinkage_rmse_m"] = score.sinkage_rmse_m;
+    }
+    if (options->json) {
+      std::cout << j.dump(2) << "\n";
+    } else {
+      for (const WilcoxSide& side : result.sides) {
+        std::printf("%s: advance %.4f m over rim %.4f m (slip %.1f %%), mean front sinkage %.1f mm\n",
+                    side.side.c_str(), side.total_advance_m, side.total_rim_m,
+                    side.total_rim_m > 0.0 ? 100.0 * (1.0 - side.total_advance_m / side.total_rim_m)
+                                           : 0.0,
+                    1000.0 * side.mean_sinkage_m);
+      }
+      std::printf("left/right: %s\n", result.agreement.c_str());
+      if (truth) {
+        std::printf("against truth: odometry error %.2f %% (rim motion alone %.1f %%), front "
+                    "sinkage RMSE %.2f mm\n",
+                    100.0 * score.odometry_error_fraction,
+                    100.0 * score.rim_odometry_error_fraction, 1000.0 * score.sinkage_rmse_m);
+      }
+      std::printf("per cycle: %s\n", (fs::path(out) / "cycles.csv").string().c_str());
+    }
+    *status = 0;
+  });
+}
+
+}  // namespace slipgraph
