@@ -10,12 +10,13 @@
 #include "io/csv_writer.h"
 #include "io/log_reader.h"
 #include "solvers/wilcox_baseline.h"
+#include "solvers/wilcox_graph.h"
 
 namespace slipgraph {
 
 void RegisterSinkageCommand(CLI::App* app, int* status) {
   struct Options {
-    std::string log, out;
+    std::string log, out, method = "baseline";
     bool json = false, skip_bad = false;
     WilcoxOptions wilcox;
   };
@@ -26,6 +27,11 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
       ->required();
   cmd->add_option("--out", options->out,
                   "Directory for cycles.csv (default ./<log>_sinkage)");
+  cmd->add_option("--method", options->method,
+                  "baseline: the paper's histogram MAP; graph: the factor graph built cycle by "
+                  "cycle on Ceres (slower, more accurate)")
+      ->check(CLI::IsMember({"baseline", "graph"}))
+      ->capture_default_str();
   cmd->add_option("--prior", options->wilcox.prior_fraction,
                   "sd of the advance prior, as a fraction of the rim motion")
       ->capture_default_str();
@@ -38,7 +44,10 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
     read_options.skip_bad = options->skip_bad;
     const DriveLog log = ReadDriveLog(options->log, read_options);
     for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
-    const WilcoxResult result = EstimateWilcoxBaseline(log, options->wilcox);
+    const WilcoxResult result = options->method == "graph"
+                                    ? EstimateWilcoxGraph(log, options->wilcox)
+                                    : EstimateWilcoxBaseline(log, options->wilcox);
+    for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
     const std::string out = options->out.empty()
                                 ? fs::path(options->log).filename().string() + "_sinkage"
                                 : options->out;
@@ -57,6 +66,7 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
     const bool truth = !log.truth.empty();
     const WilcoxScore score = ScoreWilcox(log, result);
     nlohmann::json j;
+    j["method"] = options->method;
     j["sides_agree"] = result.sides_agree;
     j["agreement"] = result.agreement;
     for (const WilcoxSide& side : result.sides) {

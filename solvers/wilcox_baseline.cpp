@@ -63,18 +63,14 @@ struct Histogram {
   }
 };
 
-struct Scan {
-  double t = 0.0;
-  double dz_mid = 0.0, dz_front = 0.0;
-  std::vector<std::pair<double, double>> range;  // (d, dz), sorted by d
-};
-
 // Articulation and range samples of one side, grouped by cycle time.
-std::vector<Scan> Scans(const DriveLog& log, Side side) {
-  std::map<double, Scan> by_time;
+}  // namespace
+
+std::vector<WilcoxScan> WilcoxScans(const DriveLog& log, Side side) {
+  std::map<double, WilcoxScan> by_time;
   for (const ArticulationSample& a : log.articulation) {
     if (a.side != side) continue;
-    Scan& s = by_time[a.t];
+    WilcoxScan& s = by_time[a.t];
     s.t = a.t;
     s.dz_mid = a.dz_mid;
     s.dz_front = a.dz_front;
@@ -85,7 +81,7 @@ std::vector<Scan> Scans(const DriveLog& log, Side side) {
     if (it == by_time.end()) continue;  // ranging without articulation at that time
     it->second.range.emplace_back(r.d, r.dz);
   }
-  std::vector<Scan> out;
+  std::vector<WilcoxScan> out;
   for (auto& [t, s] : by_time) {
     std::sort(s.range.begin(), s.range.end());
     if (s.range.size() >= 2 && std::isfinite(s.dz_mid) && std::isfinite(s.dz_front)) {
@@ -95,8 +91,7 @@ std::vector<Scan> Scans(const DriveLog& log, Side side) {
   return out;
 }
 
-// Rim motion of one side's wheels between t0 and t1 (trapezoid over the wheel samples).
-double RimMotion(const DriveLog& log, Side side, double t0, double t1) {
+double WilcoxRimMotion(const DriveLog& log, Side side, double t0, double t1) {
   const int first = side == Side::kLeft ? 0 : 3;
   const double r = log.vehicle.wheel_radius_m;
   double sum = 0.0;
@@ -114,10 +109,12 @@ double RimMotion(const DriveLog& log, Side side, double t0, double t1) {
   return sum;
 }
 
+namespace {
+
 WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) {
   WilcoxSide out;
   out.side = SideName(side);
-  const std::vector<Scan> scans = Scans(log, side);
+  const std::vector<WilcoxScan> scans = WilcoxScans(log, side);
   if (scans.empty()) return out;
   const double A = log.vehicle.axle_spacing_m;
   const double far = scans.front().range.back().first;
@@ -127,7 +124,7 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   y.known.assign(y.v.size(), 0);
   // Start: negligible sinkage (the paper's known start), wheels and ranged points joined by lines.
   {
-    const Scan& first = scans.front();
+    const WilcoxScan& first = scans.front();
     std::vector<std::pair<double, double>> knots = {{0.0, 0.0}, {A, first.dz_mid},
                                                     {2.0 * A, first.dz_front}};
     knots.insert(knots.end(), first.range.begin(), first.range.end());
@@ -151,10 +148,10 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   const double sd_r2 = o.range_sd_m * o.range_sd_m + sd_h2;
   const double sd_a2 = o.articulation_sd_m * o.articulation_sd_m + sd_h2;
   for (size_t c = 1; c < scans.size(); ++c) {
-    const Scan& z = scans[c];
+    const WilcoxScan& z = scans[c];
     WilcoxCycle cycle;
     cycle.t = z.t;
-    cycle.rim_m = RimMotion(log, side, scans[c - 1].t, z.t);
+    cycle.rim_m = WilcoxRimMotion(log, side, scans[c - 1].t, z.t);
     const double mean = cycle.rim_m * (1.0 - o.prior_slip);
     const double sd_x = std::max(1e-5, o.prior_fraction * std::abs(cycle.rim_m));
     // MAP over whole bins of advance: the ranged points except the farthest, and the middle
@@ -238,23 +235,13 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
 
 }  // namespace
 
-WilcoxResult EstimateWilcoxBaseline(const DriveLog& log, const WilcoxOptions& options) {
-  if (log.articulation.empty() || log.range.empty()) {
-    throw std::invalid_argument(log.directory +
-                                ": sinkage needs articulation.csv and range.csv (a rocker_bogie6 "
-                                "log)");
-  }
-  if (!(log.vehicle.axle_spacing_m > 0.0)) {
-    throw std::invalid_argument(log.directory + ": vehicle.yaml has no axle_spacing");
-  }
-  WilcoxResult result;
-  for (Side side : {Side::kLeft, Side::kRight}) {
-    result.sides.push_back(EstimateSide(log, side, options));
-  }
-  if (result.sides[0].cycles.empty() || result.sides[1].cycles.empty()) {
+void CheckWilcoxSides(const DriveLog& log, const WilcoxOptions& options, WilcoxResult* out) {
+  WilcoxResult& result = *out;
+  if (result.sides.size() < 2 || result.sides[0].cycles.empty() ||
+      result.sides[1].cycles.empty()) {
     result.sides_agree = false;
     result.agreement = "one side has no usable cycles";
-    return result;
+    return;
   }
   const WilcoxSide& l = result.sides[0];
   const WilcoxSide& r = result.sides[1];
@@ -288,6 +275,22 @@ WilcoxResult EstimateWilcoxBaseline(const DriveLog& log, const WilcoxOptions& op
                               : "the sides disagree: the same-ruts, same-sinkage assumption "
                                 "is probably violated");
   result.agreement = text.str();
+}
+
+WilcoxResult EstimateWilcoxBaseline(const DriveLog& log, const WilcoxOptions& options) {
+  if (log.articulation.empty() || log.range.empty()) {
+    throw std::invalid_argument(log.directory +
+                                ": sinkage needs articulation.csv and range.csv (a rocker_bogie6 "
+                                "log)");
+  }
+  if (!(log.vehicle.axle_spacing_m > 0.0)) {
+    throw std::invalid_argument(log.directory + ": vehicle.yaml has no axle_spacing");
+  }
+  WilcoxResult result;
+  for (Side side : {Side::kLeft, Side::kRight}) {
+    result.sides.push_back(EstimateSide(log, side, options));
+  }
+  CheckWilcoxSides(log, options, &result);
   return result;
 }
 

@@ -71,6 +71,19 @@ struct WilcoxResult {
   std::vector<std::string> notes;
 };
 
+// One side's measurements of one cycle: middle and front wheel elevations relative to the rear
+// (articulation) and the ranged points (d, dz), sorted by d.
+struct WilcoxScan {
+  double t = 0.0;
+  double dz_mid = 0.0, dz_front = 0.0;
+  std::vector<std::pair<double, double>> range;
+};
+std::vector<WilcoxScan> WilcoxScans(const DriveLog& log, Side side);
+// Rim motion of one side's wheels between t0 and t1 (odometry).
+double WilcoxRimMotion(const DriveLog& log, Side side, double t0, double t1);
+// The left/right check on a result's two sides (sets sides_agree and agreement).
+void CheckWilcoxSides(const DriveLog& log, const WilcoxOptions& options, WilcoxResult* result);
+
 // Throws std::invalid_argument naming the log when it lacks articulation or range data.
 WilcoxResult EstimateWilcoxBaseline(const DriveLog& log, const WilcoxOptions& options = {});
 
