@@ -22,11 +22,11 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
-      "sinkage", "Slippage and sinkage of an articulated rover from wheel-profile matching (Wilcox)");
+      "sinkage",
+      "Slippage and sinkage of an articulated rover from wheel-profile matching (Wilcox)");
   cmd->add_option("LOG", options->log, "rocker_bogie6 log with articulation.csv and range.csv")
       ->required();
-  cmd->add_option("--out", options->out,
-                  "Directory for cycles.csv (default ./<log>_sinkage)");
+  cmd->add_option("--out", options->out, "Directory for cycles.csv (default ./<log>_sinkage)");
   cmd->add_option("--method", options->method,
                   "baseline: the paper's histogram MAP; graph: the factor graph built cycle by "
                   "cycle on Ceres (slower, more accurate)")
@@ -85,18 +85,19 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
       std::cout << j.dump(2) << "\n";
     } else {
       for (const WilcoxSide& side : result.sides) {
-        std::printf("%s: advance %.4f m over rim %.4f m (slip %.1f %%), mean front sinkage %.1f mm\n",
-                    side.side.c_str(), side.total_advance_m, side.total_rim_m,
-                    side.total_rim_m > 0.0 ? 100.0 * (1.0 - side.total_advance_m / side.total_rim_m)
-                                           : 0.0,
-                    1000.0 * side.mean_sinkage_m);
+        std::printf(
+            "%s: advance %.4f m over rim %.4f m (slip %.1f %%), mean front sinkage %.1f mm\n",
+            side.side.c_str(), side.total_advance_m, side.total_rim_m,
+            side.total_rim_m > 0.0 ? 100.0 * (1.0 - side.total_advance_m / side.total_rim_m) : 0.0,
+            1000.0 * side.mean_sinkage_m);
       }
       std::printf("left/right: %s\n", result.agreement.c_str());
       if (truth) {
-        std::printf("against truth: odometry error %.2f %% (rim motion alone %.1f %%), front "
-                    "sinkage RMSE %.2f mm\n",
-                    100.0 * score.odometry_error_fraction,
-                    100.0 * score.rim_odometry_error_fraction, 1000.0 * score.sinkage_rmse_m);
+        std::printf(
+            "against truth: odometry error %.2f %% (rim motion alone %.1f %%), front "
+            "sinkage RMSE %.2f mm\n",
+            100.0 * score.odometry_error_fraction, 100.0 * score.rim_odometry_error_fraction,
+            1000.0 * score.sinkage_rmse_m);
       }
       std::printf("per cycle: %s\n", (fs::path(out) / "cycles.csv").string().c_str());
     }

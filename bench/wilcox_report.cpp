@@ -20,8 +20,9 @@ int main() {
         run.relative_directory.substr(1, run.relative_directory.find("cm") - 1);
     by_roughness[roughness].push_back(sim::Simulate(run.scenario, run.seed).log);
   }
-  std::printf("| RMS roughness cm | runs | prior | odometry error mean (max) | rim motion alone | "
-              "front sinkage RMSE mm | sides agree |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| RMS roughness cm | runs | prior | odometry error mean (max) | rim motion alone | "
+      "front sinkage RMSE mm | sides agree |\n|---|---|---|---|---|---|---|\n");
   for (const auto& [roughness, logs] : by_roughness) {
     for (double prior : {0.01, 0.1}) {
       WilcoxOptions options;

@@ -50,8 +50,8 @@ inline GridRun RunCovering(double x_lo, double x_hi, double margin_m, double spa
   GridRun run;
   run.spacing_m = spacing_m;
   run.first = std::clamp(static_cast<int>(std::floor((x_lo - margin_m) / spacing_m)), 0, total - 2);
-  const int last =
-      std::clamp(static_cast<int>(std::ceil((x_hi + margin_m) / spacing_m)), run.first + 1, total - 1);
+  const int last = std::clamp(static_cast<int>(std::ceil((x_hi + margin_m) / spacing_m)),
+                              run.first + 1, total - 1);
   run.count = last - run.first + 1;
   return run;
 }

@@ -125,8 +125,8 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   // Start: negligible sinkage (the paper's known start), wheels and ranged points joined by lines.
   {
     const WilcoxScan& first = scans.front();
-    std::vector<std::pair<double, double>> knots = {{0.0, 0.0}, {A, first.dz_mid},
-                                                    {2.0 * A, first.dz_front}};
+    std::vector<std::pair<double, double>> knots = {
+        {0.0, 0.0}, {A, first.dz_mid}, {2.0 * A, first.dz_front}};
     knots.insert(knots.end(), first.range.begin(), first.range.end());
     for (size_t i = 0; i < y.v.size(); ++i) {
       const double x = i * b;
@@ -189,8 +189,8 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
       const double e_prior = a - mean;
       return sum + e_prior * e_prior / (sd_x * sd_x);
     };
-    const int max_bins = std::max(
-        3, static_cast<int>(std::ceil((std::abs(mean) + 5.0 * sd_x + 2.0 * b) / b)));
+    const int max_bins =
+        std::max(3, static_cast<int>(std::ceil((std::abs(mean) + 5.0 * sd_x + 2.0 * b) / b)));
     int best = 0;
     double best_cost = cost(0);
     std::vector<double> costs(max_bins + 1);
@@ -237,8 +237,7 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
 
 void CheckWilcoxSides(const DriveLog& log, const WilcoxOptions& options, WilcoxResult* out) {
   WilcoxResult& result = *out;
-  if (result.sides.size() < 2 || result.sides[0].cycles.empty() ||
-      result.sides[1].cycles.empty()) {
+  if (result.sides.size() < 2 || result.sides[0].cycles.empty() || result.sides[1].cycles.empty()) {
     result.sides_agree = false;
     result.agreement = "one side has no usable cycles";
     return;
@@ -269,8 +268,7 @@ void CheckWilcoxSides(const DriveLog& log, const WilcoxOptions& options, WilcoxR
   text << "front sinkage left vs right: 95th percentile of |difference| " << 1000.0 * p95
        << " mm (limit " << 1000.0 * options.agree_sinkage_m << "), mean left - right "
        << 1000.0 * (l.mean_sinkage_m - r.mean_sinkage_m) << " mm; total advance gap "
-       << 100.0 * advance_gap << " % (limit " << 100.0 * options.agree_advance_fraction
-       << " %): "
+       << 100.0 * advance_gap << " % (limit " << 100.0 * options.agree_advance_fraction << " %): "
        << (result.sides_agree ? "the sides agree"
                               : "the sides disagree: the same-ruts, same-sinkage assumption "
                                 "is probably violated");

@@ -51,8 +51,8 @@ struct WilcoxOptions {
 
 struct WilcoxCycle {
   double t = 0.0;
-  double rim_m = 0.0;        // odometry: wheel rim motion since the previous cycle
-  double advance_m = 0.0;    // the MAP estimate of the rear wheel's advance
+  double rim_m = 0.0;            // odometry: wheel rim motion since the previous cycle
+  double advance_m = 0.0;        // the MAP estimate of the rear wheel's advance
   double sinkage_front_m = 0.0;  // estimated sinkage under the front wheel
   double cost_curvature = 0.0;   // the parabola's curvature at the minimum (1/m^2): confidence
 };

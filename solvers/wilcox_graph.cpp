@@ -89,9 +89,9 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
     std::vector<WilcoxMeasurementFactor> out;
     const wilcox::GridRun near = run(xk, xk);
     for (int n : {1, 2}) {
-      out.push_back({WilcoxMeasurementFactor::kArticulation, n * A,
-                     n == 1 ? z.dz_mid : z.dz_front, o.articulation_sd_m, patch, near,
-                     run(xk + n * A, xk + n * A), near, run(xk + n * A, xk + n * A)});
+      out.push_back({WilcoxMeasurementFactor::kArticulation, n * A, n == 1 ? z.dz_mid : z.dz_front,
+                     o.articulation_sd_m, patch, near, run(xk + n * A, xk + n * A), near,
+                     run(xk + n * A, xk + n * A)});
     }
     for (const auto& [d, dz] : z.range) {
       out.push_back({WilcoxMeasurementFactor::kRange, d, dz, o.range_sd_m, patch, near,
@@ -128,7 +128,8 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
     }
     if (k == 0) {  // under the rover: a line from the rear wheel to the first ranged point
       const double first = z.range.front().first;
-      for (int i = 0; i * h < first && i < nodes; ++i) y[i] = z.range.front().second * i * h / first;
+      for (int i = 0; i * h < first && i < nodes; ++i)
+        y[i] = z.range.front().second * i * h / first;
     }
     mapped_to = std::max(mapped_to, x[k] + z.range.back().first);
   };
@@ -138,8 +139,8 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
   step_options.logging_type = ceres::SILENT;
   problem.SetParameterBlockConstant(&x[0]);
   problem.AddResidualBlock(
-      new ceres::AutoDiffCostFunction<ScalarPrior, 1, 1>(new ScalarPrior{0.0, 1.0 / 0.01}),
-      nullptr, &y[0]);  // the elevation datum
+      new ceres::AutoDiffCostFunction<ScalarPrior, 1, 1>(new ScalarPrior{0.0, 1.0 / 0.01}), nullptr,
+      &y[0]);  // the elevation datum
   for (int i = 0; i < nodes; ++i) {
     if (i + 2 < nodes) {
       problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SecondDifference, 1, 1, 1, 1>(
@@ -184,9 +185,9 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
     for (const WilcoxMeasurementFactor& f : factors_of(k, x[k])) {
       problem.AddResidualBlock(WilcoxMeasurementFactor::Create(f), nullptr, blocks_of(f, k));
     }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AdvancePrior, 1, 1, 1>(
-                                 new AdvancePrior{mean, 1.0 / sd}),
-                             nullptr, &x[k - 1], &x[k]);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<AdvancePrior, 1, 1, 1>(new AdvancePrior{mean, 1.0 / sd}),
+        nullptr, &x[k - 1], &x[k]);
     // A sliding window: positions and nodes well behind the last `window_cycles` are held, so
     // each refinement costs the window, not the traverse (Ceres drops residuals on held blocks).
     if (k > static_cast<size_t>(g.window_cycles)) {

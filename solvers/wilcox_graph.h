@@ -15,13 +15,13 @@ namespace slipgraph {
 
 struct WilcoxGraphOptions {
   double node_spacing_m = 0.01;
-  double margin_m = 0.05;             // how far a position may move from its initial value
-  double y_curvature_sd_m = 0.003;    // second difference of y between nodes
-  double s_slope_sd_m = 0.001;        // difference of s between nodes
-  double s_prior_sd_m = 0.05;         // s around 0
-  int max_iterations = 100;   // the final solve
-  int refine_every = 1;       // cycles between intermediate solves (5 iterations each)
-  int window_cycles = 10;     // the intermediate solves move only the last this many cycles
+  double margin_m = 0.05;           // how far a position may move from its initial value
+  double y_curvature_sd_m = 0.003;  // second difference of y between nodes
+  double s_slope_sd_m = 0.001;      // difference of s between nodes
+  double s_prior_sd_m = 0.05;       // s around 0
+  int max_iterations = 100;         // the final solve
+  int refine_every = 1;             // cycles between intermediate solves (5 iterations each)
+  int window_cycles = 10;           // the intermediate solves move only the last this many cycles
 };
 
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options = {},

@@ -83,4 +83,3 @@ TEST(WilcoxBaseline, LeftRightCheckOnSimulatedRuns) {
 
 }  // namespace
 }  // namespace slipgraph
-
