@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/plausibility.h"
+
 namespace slipgraph {
 namespace {
 
@@ -86,22 +88,9 @@ LogSummary SummarizeLog(const DriveLog& log) {
                                  Seconds(start_gap) + " s, end by " + Seconds(end_gap) + " s)");
     }
   }
-  // Gravity plausibility: the mean specific-force magnitude should be close to g.
-  if (!log.imu.empty()) {
-    double sum_norm = 0.0, sum_az = 0.0;
-    for (const ImuSample& s : log.imu) {
-      sum_norm += std::sqrt(s.ax * s.ax + s.ay * s.ay + s.az * s.az);
-      sum_az += s.az;
-    }
-    const double mean_norm = sum_norm / log.imu.size();
-    const double mean_az = sum_az / log.imu.size();
-    if (std::abs(mean_norm - 9.81) > 1.0) {
-      summary.problems.push_back("imu: mean specific force " + Seconds(mean_norm) +
-                                 " m/s^2, expected about 9.81 (units or scaling wrong?)");
-    } else if (mean_az < 0.0) {
-      summary.problems.push_back("imu: mean az " + Seconds(mean_az) +
-                                 " m/s^2 is negative: z axis points down, expected z up (REP-103)");
-    }
+  // Physical plausibility (gravity at rest, wheels against GNSS and gyro): io/plausibility.
+  for (std::string& problem : CheckPlausibility(log).problems) {
+    summary.problems.push_back(std::move(problem));
   }
   return summary;
 }

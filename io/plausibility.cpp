@@ -1,0 +1,170 @@
+#include "io/plausibility.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "io/measurement_stream.h"
+
+namespace slipgraph {
+namespace {
+
+constexpr double kStillRadps = 0.05;
+constexpr double kMovingMps = 0.3;
+
+std::string Format(double v) {
+  std::ostringstream out;
+  out.precision(3);
+  out << v;
+  return out.str();
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Index of the latest sample at or before t, or -1.
+template <typename Samples>
+long LatestAt(const Samples& samples, double t) {
+  const auto it = std::upper_bound(samples.begin(), samples.end(), t,
+                                   [](double value, const auto& s) { return value < s.t; });
+  return static_cast<long>(it - samples.begin()) - 1;
+}
+
+}  // namespace
+
+Plausibility CheckPlausibility(const DriveLog& log) {
+  Plausibility out;
+  PlausibilityFigures& f = out.figures;
+  const double r = log.vehicle.wheel_radius_m, c = log.vehicle.track_width_m;
+  // Wheel-still intervals: every wheel's speed, averaged over about ten samples (quantized
+  // encoders read +-one count at rest), below kStillRadps for at least a second.
+  std::vector<std::pair<double, double>> still;
+  {
+    double start = -1.0;
+    std::array<double, kMaxWheels> mean{};
+    for (size_t k = 0; k < log.wheels.size(); ++k) {
+      bool all_still = true;
+      for (size_t i = 0; i < kMaxWheels; ++i) {
+        const double w = log.wheels[k].omega_radps[i];
+        if (!std::isfinite(w)) continue;
+        mean[i] += 0.1 * (w - mean[i]);
+        if (std::abs(mean[i]) > kStillRadps) all_still = false;
+      }
+      if (all_still && start < 0.0) start = log.wheels[k].t;
+      if ((!all_still || k + 1 == log.wheels.size()) && start >= 0.0) {
+        if (log.wheels[k].t - start >= 1.0) still.emplace_back(start + 0.3, log.wheels[k].t);
+        start = -1.0;
+      }
+    }
+  }
+  // Gravity at rest.
+  {
+    double az = 0.0, norm = 0.0;
+    long n = 0;
+    size_t i = 0;
+    for (const auto& [a, b] : still) {
+      f.rest_seconds += b - a;
+      while (i < log.imu.size() && log.imu[i].t < a) ++i;
+      for (; i < log.imu.size() && log.imu[i].t <= b; ++i) {
+        const ImuSample& s = log.imu[i];
+        if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) continue;
+        az += s.az;
+        norm += std::sqrt(s.ax * s.ax + s.ay * s.ay + s.az * s.az);
+        ++n;
+      }
+    }
+    const bool at_rest = n > 0;
+    if (!at_rest) {  // never still: the whole log (motion averages out over a drive)
+      for (const ImuSample& s : log.imu) {
+        if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) continue;
+        az += s.az;
+        norm += std::sqrt(s.ax * s.ax + s.ay * s.ay + s.az * s.az);
+        ++n;
+      }
+    }
+    const std::string where = at_rest ? "gravity at rest" : "gravity over the whole log";
+    if (n > 0) {
+      f.rest_az_mps2 = az / n;
+      f.rest_norm_mps2 = norm / n;
+      if (std::abs(f.rest_norm_mps2 - 9.81) > 0.5) {
+        out.problems.push_back(where + ": the specific force is " + Format(f.rest_norm_mps2) +
+                               " m/s^2, not about 9.81: wrong units or scale (g instead of "
+                               "m/s^2?)");
+      } else if (f.rest_az_mps2 < 0.0) {
+        out.problems.push_back(where + ": az is " + Format(f.rest_az_mps2) +
+                               " m/s^2, expected about +9.81: the IMU's z axis points down "
+                               "(flip z and y, or rotate the frame by 180 deg about x)");
+      }
+    }
+  }
+  // Wheels against GNSS speed.
+  {
+    std::vector<double> ratios;
+    for (const GpsSample& g : log.gps) {
+      const double speed = std::hypot(g.vx, g.vy);
+      if (!std::isfinite(speed) || speed < kMovingMps) continue;
+      const long k = LatestAt(log.wheels, g.t);
+      if (k < 0) continue;
+      const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
+      const double surface = 0.5 * r * (s.left_radps + s.right_radps);
+      if (std::isfinite(surface)) ratios.push_back(surface / speed);
+    }
+    if (ratios.size() >= 5) {
+      f.wheel_over_gnss_speed = Median(ratios);
+      if (std::abs(f.wheel_over_gnss_speed) < 0.3) {
+        out.problems.push_back(
+            "wheels against GNSS: while GNSS shows the robot moving, the wheels' mean surface "
+            "speed is only " +
+            Format(f.wheel_over_gnss_speed) +
+            " of it: one side reads backwards (left wheels negative forward?) or the wheel "
+            "units are wrong");
+      } else if (f.wheel_over_gnss_speed < 0.0) {
+        out.problems.push_back(
+            "wheels against GNSS: the wheels read backwards while the robot "
+            "moves (ratio " +
+            Format(f.wheel_over_gnss_speed) + "): both sides' signs flipped?");
+      } else if (f.wheel_over_gnss_speed > 3.0) {
+        out.problems.push_back("wheels against GNSS: the wheels' surface speed is " +
+                               Format(f.wheel_over_gnss_speed) +
+                               " x the GNSS speed: wheel radius or units wrong?");
+      }
+    }
+  }
+  // Wheels against the gyro's yaw rate.
+  {
+    double sxy = 0.0, sxx = 0.0, syy = 0.0, sx = 0.0, sy = 0.0;
+    long n = 0;
+    for (const WheelSample& w : log.wheels) {
+      const long i = LatestAt(log.imu, w.t);
+      if (i < 0 || !std::isfinite(log.imu[i].gz)) continue;
+      const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
+      const double yaw = r * (s.right_radps - s.left_radps) / c;
+      if (!std::isfinite(yaw)) continue;
+      const double g = log.imu[i].gz;
+      sx += yaw, sy += g, sxx += yaw * yaw, syy += g * g, sxy += yaw * g;
+      ++n;
+    }
+    if (n > 10) {
+      const double cov = sxy / n - sx / n * sy / n;
+      const double vx = sxx / n - sx / n * sx / n, vy = syy / n - sy / n * sy / n;
+      // Only meaningful when the robot turned: the gyro's yaw rate must vary.
+      if (vx > 1e-6 && vy > 1e-4) {
+        f.wheel_gyro_yaw_correlation = cov / std::sqrt(vx * vy);
+        if (f.wheel_gyro_yaw_correlation < -0.3) {
+          out.problems.push_back(
+              "wheels against the gyro: the yaw rate the wheels imply runs against the gyro's "
+              "(correlation " +
+              Format(f.wheel_gyro_yaw_correlation) +
+              "): left and right wheels swapped, or the gyro's z axis flipped");
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace slipgraph
