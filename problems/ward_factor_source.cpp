@@ -17,6 +17,7 @@
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"
 #include "factors/oppose_motion_prior.h"
+#include "factors/rate_bound_prior.h"
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
@@ -78,7 +79,7 @@ std::string FactorCounts::Describe() const {
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
       << " gyro, " << encoders << " encoder, " << gnss << " GNSS, " << oppose_motion
       << " oppose-motion, " << act_quickly << " decay, " << at_rest << " at-rest, " << bounds
-      << " bound priors";
+      << " bound, " << rate_bounds << " rate-bound priors";
   return out.str();
 }
 
@@ -285,6 +286,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
       nullptr, previous, x, offsets);
   Add("disturbance_walk", DisturbanceWalkFactor::Create(q.a_dist_mps3_per_sqrt_hz * std::sqrt(dt)),
       new ceres::HuberLoss(options_.disturbance_huber_sigmas), previous, x);
+  Add("rate_bound",
+      RateBoundPrior::Create({wc.max_v_bx_rate_mps2, wc.max_accel_bias_rate_mps3}, dt,
+                             wc.sd_bound / std::sqrt(dt)),
+      nullptr, previous, x);
+  ++counts->rate_bounds;
   ++counts->dynamics;
 }
 

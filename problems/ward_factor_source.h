@@ -56,7 +56,7 @@ struct AddedFactor {
 // How many factors of each kind went in, for the report.
 struct FactorCounts {
   long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, oppose_motion = 0,
-       act_quickly = 0, at_rest = 0, bounds = 0;
+       act_quickly = 0, at_rest = 0, bounds = 0, rate_bounds = 0;
   std::string Describe() const;
 };
 

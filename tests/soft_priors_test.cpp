@@ -78,3 +78,24 @@ TEST(BoundPrior, ZeroInsideLinearOutside) {
 
 }  // namespace
 }  // namespace slipgraph
+
+#include "factors/rate_bound_prior.h"
+
+namespace slipgraph {
+namespace {
+
+TEST(RateBoundPrior, PenalizesOnlyChangesFasterThanTheLimit) {
+  // v_bx limited to 5 m/s^2, b_ax to 0.5 m/s^3, over dt = 0.01 s.
+  const std::unique_ptr<ceres::CostFunction> f(RateBoundPrior::Create({5.0, 0.5}, 0.01, 0.5));
+  const double a[ward::kStateSize] = {1.0, 0.0, 0, 0, 0, 0, 0};
+  const double slow[ward::kStateSize] = {1.02, 0.001, 0, 0, 0, 0, 0};  // 2 m/s^2, 0.1 m/s^3
+  const double fast[ward::kStateSize] = {0.92, 0.0, 0, 0, 0, 0, 0};    // -8 m/s^2
+  EXPECT_NEAR(testing::Residuals(*f, {a, slow})[0], 0.0, 1e-3);
+  EXPECT_NEAR(testing::Residuals(*f, {a, slow})[1], 0.0, 1e-3);
+  // |rate| 8 over the limit 5: (8 - 5) / 0.5 = 6 (the smoothing shifts it by < 1e-3).
+  EXPECT_NEAR(testing::Residuals(*f, {a, fast})[0], 6.0, 2e-3);
+  for (const double* b : {slow, fast}) testing::ExpectJacobiansMatchNumeric(*f, {a, b}, 1e-5);
+}
+
+}  // namespace
+}  // namespace slipgraph
