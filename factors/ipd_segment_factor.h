@@ -10,6 +10,7 @@
 #include <ceres/autodiff_cost_function.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <cmath>
 #include <vector>
 

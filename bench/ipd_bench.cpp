@@ -1,0 +1,66 @@
+// IPD speed on one core: evaluating one segment factor (a 2 s segment at 100 Hz, residual and
+// the 3 x 13 Jacobian) and the linearization of one identification-EKF update (prediction with
+// its Jacobian and eq. 15's covariance terms), per segment. Run: build/bench/ipd_bench
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "factors/ipd_segment_factor.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/ipd_calibration.h"
+
+namespace slipgraph {
+namespace {
+
+const std::vector<IpdSegment>& Segments() {
+  static const std::vector<IpdSegment> segments = [] {
+    sim::Scenario sc = sim::ExpandScenario("ipd35", 1).at(0).scenario;
+    sc.commands.resize(60);  // a few minutes are enough
+    return BuildIpdSegments(sim::Simulate(sc, 1).log, IpdOptions());
+  }();
+  return segments;
+}
+
+void BM_SegmentFactorEvaluate(benchmark::State& state) {
+  const IpdSegment& seg = Segments().at(Segments().size() / 2);
+  const std::unique_ptr<ceres::CostFunction> factor(IpdSegmentFactor::Create(
+      seg.steps, seg.measured, Eigen::Matrix3d::Identity() * 1e-3, 9.80665));
+  std::array<double, ipd::kAlphaSize> alpha{};
+  alpha[0] = -0.05;
+  const double* parameters[1] = {alpha.data()};
+  double residual[3], jacobian[3 * ipd::kAlphaSize];
+  double* jacobians[1] = {jacobian};
+  for (auto _ : state) {
+    factor->Evaluate(parameters, residual, jacobians);
+    benchmark::DoNotOptimize(jacobian[0]);
+  }
+  state.counters["steps_per_segment"] = static_cast<double>(seg.steps.size());
+}
+BENCHMARK(BM_SegmentFactorEvaluate);
+
+void BM_UpdateLinearization(benchmark::State& state) {
+  // The bulk of one identification-EKF update: the segment's prediction with its 3 x 13
+  // Jacobian and eq. (15)'s covariance terms (the 13-state Kalman algebra is small beside it).
+  const std::vector<IpdSegment>& segments = Segments();
+  size_t count = 0;
+  for (auto _ : state) {
+    std::array<double, ipd::kAlphaSize> alpha{};
+    for (const IpdSegment& seg : segments) {
+      const Eigen::Matrix<double, 3, ipd::kAlphaSize> H =
+          PredictionJacobian(seg, alpha.data(), IpdOptions());
+      const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
+          seg.steps, alpha.data(), 9.80665, seg.sigma_start, seg.sigma_end);
+      benchmark::DoNotOptimize(H(0, 0) + terms.measurement(0, 0));
+      ++count;
+    }
+  }
+  state.counters["segments_per_s"] =
+      benchmark::Counter(static_cast<double>(count), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_UpdateLinearization)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace slipgraph
+
+BENCHMARK_MAIN();
