@@ -19,5 +19,6 @@ void RegisterOnlineCommand(CLI::App* app, int* status);
 void RegisterCompareCommand(CLI::App* app, int* status);
 void RegisterCalibrateCommand(CLI::App* app, int* status);
 void RegisterSinkageCommand(CLI::App* app, int* status);
+void RegisterImportCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

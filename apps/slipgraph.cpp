@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterCompareCommand(&app, &status);
   slipgraph::RegisterCalibrateCommand(&app, &status);
   slipgraph::RegisterSinkageCommand(&app, &status);
+  slipgraph::RegisterImportCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

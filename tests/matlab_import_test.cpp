@@ -1,0 +1,95 @@
+// Import of the WVU Pathfinder MATLAB v7.3 log (../shared/data/real) with the shipped mapping:
+// row counts, plausibility, deliberately wrong mappings named by the checks, and the EKF running
+// through it without a NaN. Skipped when the shared real data is not beside the repository.
+#include "io/matlab_import.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "io/plausibility.h"
+#include "io/yaml_config.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+namespace {
+
+const std::string kSource =
+    std::string(SLIPGRAPH_SOURCE_DIR) + "/../shared/data/real/wvu_pathfinder/s5t1.mat";
+const std::string kMapping =
+    std::string(SLIPGRAPH_SOURCE_DIR) + "/data/mappings/wvu_pathfinder.yaml";
+const std::string kVehicle =
+    std::string(SLIPGRAPH_SOURCE_DIR) + "/data/mappings/wvu_pathfinder_vehicle.yaml";
+
+DriveLog Import(const std::string& mapping) {
+  std::vector<std::string> warnings;
+  ImportReport report;
+  return ImportMatlab(kSource, mapping, ReadVehicleYaml(kVehicle, &warnings), &report);
+}
+
+// The shipped mapping with one line replaced.
+std::string Altered(const std::string& from, const std::string& to) {
+  std::ifstream in(kMapping);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+  const std::string path = ::testing::TempDir() + "/altered_mapping.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+bool Mentions(const Plausibility& p, const std::string& text) {
+  for (const std::string& problem : p.problems) {
+    if (problem.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+class MatlabImport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::exists(kSource)) GTEST_SKIP() << kSource << " not present";
+  }
+};
+
+TEST_F(MatlabImport, ShippedMappingImportsAndPassesThePlausibilityChecks) {
+  const DriveLog log = Import(kMapping);
+  EXPECT_EQ(log.imu.size(), 44249u);
+  EXPECT_EQ(log.wheels.size(), 1770u);
+  EXPECT_EQ(log.gps.size(), 1770u);
+  EXPECT_NEAR(std::min(log.imu.front().t, log.wheels.front().t), 0.0, 1e-9);
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_TRUE(p.problems.empty()) << p.problems.front();
+  EXPECT_NEAR(p.figures.rest_az_mps2, 9.8, 0.3);
+  EXPECT_GT(p.figures.wheel_gyro_yaw_correlation, 0.5);
+}
+
+TEST_F(MatlabImport, WrongMappingsAreNamed) {
+  EXPECT_TRUE(Mentions(CheckPlausibility(Import(Altered("frame: z_down", "frame: z_up"))),
+                       "z axis points down"));
+  EXPECT_TRUE(Mentions(CheckPlausibility(Import(Altered("left_sign: -1", "left_sign: 1"))),
+                       "one side reads backwards"));
+  const std::string swapped = Altered(
+      "left: [frontLeftVel, rearLeftVel]\n  right: [frontRightVel, rearRightVel]\n  "
+      "left_sign: -1\n  right_sign: 1",
+      "left: [frontRightVel, rearRightVel]\n  right: [frontLeftVel, rearLeftVel]\n  "
+      "left_sign: 1\n  right_sign: -1");
+  EXPECT_TRUE(Mentions(CheckPlausibility(Import(swapped)), "left and right wheels swapped"));
+}
+
+TEST_F(MatlabImport, TheEkfRunsThroughWithoutANaN) {
+  const DriveLog log = Import(kMapping);
+  const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle));
+  ASSERT_EQ(result.estimates.size(), log.wheels.size());
+  for (const EkfEstimate& e : result.estimates) {
+    for (double v : e.x) ASSERT_TRUE(std::isfinite(v)) << "t=" << e.t;
+    for (double sd : e.sd) ASSERT_TRUE(std::isfinite(sd)) << "t=" << e.t;
+  }
+}
+
+}  // namespace
+}  // namespace slipgraph
