@@ -133,6 +133,12 @@ std::string DescribeFilterRun(const FilterResult& result) {
   }
   out << "\n  IMU samples for offset initialisation: " << result.stats.offset_init_samples
       << ", late measurements: " << result.stats.late_measurements << "\n";
+  if (result.stats.divergence_resets > 0) {
+    out << "  DIVERGED " << result.stats.divergence_resets
+        << " time(s) (first at t=" << result.stats.first_divergence_t
+        << " s): the state went non-finite and was reset to the last finite one, covariance "
+           "x100; the model is far from these data\n";
+  }
   for (const std::string& note : result.notes) out << "  note: " << note << "\n";
   return out.str();
 }

@@ -159,6 +159,17 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
   return true;
 }
 
+void WardEkf::GuardDivergence() {
+  if (x_.allFinite() && P_.allFinite()) {
+    last_good_x_ = x_;
+    last_good_P_ = P_;
+    return;
+  }
+  if (stats_.divergence_resets++ == 0) stats_.first_divergence_t = t_;
+  x_ = last_good_x_;
+  P_ = last_good_P_ * 100.0;
+}
+
 double WardEkf::GravityAlongX() const {
   return params_.gravity_mps2 * std::sin(WardPitchUphillRad(pitch_rad_));
 }
@@ -177,6 +188,10 @@ void WardEkf::AddAttitude(const AttitudeSample& attitude) {
 }
 
 void WardEkf::AddImu(const ImuSample& imu) {
+  struct Guard {
+    WardEkf* ekf;
+    ~Guard() { ekf->GuardDivergence(); }
+  } guard{this};
   // The prediction up to this stamp is driven by the previous accelerometer sample (held): on
   // the simulated suites this did better than driving it with this sample, although this one is
   // the mean over exactly that interval (docs/ekf.md).
@@ -239,6 +254,10 @@ void WardEkf::AddImu(const ImuSample& imu) {
 }
 
 void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
+  struct Guard {
+    WardEkf* ekf;
+    ~Guard() { ekf->GuardDivergence(); }
+  } guard{this};
   const bool left_ok = IsFinite(omega_left), right_ok = IsFinite(omega_right);
   if (!wheels_initialised_ && left_ok && right_ok) {
     if (!started_) Begin(t);
@@ -316,6 +335,10 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
 }
 
 void WardEkf::AddGps(const GpsSample& gps) {
+  struct Guard {
+    WardEkf* ekf;
+    ~Guard() { ekf->GuardDivergence(); }
+  } guard{this};
   Begin(gps.t);
   if (!IsFinite(gps.vx) || !IsFinite(gps.vy) || !IsFinite(gps.vz)) {
     ++stats_.gps.dropped_components;

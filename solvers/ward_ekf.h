@@ -71,6 +71,10 @@ struct EkfStats {
   std::array<long, kWeakConstraintCount> weak_constraints{};  // applications per constraint
   long late_measurements = 0;  // stamped before the filter's time: applied at the filter time
   long offset_init_samples = 0;
+  // Times the state or covariance became non-finite (a model far from the data can make the
+  // stiff tire law blow up): the filter went back to its last finite state, covariance inflated.
+  long divergence_resets = 0;
+  double first_divergence_t = -1.0;
 };
 
 struct EkfEstimate {
@@ -116,6 +120,9 @@ class WardEkf {
               int max_consecutive_rejections, StreamCounters* counters,
               int* consecutive_rejections);
   void ApplyWeakConstraints(double dt_cycle);
+  // After every measurement: keep the last finite (x, P); on a non-finite one go back to it with
+  // the covariance inflated, and count it. Never a silent NaN.
+  void GuardDivergence();
   double GravityAlongX() const;  // g sin(phi) at the current attitude
   ward::Attitude<double> CurrentAttitude() const { return {roll_rad_, pitch_rad_}; }
 
@@ -149,6 +156,8 @@ class WardEkf {
   double wheels_stopped_since_ = 1e300;  // time both wheels first read still, 1e300: moving
   int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
   EkfStats stats_;
+  StateVector last_good_x_ = StateVector::Zero();
+  StateMatrix last_good_P_ = StateMatrix::Zero();
   std::vector<PseudoMeasurement> pseudo_;  // reused buffer
 };
 
