@@ -114,3 +114,25 @@ TEST_F(MatlabImport, DivergenceIsCaughtAndReportedNotANaN) {
 
 }  // namespace
 }  // namespace slipgraph
+
+#include "io/input_error.h"
+
+namespace slipgraph {
+namespace {
+
+TEST(MatlabImportMapping, AnUnknownKeyIsAnErrorNamingIt) {
+  const std::string path = ::testing::TempDir() + "/typo_mapping.yaml";
+  std::ofstream(path) << "format: matlab_v73\nwheels: {t: tTodom, left: a, right: b, "
+                         "lefts_sign: -1}\n";
+  std::vector<std::string> warnings;
+  ImportReport report;
+  try {
+    ImportMatlab("/nonexistent.mat", path, Vehicle(), &report);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("wheels.lefts_sign"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace slipgraph
