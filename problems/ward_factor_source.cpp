@@ -74,6 +74,13 @@ std::vector<size_t> AttachToStates(const Samples& samples, const std::vector<dou
 
 }  // namespace
 
+WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter) {
+  options.use_gps = filter.use_gps;
+  options.velocity_model = filter.ekf.velocity_model;
+  options.wheel_still_radps = filter.ekf.wheel_still_radps;
+  return options;
+}
+
 std::string FactorCounts::Describe() const {
   std::ostringstream out;
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro

@@ -47,6 +47,10 @@ struct WardProblemOptions {
   double tire_law_correlation_time_s = 0.2;
 };
 
+// `options` with the choices of the EKF run that initialises the problem (GNSS on or off, the
+// velocity model, the wheel-still threshold), so the smoother's factors and its filter agree.
+WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter);
+
 // A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).
 struct AddedFactor {
   const char* kind;

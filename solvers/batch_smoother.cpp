@@ -21,10 +21,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
     return result;
   }
-  WardProblemOptions problem_options = options.problem;
-  problem_options.use_gps = options.filter.use_gps;
-  problem_options.velocity_model = options.filter.ekf.velocity_model;
-  problem_options.wheel_still_radps = options.filter.ekf.wheel_still_radps;
+  const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, model, result.ekf, problem_options);
   for (const std::string& effect : problem->ignored_effects) {

@@ -186,16 +186,14 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   result.from_filter.assign(n, true);
   for (const std::string& effect : model.effects) {
     result.notes.push_back("effect '" + effect +
-                           "' is named in the model but has no factor yet: ignored");
+                           "' is named in the model but the window smoother has no effect "
+                           "terms yet (the batch smoother has): ignored");
   }
   if (n < 2) {
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
     return result;
   }
-  WardProblemOptions problem_options = options.problem;
-  problem_options.use_gps = options.filter.use_gps;
-  problem_options.velocity_model = options.filter.ekf.velocity_model;
-  problem_options.wheel_still_radps = options.filter.ekf.wheel_still_radps;
+  const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   const WardFactorSource source(log, model, result.ekf, problem_options);
   Window window(source, options, &result);
   const size_t every = static_cast<size_t>(std::max(1, options.update_every));
