@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/estimator_runs.h"
 #include "evaluation/html_report.h"
 #include "io/csv_writer.h"
 #include "io/log_reader.h"
@@ -109,10 +110,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
-    ReadOptions read_options;
-    read_options.skip_bad = options->skip_bad;
-    const DriveLog log = ReadDriveLog(options->log, read_options);
-    for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+    const DriveLog log = ReadLogWithWarnings(options->log, options->skip_bad);
     const IpdCalibrationResult result =
         options->method == "ekf"      ? CalibrateIpdEkf(log, options->ipd)
         : options->method == "window" ? CalibrateIpdWindow(log, options->ipd, options->graph)

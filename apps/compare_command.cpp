@@ -9,6 +9,7 @@
 #include <map>
 
 #include "apps/commands.h"
+#include "apps/estimator_runs.h"
 #include "evaluation/evaluation.h"
 #include "evaluation/html_report.h"
 #include "io/log_reader.h"
@@ -146,18 +147,13 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
     const std::string name = fs::path(path).filename().string();
     const std::string html_path = options->html.empty() ? name + "_compare.html" : options->html;
-    ReadOptions read_options;
-    read_options.skip_bad = options->skip_bad;
     HtmlReport html("slipgraph compare: " + name);
     std::map<std::string, std::vector<Evaluation>> by_estimator;
     std::map<std::string, double> seconds;
     const std::vector<std::string> names = {"EKF", "window", "batch"};
-    std::string log_sections;
     for (const std::string& log_dir : ListLogs(path)) {
-      const DriveLog log = ReadDriveLog(log_dir, read_options);
-      for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
-      const ModelConfig model = options->model.empty() ? DefaultModelConfig(log.vehicle)
-                                                       : ReadModelYaml(options->model, log.vehicle);
+      const DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
+      const ModelConfig model = ModelForLog(log, options->model);
       std::vector<EstimatorRun> runs(3);
       FilterRunOptions filter;
       filter.use_gps = !options->no_gps;

@@ -12,6 +12,19 @@
 
 namespace slipgraph {
 
+DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad) {
+  ReadOptions read_options;
+  read_options.skip_bad = skip_bad;
+  DriveLog log = ReadDriveLog(path, read_options);
+  for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+  return log;
+}
+
+ModelConfig ModelForLog(const DriveLog& log, const std::string& model_path) {
+  return model_path.empty() ? DefaultModelConfig(log.vehicle)
+                            : ReadModelYaml(model_path, log.vehicle);
+}
+
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               const std::string& description, EstimatorRunOptions* run,
                               bool* no_gps) {
@@ -36,13 +49,9 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
   std::string out = options.out;
   if (out.empty()) out = name + "_" + options.name + (suite ? "" : ".csv");
   if (suite) fs::create_directories(out);
-  ReadOptions read_options;
-  read_options.skip_bad = options.skip_bad;
   for (const std::string& log_dir : logs) {
-    const DriveLog log = ReadDriveLog(log_dir, read_options);
-    for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
-    const ModelConfig model = options.model.empty() ? DefaultModelConfig(log.vehicle)
-                                                    : ReadModelYaml(options.model, log.vehicle);
+    const DriveLog log = ReadLogWithWarnings(log_dir, options.skip_bad);
+    const ModelConfig model = ModelForLog(log, options.model);
     const std::string file =
         suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
     std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";

@@ -1,4 +1,5 @@
-// The loop the estimator subcommands (filter, smooth) share: resolve the log or suite and the
+// What the subcommands share: reading a log with its warnings, its model, and the loop the
+// estimator subcommands (filter, smooth, online) share: resolve the log or suite and the
 // output path, read each log and its model, run the estimator, write its estimates, report, and,
 // when the log has truth, print how the estimates compare with it (as `evaluate` would).
 #pragma once
@@ -32,6 +33,12 @@ struct EstimatorOutput {
 // `estimate` runs one log and writes its own report lines to `report`.
 using Estimator = std::function<EstimatorOutput(const DriveLog& log, const ModelConfig& model,
                                                 std::ostream& report)>;
+
+// Reads a log for a subcommand, printing the reader's warnings (rows skipped, keys defaulted) to
+// stderr.
+DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad);
+// The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it.
+ModelConfig ModelForLog(const DriveLog& log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
 // --skip-bad, --out); the caller adds its own and sets the callback.

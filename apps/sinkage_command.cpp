@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/estimator_runs.h"
 #include "io/csv_writer.h"
 #include "io/log_reader.h"
 #include "solvers/wilcox_baseline.h"
@@ -40,10 +41,7 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
-    ReadOptions read_options;
-    read_options.skip_bad = options->skip_bad;
-    const DriveLog log = ReadDriveLog(options->log, read_options);
-    for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+    const DriveLog log = ReadLogWithWarnings(options->log, options->skip_bad);
     const WilcoxResult result = options->method == "graph"
                                     ? EstimateWilcoxGraph(log, options->wilcox)
                                     : EstimateWilcoxBaseline(log, options->wilcox);
