@@ -3,6 +3,7 @@
 // then wheels, ...), so the sequence is deterministic.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "io/drive_log.h"
@@ -35,5 +36,13 @@ struct SideSpeeds {
   double right_radps;
 };
 SideSpeeds DrivenSideSpeeds(const WheelSample& sample, VehicleType type);
+
+// Index of the latest sample (sorted by t) stamped at or before t + tolerance_s, or -1.
+template <typename Samples>
+long LatestAtOrBefore(const Samples& samples, double t, double tolerance_s = 0.0) {
+  const auto it = std::upper_bound(samples.begin(), samples.end(), t + tolerance_s,
+                                   [](double value, const auto& s) { return value < s.t; });
+  return static_cast<long>(it - samples.begin()) - 1;
+}
 
 }  // namespace slipgraph

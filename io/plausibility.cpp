@@ -26,14 +26,6 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// Index of the latest sample at or before t, or -1.
-template <typename Samples>
-long LatestAt(const Samples& samples, double t) {
-  const auto it = std::upper_bound(samples.begin(), samples.end(), t,
-                                   [](double value, const auto& s) { return value < s.t; });
-  return static_cast<long>(it - samples.begin()) - 1;
-}
-
 }  // namespace
 
 Plausibility CheckPlausibility(const DriveLog& log) {
@@ -107,7 +99,7 @@ Plausibility CheckPlausibility(const DriveLog& log) {
     for (const GpsSample& g : log.gps) {
       const double speed = std::hypot(g.vx, g.vy);
       if (!std::isfinite(speed) || speed < kMovingMps) continue;
-      const long k = LatestAt(log.wheels, g.t);
+      const long k = LatestAtOrBefore(log.wheels, g.t);
       if (k < 0) continue;
       const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
       const double surface = 0.5 * r * (s.left_radps + s.right_radps);
@@ -139,7 +131,7 @@ Plausibility CheckPlausibility(const DriveLog& log) {
     double sxy = 0.0, sxx = 0.0, syy = 0.0, sx = 0.0, sy = 0.0;
     long n = 0;
     for (const WheelSample& w : log.wheels) {
-      const long i = LatestAt(log.imu, w.t);
+      const long i = LatestAtOrBefore(log.imu, w.t);
       if (i < 0 || !std::isfinite(log.imu[i].gz)) continue;
       const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
       const double yaw = r * (s.right_radps - s.left_radps) / c;

@@ -38,13 +38,8 @@ struct WardFactorSource::Context {
 
 namespace {
 
-// Index of the latest sample at or before t, or -1.
-template <typename Samples>
-long LatestIndex(const Samples& samples, double t) {
-  const auto it = std::upper_bound(samples.begin(), samples.end(), t + 1e-9,
-                                   [](double value, const auto& s) { return value < s.t; });
-  return static_cast<long>(it - samples.begin()) - 1;
-}
+// Stamps within this of a time count as at it (the EKF holds inputs the same way).
+constexpr double kStampToleranceS = 1e-9;
 
 // Index of the state nearest in time to t (ties go to the earlier state).
 size_t NearestState(const std::vector<double>& times, double t) {
@@ -135,14 +130,14 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
 
 WardFactorSource::Context WardFactorSource::ContextAt(double t) const {
   Context c;
-  const long a = LatestIndex(log_.attitude, t);
+  const long a = LatestAtOrBefore(log_.attitude, t, kStampToleranceS);
   if (a >= 0) {
     c.attitude = {log_.attitude[a].roll, log_.attitude[a].pitch};
     c.yaw = log_.attitude[a].yaw;
     c.pitch_sd = std::isfinite(log_.attitude[a].sd_pitch) ? log_.attitude[a].sd_pitch : 0.0;
     c.have_attitude = true;
   }
-  const long i = LatestIndex(log_.imu, t);
+  const long i = LatestAtOrBefore(log_.imu, t, kStampToleranceS);
   if (i >= 0) c.accel_x = log_.imu[i].ax;
   return c;
 }
