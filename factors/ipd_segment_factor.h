@@ -15,16 +15,9 @@
 #include <vector>
 
 #include "factors/ipd_segment.h"
+#include "factors/smooth_math.h"
 
 namespace slipgraph {
-namespace ipd {
-inline double ScalarPart(double v) { return v; }
-template <typename S, int N>
-inline double ScalarPart(const ceres::Jet<S, N>& v) {
-  return v.a;
-}
-}  // namespace ipd
-
 struct IpdSegmentFactor {
   IpdSegmentFactor(std::vector<ipd::OdometryStep> steps, const Eigen::Vector3d& measured,
                    const Eigen::Matrix3d& covariance, double gravity_mps2)
@@ -39,7 +32,7 @@ struct IpdSegmentFactor {
     T error[3] = {measured_[0] - predicted[0], measured_[1] - predicted[1],
                   measured_[2] - predicted[2]};
     // Wrap the heading error by the value's whole turns (a constant shift, derivative kept).
-    error[2] -= 2.0 * M_PI * std::round(ipd::ScalarPart(error[2]) / (2.0 * M_PI));
+    error[2] -= 2.0 * M_PI * std::round(ScalarPart(error[2]) / (2.0 * M_PI));
     for (int r = 0; r < 3; ++r) {
       residual[r] = T(0.0);
       for (int c = 0; c <= r; ++c) residual[r] += sqrt_information_(r, c) * error[c];

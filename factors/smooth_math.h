@@ -37,4 +37,12 @@ inline ceres::Jet<S, N> SignedSaturation(const ceres::Jet<S, N>& v, double rate)
   return ceres::Jet<S, N>(rate * v.a * OneMinusExpOverX(x), v.v * (rate * std::exp(-x)));
 }
 
+// The value part of a scalar, for the few places that branch or round on it (a grid index, a
+// whole turn of heading) while the derivative passes through untouched.
+inline double ScalarPart(double v) { return v; }
+template <typename S, int N>
+inline double ScalarPart(const ceres::Jet<S, N>& v) {
+  return v.a;
+}
+
 }  // namespace slipgraph

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "factors/smooth_math.h"
+
 namespace slipgraph {
 namespace wilcox {
 
@@ -17,19 +19,13 @@ struct GridRun {
   double spacing_m = 0.01;
 };
 
-inline double Floor(double v) { return std::floor(v); }
-template <typename J>
-inline double Floor(const J& v) {
-  return std::floor(v.a);
-}
-
 // Linear interpolation of the run's nodes (node i of the run: nodes[i][0]) at x.
 template <typename T>
 inline T ProfileAt(const GridRun& run, T const* const* nodes, const T& x) {
   T u = x / run.spacing_m - static_cast<double>(run.first);
   if (u < T(0.0)) u = T(0.0);
   if (u > T(static_cast<double>(run.count - 1))) u = T(static_cast<double>(run.count - 1));
-  const int i = std::min(static_cast<int>(Floor(u)), run.count - 2);
+  const int i = std::min(static_cast<int>(std::floor(ScalarPart(u))), run.count - 2);
   const T f = u - static_cast<double>(i);
   return (1.0 - f) * nodes[i][0] + f * nodes[i + 1][0];
 }
