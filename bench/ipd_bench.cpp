@@ -48,7 +48,7 @@ void BM_UpdateLinearization(benchmark::State& state) {
     std::array<double, ipd::kAlphaSize> alpha{};
     for (const IpdSegment& seg : segments) {
       const Eigen::Matrix<double, 3, ipd::kAlphaSize> H =
-          PredictionJacobian(seg, alpha.data(), IpdOptions());
+          LinearizeSegment(seg, alpha.data(), IpdOptions()).H;
       const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
           seg.steps, alpha.data(), 9.80665, seg.sigma_start, seg.sigma_end);
       benchmark::DoNotOptimize(H(0, 0) + terms.measurement(0, 0));

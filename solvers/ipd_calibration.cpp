@@ -41,6 +41,17 @@ Eigen::Matrix<double, 6, 6> ScatterCovariance(const Eigen::Matrix3d& R) {
   return out;
 }
 
+// Rotation from the segment's start frame into (along, cross, heading) axes: along the predicted
+// displacement (px, py), or the start heading when it is shorter than 1 cm.
+Eigen::Matrix3d AlongCrossFrame(double px, double py) {
+  const double length = std::hypot(px, py);
+  const double ux = length > 0.01 ? px / length : 1.0;
+  const double uy = length > 0.01 ? py / length : 0.0;
+  Eigen::Matrix3d rotation;
+  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
+  return rotation;
+}
+
 }  // namespace
 
 std::vector<IpdSegment> BuildIpdSegments(const DriveLog& log, const IpdOptions& options) {
@@ -107,50 +118,44 @@ PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alph
                                    const IpdOptions& options, const Eigen::Vector3d& q) {
   double predicted[3];
   ipd::PredictSegment(segment.steps, alpha, options.gravity_mps2, predicted);
+  const Eigen::Matrix3d frame = AlongCrossFrame(predicted[0], predicted[1]);
+  const Eigen::Vector3d error = frame * Eigen::Vector3d(segment.measured[0] - predicted[0],
+                                                        segment.measured[1] - predicted[1], 0.0);
   PredictionError e;
   e.t_start = segment.t_start;
-  const double ex = segment.measured[0] - predicted[0];
-  const double ey = segment.measured[1] - predicted[1];
-  const double length = std::hypot(predicted[0], predicted[1]);
-  const double ux = length > 0.01 ? predicted[0] / length : 1.0;
-  const double uy = length > 0.01 ? predicted[1] / length : 0.0;
-  e.along_m = ex * ux + ey * uy;
-  e.cross_m = -ex * uy + ey * ux;
+  e.along_m = error[0];
+  e.cross_m = error[1];
   e.heading_rad = std::remainder(segment.measured[2] - predicted[2], 2.0 * M_PI);
-  // The covariance in (along, cross, heading) axes.
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
-  e.predicted_covariance = rotation *
+  e.predicted_covariance = frame *
                            ipd::PredictionCovariance(segment.steps, alpha, options.gravity_mps2,
                                                      segment.sigma_start, segment.sigma_end)
                                .Total(q) *
-                           rotation.transpose();
+                           frame.transpose();
   return e;
 }
 
-Eigen::Matrix<double, 3, kAlphaSize> PredictionJacobian(const IpdSegment& seg, const double* alpha,
-                                                        const IpdOptions& options) {
+SegmentLinearization LinearizeSegment(const IpdSegment& seg, const double* alpha,
+                                      const IpdOptions& options) {
   using Jet = ceres::Jet<double, kAlphaSize>;
   Jet alpha_jet[kAlphaSize];
   for (int i = 0; i < kAlphaSize; ++i) alpha_jet[i] = Jet(alpha[i], i);
   Jet predicted[3];
   ipd::PredictSegment(seg.steps, alpha_jet, options.gravity_mps2, predicted);
-  Eigen::Matrix<double, 3, kAlphaSize> H;
-  for (int r = 0; r < 3; ++r) H.row(r) = predicted[r].v.transpose();
-  return H;
+  SegmentLinearization out;
+  for (int r = 0; r < 3; ++r) {
+    out.predicted[r] = predicted[r].a;
+    out.H.row(r) = predicted[r].v.transpose();
+  }
+  out.residual = seg.measured - out.predicted;
+  out.residual[2] = std::remainder(out.residual[2], 2.0 * M_PI);
+  return out;
 }
 
 Eigen::Matrix3d ParameterCovariance(const IpdSegment& seg, const double* alpha,
                                     const AlphaMatrix& P, const IpdOptions& options) {
-  double predicted[3];
-  ipd::PredictSegment(seg.steps, alpha, options.gravity_mps2, predicted);
-  const Eigen::Matrix<double, 3, kAlphaSize> H = PredictionJacobian(seg, alpha, options);
-  const double length = std::hypot(predicted[0], predicted[1]);
-  const double ux = length > 0.01 ? predicted[0] / length : 1.0;
-  const double uy = length > 0.01 ? predicted[1] / length : 0.0;
-  Eigen::Matrix3d rotation;
-  rotation << ux, uy, 0.0, -uy, ux, 0.0, 0.0, 0.0, 1.0;
-  return rotation * H * P * H.transpose() * rotation.transpose();
+  const SegmentLinearization l = LinearizeSegment(seg, alpha, options);
+  const Eigen::Matrix3d frame = AlongCrossFrame(l.predicted[0], l.predicted[1]);
+  return frame * l.H * P * l.H.transpose() * frame.transpose();
 }
 
 PredictionStats Summarize(const std::vector<PredictionError>& errors) {
@@ -226,18 +231,9 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     last_update_t = std::max(last_update_t, seg.t_end);
     P += AlphaMatrix::Identity() * options.alpha_walk_sd * options.alpha_walk_sd * elapsed;  // (29)
     // h(alpha) and H = dh/dalpha by automatic differentiation (30)-(31).
-    using Jet = ceres::Jet<double, kAlphaSize>;
-    Jet alpha_jet[kAlphaSize];
-    for (int i = 0; i < kAlphaSize; ++i) alpha_jet[i] = Jet(alpha[i], i);
-    Jet predicted[3];
-    ipd::PredictSegment(seg.steps, alpha_jet, options.gravity_mps2, predicted);
-    Eigen::Vector3d residual;
-    Eigen::Matrix<double, 3, kAlphaSize> H;
-    for (int r = 0; r < 3; ++r) {
-      residual[r] = seg.measured[r] - predicted[r].a;
-      H.row(r) = predicted[r].v.transpose();
-    }
-    residual[2] = std::remainder(residual[2], 2.0 * M_PI);
+    const SegmentLinearization l = LinearizeSegment(seg, alpha.data(), options);
+    const Eigen::Vector3d& residual = l.residual;
+    const Eigen::Matrix<double, 3, kAlphaSize>& H = l.H;
     const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
         seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
     const Eigen::Matrix3d R = terms.Total(q);

@@ -61,10 +61,16 @@ struct PredictionError {
 PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alpha,
                                    const IpdOptions& options, const Eigen::Vector3d& q);
 
-// d h / d alpha of a segment's prediction (3 x 13), by automatic differentiation.
-Eigen::Matrix<double, 3, ipd::kAlphaSize> PredictionJacobian(const IpdSegment& segment,
-                                                             const double* alpha,
-                                                             const IpdOptions& options);
+// A segment's prediction at alpha, linearized: the predicted end pose, its residual (measured
+// minus predicted, heading wrapped) and H = d h / d alpha (3 x 13), from one integration with
+// automatic differentiation.
+struct SegmentLinearization {
+  Eigen::Vector3d predicted = Eigen::Vector3d::Zero();
+  Eigen::Vector3d residual = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 3, ipd::kAlphaSize> H;
+};
+SegmentLinearization LinearizeSegment(const IpdSegment& segment, const double* alpha,
+                                      const IpdOptions& options);
 // H P H' of a segment's prediction in its (along, cross, heading) axes: what the uncertainty of
 // alpha adds to the predicted covariance.
 Eigen::Matrix3d ParameterCovariance(

@@ -43,22 +43,6 @@ int BlockOf(double t, double t0, double block_s) {
   return std::max(0, static_cast<int>(std::floor((t - t0) / block_s)));
 }
 
-// Residual of a segment at alpha and its covariance terms (for Q), and the factor for it.
-struct SegmentFit {
-  Eigen::Vector3d residual;
-  ipd::PredictionCovarianceTerms terms;
-};
-SegmentFit Fit(const IpdSegment& seg, const Alpha& alpha, const IpdOptions& options) {
-  double predicted[3];
-  ipd::PredictSegment(seg.steps, alpha.data(), options.gravity_mps2, predicted);
-  SegmentFit f;
-  f.residual = seg.measured - Eigen::Vector3d(predicted[0], predicted[1], predicted[2]);
-  f.residual[2] = std::remainder(f.residual[2], 2.0 * M_PI);
-  f.terms = ipd::PredictionCovariance(seg.steps, alpha.data(), options.gravity_mps2,
-                                      seg.sigma_start, seg.sigma_end);
-  return f;
-}
-
 ceres::CostFunction* SegmentFactor(const IpdSegment& seg, const Alpha& alpha,
                                    const IpdOptions& options, const Eigen::Vector3d& q) {
   const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
@@ -131,10 +115,10 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       const int index = std::clamp(b - first_block, 0, static_cast<int>(blocks.size()) - 1);
       // Q from the residual the segment leaves with the alpha known before it (as the EKF does).
       if (options.calibrate_q) {
-        const SegmentFit fit = Fit(seg, latest, options);
-        const Eigen::Matrix<double, 3, ipd::kAlphaSize> H =
-            PredictionJacobian(seg, latest.data(), options);
-        stochastic.Update(fit.residual, fit.terms, H * latest_covariance * H.transpose(),
+        const SegmentLinearization l = LinearizeSegment(seg, latest.data(), options);
+        const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
+            seg.steps, latest.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
+        stochastic.Update(l.residual, terms, l.H * latest_covariance * l.H.transpose(),
                           options.spacing_s);
       }
       problem.AddResidualBlock(SegmentFactor(seg, blocks[index], options, stochastic.q()), nullptr,
