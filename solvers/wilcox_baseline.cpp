@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/measurement_stream.h"
+
 namespace slipgraph {
 namespace {
 
@@ -95,7 +97,9 @@ double WilcoxRimMotion(const DriveLog& log, Side side, double t0, double t1) {
   const int first = side == Side::kLeft ? 0 : 3;
   const double r = log.vehicle.wheel_radius_m;
   double sum = 0.0;
-  for (size_t k = 0; k + 1 < log.wheels.size(); ++k) {
+  // Only the samples whose intervals overlap [t0, t1]: from the last one at or before t0.
+  const size_t from = static_cast<size_t>(std::max(0L, LatestAtOrBefore(log.wheels, t0)));
+  for (size_t k = from; k + 1 < log.wheels.size() && log.wheels[k].t < t1; ++k) {
     const double a = std::max(t0, log.wheels[k].t), b = std::min(t1, log.wheels[k + 1].t);
     if (b <= a) continue;
     double omega = 0.0;
