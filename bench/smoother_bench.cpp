@@ -99,7 +99,6 @@ int Chunked(double minutes, double chunk_min) {
   const Clock::time_point sim_start = Clock::now();
   const sim::SimResult sim = sim::Simulate(LongDrive(minutes), 1);
   const double sim_s = Seconds(sim_start);
-  const double rss_log = PeakRssMb();
   const Clock::time_point start = Clock::now();
   const WindowSmootherResult result =
       SmoothWindowed(sim.log, DefaultModelConfig(sim.log.vehicle),
@@ -109,7 +108,6 @@ int Chunked(double minutes, double chunk_min) {
   std::printf("| %.0f | %zu | %.1f | %ld | %.0f | %.0f | %.0f | %ld | %ld |\n", minutes,
               result.estimates.size(), chunk_min, result.updates, sim_s, total, PeakRssMb(),
               result.failed_updates, from_filter);
-  (void)rss_log;
   return 0;
 }
 

@@ -208,10 +208,8 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
     problem.SetParameterBlockVariable(&y[i]);
     problem.SetParameterBlockVariable(&s[i]);
   }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  ceres::Solver::Options options = step_options;
   options.max_num_iterations = g.max_iterations;
-  options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   if (!summary.IsSolutionUsable()) {
