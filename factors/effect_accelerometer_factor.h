@@ -4,7 +4,7 @@
 //
 // Parameter blocks: x_k (7), IMU offsets [c_ax, c_gz] (2), effect magnitudes theta
 // (kModelEffectCount; the problem holds the inactive ones constant at 0). With theta = 0 it is
-// AccelerometerFactor exactly (tested).
+// AccelerometerFactor exactly (tests/model_effects_test.cpp).
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
