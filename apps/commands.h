@@ -20,5 +20,6 @@ void RegisterCompareCommand(CLI::App* app, int* status);
 void RegisterCalibrateCommand(CLI::App* app, int* status);
 void RegisterSinkageCommand(CLI::App* app, int* status);
 void RegisterImportCommand(CLI::App* app, int* status);
+void RegisterDiagnoseCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

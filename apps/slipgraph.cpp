@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterCalibrateCommand(&app, &status);
   slipgraph::RegisterSinkageCommand(&app, &status);
   slipgraph::RegisterImportCommand(&app, &status);
+  slipgraph::RegisterDiagnoseCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

@@ -63,11 +63,16 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   }
   source.AddStatePrior(0, out->states[0].data(), &problem, &added);
   source.AddOffsetPrior(out->offsets, out->offsets.data(), &problem, &added);
+  std::vector<long> state_of(added.size(), -1);
   for (size_t k = 0; k < n; ++k) {
     source.AddStep(k, k > 0 ? out->states[k - 1].data() : nullptr, out->states[k].data(),
                    out->offsets.data(), effects, &problem, &added, &out->counts);
+    state_of.resize(added.size(), static_cast<long>(k));
   }
-  for (const AddedFactor& factor : added) out->blocks[factor.kind].push_back(factor.id);
+  for (size_t i = 0; i < added.size(); ++i) {
+    out->blocks[added[i].kind].push_back(added[i].id);
+    out->block_states[added[i].kind].push_back(state_of[i]);
+  }
   return out;
 }
 

@@ -34,6 +34,8 @@ struct WardProblem {
   std::unique_ptr<ceres::Problem> problem;
   // Residual blocks by factor kind ("dynamics", "accelerometer", ...), for cost breakdowns.
   std::map<std::string, std::vector<ceres::ResidualBlockId>> blocks;
+  // The state index each of those blocks belongs to (same order; -1 for the global priors).
+  std::map<std::string, std::vector<long>> block_states;
   FactorCounts counts;
 };
 

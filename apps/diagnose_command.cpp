@@ -1,0 +1,103 @@
+// `slipgraph diagnose`: the model workbench. Smooths the log with the model, shows each stream's
+// residuals against the model (RMS, chi-square consistency, whiteness), the segments where they
+// fail, and the catalogue effects not in the model ranked by robust score tests. With `--with
+// EFFECT`, the same report after switching the effects on, and the change (against truth when the
+// log has it, always in residual terms).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.h"
+#include "apps/estimator_runs.h"
+#include "factors/model_effects.h"
+#include "io/log_reader.h"
+#include "model/effect_catalogue.h"
+#include "workbench/diagnosis.h"
+
+namespace slipgraph {
+
+void RegisterDiagnoseCommand(CLI::App* app, int* status) {
+  struct Options {
+    std::string log, model, report, json;
+    std::vector<std::string> with;
+    bool skip_bad = false, no_gps = false;
+    DiagnosisOptions diagnosis;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app->add_subcommand(
+      "diagnose",
+      "Model vs measurements: residuals per stream, where the model fails, which catalogue "
+      "effect is missing; --with EFFECT adds one and shows the change");
+  cmd->add_option("LOG", options->log, "Log or suite directory (default: the bundled sample)");
+  cmd->add_option("--model", options->model, "Model YAML over the vehicle's nominal model");
+  cmd->add_option("--with", options->with,
+                  "Switch a catalogue effect on in the model and report before and after "
+                  "(repeatable)");
+  cmd->add_option("--report", options->report, "Write a self-contained HTML report");
+  cmd->add_option("--json", options->json, "Write one JSON object to this file ('-': stdout)");
+  cmd->add_option("--alpha", options->diagnosis.alpha,
+                  "Family-wise significance level of the tests")
+      ->capture_default_str();
+  cmd->add_flag("--no-gps", options->no_gps, "Ignore GNSS");
+  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->callback([options, status]() {
+    for (const std::string& effect : options->with) {
+      if (FindEffect(effect) == nullptr) {
+        throw CLI::ValidationError("--with", "unknown effect '" + effect + "'");
+      }
+      if (ModelEffectIndex(effect) < 0) {
+        std::string terms;
+        for (const char* name : ModelEffectNames()) terms += std::string(" ") + name;
+        throw CLI::ValidationError(
+            "--with", "effect '" + effect + "' has no smoother term yet; effects with one:" + terms);
+      }
+    }
+    DiagnosisOptions diagnosis = options->diagnosis;
+    diagnosis.smoother.filter.use_gps = !options->no_gps;
+    const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
+    const bool to_stdout = options->json == "-";
+    std::ostream& text = to_stdout ? std::cerr : std::cout;
+    nlohmann::json all = nlohmann::json::array();
+    std::string html;
+    for (const std::string& log_dir : ListLogs(path)) {
+      const DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
+      const ModelConfig model = ModelForLog(log, options->model);
+      const Diagnosis before = Diagnose(log, model, diagnosis);
+      PrintDiagnosis(before, text);
+      nlohmann::json j = ToJson(before);
+      if (!options->with.empty()) {
+        ModelConfig extended = model;
+        for (const std::string& effect : options->with) {
+          if (std::find(extended.effects.begin(), extended.effects.end(), effect) ==
+              extended.effects.end())
+            extended.effects.push_back(effect);
+        }
+        const Diagnosis after = Diagnose(log, extended, diagnosis);
+        text << "\nwith " << options->with.size() << " effect(s) added:\n";
+        PrintDiagnosis(after, text);
+        PrintComparison(before, after, text);
+        j["after"] = ToJson(after);
+        if (html.empty()) html = DiagnosisHtml(before, &after);
+      } else if (html.empty()) {
+        html = DiagnosisHtml(before, nullptr);
+      }
+      all.push_back(j);
+    }
+    if (!options->report.empty()) {
+      std::ofstream(options->report) << html;
+      text << "report: " << options->report << "\n";
+    }
+    if (!options->json.empty()) {
+      const nlohmann::json out = all.size() == 1 ? all[0] : nlohmann::json{{"logs", all}};
+      if (to_stdout) {
+        std::cout << out.dump(2) << "\n";
+      } else {
+        std::ofstream(options->json) << out.dump(2) << "\n";
+      }
+    }
+    *status = 0;
+  });
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,375 @@
+#include "workbench/diagnosis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+#include "evaluation/html_report.h"
+#include "factors/ward_state.h"
+#include "workbench/effect_signatures.h"
+
+namespace slipgraph {
+namespace {
+
+StreamReport ReportStream(const std::string& name, const std::vector<double>& r,
+                          const DiagnosisOptions& options) {
+  StreamReport s;
+  s.name = name;
+  double sum = 0.0;
+  for (double v : r) {
+    if (std::isfinite(v)) sum += v * v, ++s.samples;
+  }
+  if (s.samples == 0) return s;
+  s.rms = std::sqrt(sum / s.samples);
+  s.chi_square_p = ChiSquareUpperTail(sum, static_cast<double>(s.samples));
+  s.consistent = s.chi_square_p >= options.alpha;
+  s.whiteness = LjungBox(r, std::min<int>(options.whiteness_lags, s.samples / 4));
+  s.white = s.whiteness.p_value >= options.alpha;
+  return s;
+}
+
+// The force balance as a stream: u normalized by its full sd (noise and the solution's own).
+std::vector<double> ForceBalance(const ModelResiduals& m, std::vector<double>* t) {
+  std::vector<double> r;
+  for (const StateContext& c : m.states) {
+    if (!std::isfinite(c.unexplained_force)) continue;
+    t->push_back(c.t);
+    r.push_back(c.unexplained_force /
+                 std::sqrt(c.force_sd * c.force_sd + c.force_state_sd * c.force_state_sd));
+  }
+  return r;
+}
+
+struct Series {
+  std::string name;
+  std::vector<double> t, r;
+};
+
+std::vector<FailureSegment> FindFailures(const std::vector<Series>& streams,
+                                         const ModelResiduals& m,
+                                         const DiagnosisOptions& options) {
+  if (m.states.empty()) return {};
+  const double t0 = m.states.front().t, t1 = m.states.back().t;
+  const size_t windows = std::max<size_t>(1, std::ceil((t1 - t0) / options.window_s));
+  const double level = options.alpha / (windows * std::max<size_t>(1, streams.size()));
+  std::vector<std::set<std::string>> flagged(windows);
+  for (const Series& s : streams) {
+    std::vector<double> sum(windows, 0.0);
+    std::vector<int> count(windows, 0);
+    for (size_t i = 0; i < s.t.size(); ++i) {
+      if (!std::isfinite(s.r[i])) continue;
+      const size_t w = std::min(windows - 1, static_cast<size_t>((s.t[i] - t0) / options.window_s));
+      sum[w] += s.r[i] * s.r[i], ++count[w];
+    }
+    for (size_t w = 0; w < windows; ++w) {
+      if (count[w] > 0 && ChiSquareUpperTail(sum[w], count[w]) < level) flagged[w].insert(s.name);
+    }
+  }
+  std::vector<FailureSegment> out;
+  for (size_t w = 0; w < windows; ++w) {
+    if (flagged[w].empty()) continue;
+    const double a = t0 + w * options.window_s, b = std::min(t1, a + options.window_s);
+    if (!out.empty() && out.back().t_end >= a - 1e-9) {
+      out.back().t_end = b;
+      for (const std::string& name : flagged[w]) {
+        if (std::find(out.back().streams.begin(), out.back().streams.end(), name) ==
+            out.back().streams.end())
+          out.back().streams.push_back(name);
+      }
+    } else {
+      out.push_back({a, b, {flagged[w].begin(), flagged[w].end()}});
+    }
+  }
+  for (FailureSegment& f : out) {
+    double speed = 0.0, pitch = 0.0, yaw = 0.0;
+    int n = 0;
+    for (const StateContext& c : m.states) {
+      if (c.t < f.t_start || c.t > f.t_end) continue;
+      speed += std::abs(c.x[ward::kVbx]), pitch += std::abs(c.pitch_rad);
+      yaw += std::abs(c.x[ward::kYawRate]), ++n;
+    }
+    if (n > 0) f.speed_mps = speed / n, f.abs_pitch_rad = pitch / n, f.abs_yaw_rate_radps = yaw / n;
+  }
+  return out;
+}
+
+CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m,
+                     const DriveLog& log, const ModelConfig& model) {
+  CandidateScore c;
+  c.effect = signature.effect;
+  c.test = signature.test;
+  c.has_model_term = ModelEffectIndex(signature.effect) >= 0;
+  double searched = 1.0, precision = 0.0, weighted = 0.0;
+  for (const SignatureSeries& s : signature.series(m, log, model)) {
+    const SlopeFit fit = FitSlopeHac(s.y, s.g, s.y_common_sd);
+    if (fit.n == 0 || !(fit.sd > 0.0)) continue;
+    c.series.push_back({s.stream, fit});
+    ++c.dof;
+    searched = std::max(searched, s.searched);
+    if (!s.where.empty()) c.where = s.where;
+    precision += 1.0 / (fit.sd * fit.sd);
+    weighted += fit.slope / (fit.sd * fit.sd);
+  }
+  if (c.dof == 0) return c;
+  // One magnitude seen through every series: their precision-weighted mean, tested against
+  // |theta| <= negligible (a Wald test on the score-test slope; chi-square with 1 dof).
+  c.magnitude = weighted / precision;
+  c.magnitude_sd = 1.0 / std::sqrt(precision);
+  const double negligible = signature.negligible ? signature.negligible(log) : 0.0;
+  const double z = std::max(0.0, std::abs(c.magnitude) - negligible) / c.magnitude_sd;
+  c.statistic = z * z;
+  c.dof = 1;
+  c.p_value = std::min(1.0, NormalTwoSided(z) * searched);
+  return c;
+}
+
+}  // namespace
+
+Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
+                   const DiagnosisOptions& options) {
+  Diagnosis d;
+  d.log = log.directory;
+  d.model_effects = model.effects;
+  d.solution = SmoothBatch(log, model, options.smoother);
+  d.used_fallback = d.solution.used_fallback;
+  d.notes = d.solution.notes;
+  d.fitted_effects = d.solution.effects;
+  if (d.used_fallback) {
+    d.notes.push_back("the smoother failed: residuals are evaluated at the EKF's estimates");
+  }
+  d.residuals = EvaluateModelResiduals(log, model, d.solution, options.smoother);
+  const ModelResiduals& m = d.residuals;
+
+  std::vector<Series> series;
+  for (const StreamResiduals& s : m.streams) series.push_back({s.name, s.t, s.normalized});
+  Series force{"force_balance", {}, {}};
+  force.r = ForceBalance(m, &force.t);
+  series.push_back(force);
+  for (const Series& s : series) d.streams.push_back(ReportStream(s.name, s.r, options));
+  d.failures = FindFailures(series, m, options);
+
+  std::vector<const EffectSignature*> candidates;
+  for (const EffectSignature& s : EffectSignatures()) {
+    if (std::find(model.effects.begin(), model.effects.end(), s.effect) == model.effects.end()) {
+      candidates.push_back(&s);
+    }
+  }
+  for (const EffectSignature* s : candidates) {
+    CandidateScore c = Score(*s, m, log, model);
+    c.p_value = std::min(1.0, c.p_value * candidates.size());
+    c.significant = c.dof > 0 && c.p_value < options.alpha;
+    d.candidates.push_back(c);
+  }
+  std::stable_sort(d.candidates.begin(), d.candidates.end(),
+                   [](const CandidateScore& a, const CandidateScore& b) {
+                     if (a.p_value != b.p_value) return a.p_value < b.p_value;
+                     return a.statistic / std::max(1, a.dof) > b.statistic / std::max(1, b.dof);
+                   });
+  bool failing = !d.failures.empty();
+  for (const StreamReport& s : d.streams) failing = failing || !s.consistent;
+  bool any = false;
+  for (const CandidateScore& c : d.candidates) any = any || c.significant;
+  d.explained = any || !failing;
+
+  if (!log.truth.empty()) {
+    const Evaluation e = Evaluate(log, EstimateTable(d.solution.estimates));
+    d.truth.available = true;
+    d.truth.velocity_rmse = e.velocity_rmse;
+    d.truth.disturbance_rmse = e.disturbance_rmse;
+  }
+  return d;
+}
+
+void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
+  out << "diagnose: " << d.log << " (model effects: ";
+  if (d.model_effects.empty()) out << "none";
+  for (size_t i = 0; i < d.model_effects.size(); ++i) out << (i ? ", " : "") << d.model_effects[i];
+  out << ")\n";
+  for (const std::string& note : d.notes) out << "  note: " << note << "\n";
+  for (const EffectEstimate& e : d.fitted_effects) {
+    out << "  fitted " << e.name << " = " << e.value << " +- " << e.sd << "\n";
+  }
+  out << "  streams (normalized residuals):\n";
+  out << "    stream          samples   rms    chi2 p    consistent  Ljung-Box Q  p        white\n";
+  for (const StreamReport& s : d.streams) {
+    char line[200];
+    std::snprintf(line, sizeof(line), "    %-15s %7zu  %6.3f  %8.2g  %-10s  %11.1f  %8.2g %s\n",
+                  s.name.c_str(), s.samples, s.rms, s.chi_square_p, s.consistent ? "yes" : "NO",
+                  s.whiteness.q, s.whiteness.p_value, s.white ? "yes" : "NO");
+    out << line;
+  }
+  out << "  where it fails (" << d.failures.size() << " segments):\n";
+  for (const FailureSegment& f : d.failures) {
+    char line[200];
+    std::snprintf(line, sizeof(line),
+                  "    %7.1f - %7.1f s  speed %.2f m/s  |pitch| %.3f rad  |yaw rate| %.2f rad/s  ",
+                  f.t_start, f.t_end, f.speed_mps, f.abs_pitch_rad, f.abs_yaw_rate_radps);
+    out << line;
+    for (size_t i = 0; i < f.streams.size(); ++i) out << (i ? ", " : "") << f.streams[i];
+    out << "\n";
+  }
+  out << "  candidate effects (robust score tests, Bonferroni-adjusted p):\n";
+  for (const CandidateScore& c : d.candidates) {
+    char line[240];
+    std::snprintf(line, sizeof(line), "    %-24s stat %8.1f (dof %d)  p %8.2g  %-3s  magnitude %.4g +- %.2g",
+                  c.effect.c_str(), c.statistic, c.dof, c.p_value, c.significant ? "YES" : "no",
+                  c.magnitude, c.magnitude_sd);
+    out << line;
+    if (!c.where.empty()) out << "  (" << c.where << ")";
+    if (!c.has_model_term) out << "  [no smoother term yet]";
+    out << "\n";
+  }
+  if (!d.candidates.empty() && d.candidates.front().significant) {
+    out << "  most likely missing: " << d.candidates.front().effect << " ("
+        << d.candidates.front().magnitude << " +- " << d.candidates.front().magnitude_sd << ")\n";
+  } else if (!d.explained) {
+    out << "  no candidate explains it: the failures above are outside the catalogue's tests\n";
+  } else {
+    out << "  no candidate is significant, and the model is consistent with the measurements\n";
+  }
+  if (d.truth.available) {
+    out << "  against truth: velocity RMSE " << d.truth.velocity_rmse << " m/s, disturbance RMSE "
+        << d.truth.disturbance_rmse << " m/s^2\n";
+  }
+}
+
+void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostream& out) {
+  out << "before -> after adding";
+  for (const std::string& e : after.model_effects) {
+    if (std::find(before.model_effects.begin(), before.model_effects.end(), e) ==
+        before.model_effects.end())
+      out << " " << e;
+  }
+  out << ":\n";
+  if (before.truth.available && after.truth.available) {
+    char line[200];
+    std::snprintf(line, sizeof(line),
+                  "  velocity RMSE %.4f -> %.4f m/s (%+.0f %%), disturbance RMSE %.3f -> %.3f\n",
+                  before.truth.velocity_rmse, after.truth.velocity_rmse,
+                  100.0 * (after.truth.velocity_rmse / before.truth.velocity_rmse - 1.0),
+                  before.truth.disturbance_rmse, after.truth.disturbance_rmse);
+    out << line;
+  }
+  for (size_t i = 0; i < before.streams.size() && i < after.streams.size(); ++i) {
+    char line[200];
+    std::snprintf(line, sizeof(line), "  %-15s rms %.3f -> %.3f   Ljung-Box Q %.0f -> %.0f\n",
+                  before.streams[i].name.c_str(), before.streams[i].rms, after.streams[i].rms,
+                  before.streams[i].whiteness.q, after.streams[i].whiteness.q);
+    out << line;
+  }
+  out << "  failure segments " << before.failures.size() << " -> " << after.failures.size()
+      << "\n";
+}
+
+nlohmann::json ToJson(const Diagnosis& d) {
+  nlohmann::json j;
+  j["log"] = d.log;
+  j["model_effects"] = d.model_effects;
+  j["streams"] = nlohmann::json::object();
+  for (const StreamReport& s : d.streams) {
+    j["streams"][s.name] = {{"samples", s.samples},
+                            {"rms", s.rms},
+                            {"chi_square_p", s.chi_square_p},
+                            {"consistent", s.consistent},
+                            {"ljung_box_q", s.whiteness.q},
+                            {"whiteness_p", s.whiteness.p_value},
+                            {"white", s.white}};
+  }
+  j["failures"] = nlohmann::json::array();
+  for (const FailureSegment& f : d.failures) {
+    j["failures"].push_back({{"t_start", f.t_start},
+                             {"t_end", f.t_end},
+                             {"streams", f.streams},
+                             {"speed_mps", f.speed_mps},
+                             {"abs_pitch_rad", f.abs_pitch_rad},
+                             {"abs_yaw_rate_radps", f.abs_yaw_rate_radps}});
+  }
+  j["candidates"] = nlohmann::json::array();
+  for (const CandidateScore& c : d.candidates) {
+    nlohmann::json cj = {{"effect", c.effect},         {"statistic", c.statistic},
+                         {"dof", c.dof},               {"p_value", c.p_value},
+                         {"significant", c.significant}, {"magnitude", c.magnitude},
+                         {"magnitude_sd", c.magnitude_sd}, {"test", c.test},
+                         {"has_model_term", c.has_model_term}};
+    if (!c.where.empty()) cj["where"] = c.where;
+    j["candidates"].push_back(cj);
+  }
+  j["explained"] = d.explained;
+  j["fitted_effects"] = nlohmann::json::array();
+  for (const EffectEstimate& e : d.fitted_effects) {
+    j["fitted_effects"].push_back({{"effect", e.name}, {"value", e.value}, {"sd", e.sd}});
+  }
+  if (d.truth.available) {
+    j["truth"] = {{"velocity_rmse", d.truth.velocity_rmse},
+                  {"disturbance_rmse", d.truth.disturbance_rmse}};
+  }
+  j["used_fallback"] = d.used_fallback;
+  j["notes"] = d.notes;
+  return j;
+}
+
+namespace {
+
+std::string Section(const Diagnosis& d, const std::string& heading) {
+  std::ostringstream html;
+  html << "<h2>" << HtmlEscape(heading) << "</h2>\n";
+  std::vector<std::pair<double, double>> shaded;
+  for (const FailureSegment& f : d.failures) shaded.push_back({f.t_start, f.t_end});
+  for (const StreamResiduals& s : d.residuals.streams) {
+    Plot plot;
+    plot.title = s.name + ": normalized residual (z - h(x)) / sd; failure segments shaded";
+    plot.y_label = "r";
+    plot.shaded = shaded;
+    PlotSeries p;
+    p.label = s.name;
+    p.t = s.t, p.y = s.normalized, p.points = true;
+    plot.series.push_back(p);
+    html << RenderSvg(plot) << "\n";
+  }
+  Plot force;
+  force.title = "force balance the model does not explain, u = a_x - f_tire(x) - c - b (m/s^2)";
+  force.y_label = "m/s^2";
+  force.shaded = shaded;
+  PlotSeries u;
+  u.label = "u";
+  for (const StateContext& c : d.residuals.states) {
+    u.t.push_back(c.t), u.y.push_back(c.unexplained_force);
+  }
+  force.series.push_back(u);
+  html << RenderSvg(force) << "\n";
+  html << "<table border=1 cellpadding=3><tr><th>effect</th><th>statistic</th><th>dof</th>"
+          "<th>p</th><th>significant</th><th>magnitude</th><th>sd</th><th>test</th></tr>\n";
+  for (const CandidateScore& c : d.candidates) {
+    html << "<tr><td>" << HtmlEscape(c.effect) << "</td><td>" << c.statistic << "</td><td>"
+         << c.dof << "</td><td>" << c.p_value << "</td><td>" << (c.significant ? "yes" : "no")
+         << "</td><td>" << c.magnitude << "</td><td>" << c.magnitude_sd << "</td><td>"
+         << HtmlEscape(c.test + (c.where.empty() ? "" : " (" + c.where + ")")) << "</td></tr>\n";
+  }
+  html << "</table>\n";
+  std::ostringstream text;
+  PrintDiagnosis(d, text);
+  html << "<pre>" << HtmlEscape(text.str()) << "</pre>\n";
+  return html.str();
+}
+
+}  // namespace
+
+std::string DiagnosisHtml(const Diagnosis& before, const Diagnosis* after) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>slipgraph diagnose "
+       << HtmlEscape(before.log) << "</title></head><body>\n<h1>slipgraph diagnose: "
+       << HtmlEscape(before.log) << "</h1>\n";
+  html << Section(before, after ? "before" : "model vs measurements");
+  if (after != nullptr) {
+    std::ostringstream text;
+    PrintComparison(before, *after, text);
+    html << "<h2>before -> after</h2><pre>" << HtmlEscape(text.str()) << "</pre>\n";
+    html << Section(*after, "after");
+  }
+  html << "</body></html>\n";
+  return html.str();
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,99 @@
+// The workbench's diagnosis of a model on a log: the batch smoother's solution, each measurement
+// stream's residuals against the model (RMS, chi-square consistency, Ljung-Box whiteness), the
+// time segments where they break their bounds, and every catalogue effect not in the model scored
+// by its signature test (workbench/effect_signatures.h), ranked, with "no candidate explains it"
+// when none is significant.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "evaluation/evaluation.h"
+#include "io/drive_log.h"
+#include "model/model_config.h"
+#include "solvers/batch_smoother.h"
+#include "workbench/model_residuals.h"
+#include "workbench/robust_statistics.h"
+
+namespace slipgraph {
+
+struct DiagnosisOptions {
+  BatchSmootherOptions smoother;
+  double alpha = 0.01;      // family-wise level of the candidate tests and the segment tests
+  double window_s = 2.0;    // segment test window
+  int whiteness_lags = 20;  // Ljung-Box lags
+};
+
+struct StreamReport {
+  std::string name;
+  size_t samples = 0;
+  double rms = 0.0;  // of the normalized residuals (1 when the model's sd is right)
+  double chi_square_p = 1.0;  // upper tail of sum r^2 under chi-square(samples)
+  bool consistent = true;     // chi_square_p >= alpha
+  WhitenessTest whiteness;
+  bool white = true;  // whiteness.p_value >= alpha
+};
+
+struct FailureSegment {
+  double t_start = 0.0, t_end = 0.0;
+  std::vector<std::string> streams;
+  // Operating conditions there (means over the segment; terrain when the log's truth has it).
+  double speed_mps = 0.0, abs_pitch_rad = 0.0, abs_yaw_rate_radps = 0.0;
+};
+
+struct SeriesScore {
+  std::string stream;
+  SlopeFit fit;
+};
+
+struct CandidateScore {
+  std::string effect;
+  std::string test;
+  std::string where;      // the chosen patch or change point, when the test searched
+  // ((|magnitude| - negligible) / magnitude_sd)^2: chi-square, 1 dof, under the null
+  // |theta| <= negligible (workbench/effect_signatures.h).
+  double statistic = 0.0;
+  int dof = 0;
+  double p_value = 1.0;  // Bonferroni-adjusted for the search and the candidates scored
+  bool significant = false;
+  double magnitude = 0.0, magnitude_sd = 0.0;  // precision-weighted over the series
+  bool has_model_term = false;                 // `--with` can add it to the smoother
+  std::vector<SeriesScore> series;
+};
+
+struct TruthErrors {
+  bool available = false;
+  double velocity_rmse = 0.0, disturbance_rmse = 0.0;
+};
+
+struct Diagnosis {
+  std::string log;
+  std::vector<std::string> model_effects;
+  std::vector<StreamReport> streams;
+  std::vector<FailureSegment> failures;
+  std::vector<CandidateScore> candidates;  // best first
+  bool explained = true;  // false: failures or a rejected stream, and no significant candidate
+  TruthErrors truth;
+  std::vector<EffectEstimate> fitted_effects;  // the model's own effects, as the smoother fit them
+  bool used_fallback = false;
+  std::vector<std::string> notes;
+  ModelResiduals residuals;    // for plots
+  SmootherResult solution;     // for plots
+};
+
+Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
+                   const DiagnosisOptions& options = {});
+
+// The terminal summary: streams, failures, ranked candidates, the verdict.
+void PrintDiagnosis(const Diagnosis& diagnosis, std::ostream& out);
+// Before/after lines for `--with`: truth errors and stream statistics side by side.
+void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostream& out);
+nlohmann::json ToJson(const Diagnosis& diagnosis);
+// A self-contained HTML page: residual plots per stream with the failure segments shaded, the
+// candidates' table, and (with `after`) the same after adding the effects.
+std::string DiagnosisHtml(const Diagnosis& before, const Diagnosis* after);
+
+}  // namespace slipgraph

@@ -1,0 +1,276 @@
+#include "workbench/effect_signatures.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/measurement_stream.h"
+
+#include "factors/ward_dynamics.h"
+#include "factors/ward_state.h"
+
+namespace slipgraph {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The unexplained force balance against one effect term's derivative (model_effects.h).
+SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
+  SignatureSeries s;
+  s.stream = "accelerometer";
+  for (const StateContext& c : m.states) {
+    if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) continue;
+    s.t.push_back(c.t);
+    s.y.push_back(c.unexplained_force / c.force_sd);
+    s.g.push_back(c.force_per_effect[effect] / c.force_sd);
+    s.y_common_sd.push_back(c.force_state_sd / c.force_sd);
+  }
+  return s;
+}
+
+// The GNSS velocity residuals against a shape h(state index) in m/s per unit magnitude.
+SignatureSeries GnssSeries(const ModelResiduals& m, const std::function<double(size_t)>& h) {
+  SignatureSeries s;
+  s.stream = "gnss";
+  const StreamResiduals* gnss = m.Find("gnss");
+  if (gnss == nullptr) return s;
+  for (size_t i = 0; i < gnss->t.size(); ++i) {
+    s.t.push_back(gnss->t[i]);
+    s.y.push_back(gnss->normalized[i]);
+    s.g.push_back(h(gnss->state[i]) / gnss->sd[i]);
+  }
+  return s;
+}
+
+// Index of the state at or before t (states are in time order).
+size_t StateAt(const ModelResiduals& m, double t) {
+  const auto it = std::upper_bound(m.states.begin(), m.states.end(), t,
+                                   [](double v, const StateContext& c) { return v < c.t; });
+  return it == m.states.begin() ? 0 : static_cast<size_t>(it - m.states.begin()) - 1;
+}
+
+// Mean of f over states [begin, end), skipping non-finite values.
+double MeanOver(const ModelResiduals& m, long begin, long end,
+                const std::function<double(const StateContext&)>& f) {
+  double sum = 0.0;
+  int count = 0;
+  for (long k = std::max(0L, begin); k < std::min<long>(end, m.states.size()); ++k) {
+    const double v = f(m.states[k]);
+    if (std::isfinite(v)) sum += v, ++count;
+  }
+  return count > 0 ? sum / count : kNaN;
+}
+
+// Derivative of f at state k from the means over two windows that leave out k itself (so the
+// noise of sample k does not enter its own regressor): (mean[k+3, k+8] - mean[k-8, k-3]) / dt.
+double DerivativeAround(const ModelResiduals& m, size_t k,
+                        const std::function<double(const StateContext&)>& f) {
+  const long i = static_cast<long>(k);
+  if (i < 8 || i + 9 > static_cast<long>(m.states.size())) return kNaN;
+  const double dt = 0.5 * (m.states[i + 8].t + m.states[i + 3].t) -
+                    0.5 * (m.states[i - 3].t + m.states[i - 8].t);
+  return (MeanOver(m, i + 3, i + 9, f) - MeanOver(m, i - 8, i - 2, f)) / dt;
+}
+
+// x minus its centred moving average over window_s (samples in time order): removes what drifts
+// slower than the window, such as a sensor bias's Gauss-Markov walk.
+std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,
+                             double window_s) {
+  std::vector<double> out(x.size());
+  size_t begin = 0, end = 0;
+  double sum = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    while (end < x.size() && t[end] <= t[i] + 0.5 * window_s) sum += x[end++];
+    while (t[begin] < t[i] - 0.5 * window_s) sum -= x[begin++];
+    out[i] = x[i] - sum / static_cast<double>(end - begin);
+  }
+  return out;
+}
+
+std::vector<EffectSignature> MakeSignatures() {
+  std::vector<EffectSignature> list;
+  list.push_back(
+      {"gps_velocity_averaging",
+       "GNSS velocity residual against -(v(t) - v(t - T)) / 2, T the fix interval", nullptr,
+       [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+         std::vector<double> previous(m.states.size(), kNaN);
+         std::vector<SignatureSeries> out;
+         SignatureSeries s = GnssSeries(m, [&](size_t k) {
+           const double t = m.states[k].t;
+           const auto it = std::lower_bound(m.gnss_times.begin(), m.gnss_times.end(), t - 1e-6);
+           if (it == m.gnss_times.begin()) return kNaN;
+           const size_t j = StateAt(m, *(it - 1));
+           return -0.5 * (m.states[k].x[ward::kVbx] - m.states[j].x[ward::kVbx]);
+         });
+         out.push_back(s);
+         return out;
+       }});
+  list.push_back({"wheel_radius_error",
+                  "force balance against d f_tire / d radius; GNSS velocity residual against v", nullptr,
+                  [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+                    return std::vector<SignatureSeries>{
+                        ForceSeries(m, kWheelRadiusError), GnssSeries(m, [&](size_t k) {
+                          return m.states[k].x[ward::kVbx];
+                        })};
+                  }});
+  list.push_back(
+      {"imu_mounting_pitch",
+       "accelerometer z residual (a_z - g cos pitch cos roll) against a_x, both high-passed at 5 s", nullptr,
+       [](const ModelResiduals& m, const DriveLog&, const ModelConfig& model) {
+         SignatureSeries s;
+         s.stream = "accelerometer_z";
+         const double sd = model.measurement.imu_sd_accel_mps2;
+         const double g0 = 9.80665;
+         for (const StateContext& c : m.states) {
+           if (!std::isfinite(c.accel_z) || !std::isfinite(c.accel_x)) continue;
+           s.t.push_back(c.t);
+           s.y.push_back((c.accel_z - g0 * std::cos(c.pitch_rad) * std::cos(c.roll_rad)) / sd);
+           s.g.push_back(c.accel_x / sd);
+         }
+         // The z accelerometer's bias drifts (Gauss-Markov) and would correlate by chance with
+         // slow patterns of a_x (hills): the test uses what varies faster than 5 s.
+         s.y = HighPass(s.t, s.y, 5.0);
+         s.g = HighPass(s.t, s.g, 5.0);
+         return std::vector<SignatureSeries>{s};
+       }});
+  list.push_back({"slope_slip", "force balance against d f_tire / d slope_slip (|grade| x traction)", nullptr,
+                  [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+                    return std::vector<SignatureSeries>{ForceSeries(m, kSlopeSlip)};
+                  }});
+  list.push_back({"turn_slip", "force balance against -g |yaw rate| sgn(v)", nullptr,
+                  [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+                    return std::vector<SignatureSeries>{ForceSeries(m, kTurnSlip)};
+                  }});
+  list.push_back(
+      {"sinkage_resistance",
+       "force balance against -g sgn(v) over the best patch of path (scanned, Bonferroni)", nullptr,
+       [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+         // Distance along the path at each state.
+         std::vector<double> s_path(m.states.size(), 0.0);
+         for (size_t k = 1; k < m.states.size(); ++k) {
+           s_path[k] = s_path[k - 1] + std::abs(m.states[k - 1].x[ward::kVbx]) *
+                                           (m.states[k].t - m.states[k - 1].t);
+         }
+         SignatureSeries base;
+         base.stream = "accelerometer";
+         std::vector<double> s_of, sign_of;
+         for (size_t k = 0; k < m.states.size(); ++k) {
+           const StateContext& c = m.states[k];
+           if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) continue;
+           base.t.push_back(c.t);
+           base.y.push_back(c.unexplained_force / c.force_sd);
+           base.y_common_sd.push_back(c.force_state_sd / c.force_sd);
+           const double v = c.x[ward::kVbx];
+           sign_of.push_back(-9.80665 * std::tanh(20.0 * v) / c.force_sd);
+           s_of.push_back(s_path[k]);
+         }
+         // Patches [a, b) on a 1 m grid, at least 3 m long; the best by the white-noise score.
+         const double length = s_path.empty() ? 0.0 : s_path.back();
+         const double step = 1.0, min_patch = 3.0;
+         double best = -1.0, best_a = 0.0, best_b = 0.0, searched = 0.0;
+         double mean_y = 0.0;
+         for (double y : base.y) mean_y += y;
+         if (!base.y.empty()) mean_y /= base.y.size();
+         for (double a = 0.0; a + min_patch <= length; a += step) {
+           for (double b = a + min_patch; b <= length + step; b += step) {
+             double sgy = 0.0, sgg = 0.0, sg = 0.0;
+             size_t count = 0;
+             for (size_t i = 0; i < base.y.size(); ++i) {
+               if (s_of[i] < a || s_of[i] >= b) continue;
+               sgy += sign_of[i] * (base.y[i] - mean_y), sgg += sign_of[i] * sign_of[i];
+               sg += sign_of[i], ++count;
+             }
+             searched += 1.0;
+             const double centred = sgg - sg * sg / std::max<size_t>(base.y.size(), 1);
+             if (count < 10 || centred <= 0.0) continue;
+             const double score = sgy * sgy / centred;
+             if (score > best) best = score, best_a = a, best_b = b;
+           }
+         }
+         base.g.resize(base.y.size());
+         for (size_t i = 0; i < base.y.size(); ++i) {
+           base.g[i] = s_of[i] >= best_a && s_of[i] < best_b ? sign_of[i] : 0.0;
+         }
+         base.searched = std::max(1.0, searched);
+         char where[64];
+         std::snprintf(where, sizeof(where), "patch %.0f-%.0f m", best_a, best_b);
+         base.where = where;
+         return std::vector<SignatureSeries>{base};
+       }});
+  list.push_back({"quadratic_drag", "force balance against -v |v| / m", nullptr,
+                  [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+                    return std::vector<SignatureSeries>{ForceSeries(m, kQuadraticDrag)};
+                  }});
+  list.push_back(
+      {"clock_offset",
+       "force balance against -d a_x / dt; attitude heading minus integrated gyro against the yaw "
+       "rate",
+       [](const DriveLog& log) {
+         // One IMU sample period: the resolution of the stamps themselves.
+         return log.imu.size() > 1 ? (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1)
+                                   : 0.01;
+       },
+       [](const ModelResiduals& m, const DriveLog& log, const ModelConfig&) {
+         SignatureSeries force;
+         force.stream = "accelerometer";
+         const auto accel = [](const StateContext& c) { return c.accel_x; };
+         for (size_t k = 0; k < m.states.size(); ++k) {
+           const StateContext& c = m.states[k];
+           if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) continue;
+           force.t.push_back(c.t);
+           force.y.push_back(c.unexplained_force / c.force_sd);
+           force.y_common_sd.push_back(c.force_state_sd / c.force_sd);
+           force.g.push_back(-DerivativeAround(m, k, accel) / c.force_sd);
+         }
+         // The gyro's integrated heading against the attitude stream's heading, which is
+         // stamped on the log's clock: IMU stamps late by delta make the integral lag by delta,
+         // psi_att - psi_gyro = const + delta yaw_rate. (The wheels are no reference here: the
+         // body's yaw rate lags theirs by the tire dynamics, tens of ms.) Without an attitude
+         // yaw, only the force-balance series remains.
+         SignatureSeries yaw;
+         yaw.stream = "attitude_yaw";
+         if (log.attitude.size() > 10) {
+           double psi_gyro = 0.0, previous_t = m.states.front().t, previous_rate = 0.0;
+           double psi_att = 0.0, previous_att = kNaN;
+           for (size_t k = 0; k < m.states.size(); ++k) {
+             const StateContext& c = m.states[k];
+             const double rate = c.gyro_z - m.gyro_offset - c.x[ward::kGyroBias];
+             if (!std::isfinite(rate)) continue;
+             if (k > 0) psi_gyro += 0.5 * (rate + previous_rate) * (c.t - previous_t);
+             previous_t = c.t, previous_rate = rate;
+             const long a = LatestAtOrBefore(log.attitude, c.t, 1e-6);
+             if (a < 0 || std::abs(log.attitude[a].t - c.t) > 1e-3) continue;
+             const double measured = log.attitude[a].yaw;
+             if (!std::isfinite(measured)) continue;
+             // Unwrapped attitude heading.
+             psi_att = std::isfinite(previous_att)
+                           ? psi_att + std::remainder(measured - previous_att, 2.0 * M_PI)
+                           : measured;
+             previous_att = measured;
+             const double sd = std::isfinite(log.attitude[a].sd_yaw) && log.attitude[a].sd_yaw > 0.0
+                                   ? log.attitude[a].sd_yaw
+                                   : 0.01;
+             yaw.t.push_back(c.t);
+             yaw.y.push_back((psi_att - psi_gyro) / sd);
+             yaw.g.push_back(rate / sd);
+           }
+         }
+         return std::vector<SignatureSeries>{force, yaw};
+       }});
+  return list;
+}
+
+}  // namespace
+
+const std::vector<EffectSignature>& EffectSignatures() {
+  static const std::vector<EffectSignature> kSignatures = MakeSignatures();
+  return kSignatures;
+}
+
+const EffectSignature* FindSignature(const std::string& effect) {
+  for (const EffectSignature& s : EffectSignatures()) {
+    if (s.effect == effect) return &s;
+  }
+  return nullptr;
+}
+
+}  // namespace slipgraph
