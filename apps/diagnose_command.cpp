@@ -10,7 +10,6 @@
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
-#include "factors/model_effects.h"
 #include "io/log_reader.h"
 #include "model/effect_catalogue.h"
 #include "workbench/diagnosis.h"
@@ -46,12 +45,6 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       if (FindEffect(effect) == nullptr) {
         throw CLI::ValidationError("--with", "unknown effect '" + effect + "'");
       }
-      if (ModelEffectIndex(effect) < 0) {
-        std::string terms;
-        for (const char* name : ModelEffectNames()) terms += std::string(" ") + name;
-        throw CLI::ValidationError(
-            "--with", "effect '" + effect + "' has no smoother term yet; effects with one:" + terms);
-      }
     }
     DiagnosisOptions diagnosis = options->diagnosis;
     diagnosis.smoother.filter.use_gps = !options->no_gps;
@@ -67,13 +60,10 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       PrintDiagnosis(before, text);
       nlohmann::json j = ToJson(before);
       if (!options->with.empty()) {
-        ModelConfig extended = model;
-        for (const std::string& effect : options->with) {
-          if (std::find(extended.effects.begin(), extended.effects.end(), effect) ==
-              extended.effects.end())
-            extended.effects.push_back(effect);
-        }
-        const Diagnosis after = Diagnose(log, extended, diagnosis);
+        const ExtendedModel extended = AddEffects(log, model, before, options->with);
+        DiagnosisOptions after_options = diagnosis;
+        after_options.corrected = extended.corrected;
+        const Diagnosis after = Diagnose(extended.log, extended.model, after_options);
         text << "\nwith " << options->with.size() << " effect(s) added:\n";
         PrintDiagnosis(after, text);
         PrintComparison(before, after, text);

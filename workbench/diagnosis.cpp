@@ -8,6 +8,7 @@
 
 #include "evaluation/html_report.h"
 #include "factors/ward_state.h"
+#include "factors/model_effects.h"
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
@@ -136,6 +137,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
   d.used_fallback = d.solution.used_fallback;
   d.notes = d.solution.notes;
   d.fitted_effects = d.solution.effects;
+  d.corrected = options.corrected;
   if (d.used_fallback) {
     d.notes.push_back("the smoother failed: residuals are evaluated at the EKF's estimates");
   }
@@ -152,7 +154,11 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
 
   std::vector<const EffectSignature*> candidates;
   for (const EffectSignature& s : EffectSignatures()) {
-    if (std::find(model.effects.begin(), model.effects.end(), s.effect) == model.effects.end()) {
+    const bool corrected =
+        std::any_of(options.corrected.begin(), options.corrected.end(),
+                    [&](const EffectEstimate& e) { return e.name == s.effect; });
+    if (!corrected &&
+        std::find(model.effects.begin(), model.effects.end(), s.effect) == model.effects.end()) {
       candidates.push_back(&s);
     }
   }
@@ -167,6 +173,14 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
                      if (a.p_value != b.p_value) return a.p_value < b.p_value;
                      return a.statistic / std::max(1, a.dof) > b.statistic / std::max(1, b.dof);
                    });
+  // The model's own effects through their signatures: what is left of each once it is in.
+  for (const EffectSignature& s : EffectSignatures()) {
+    const bool in_model =
+        std::find(model.effects.begin(), model.effects.end(), s.effect) != model.effects.end() ||
+        std::any_of(options.corrected.begin(), options.corrected.end(),
+                    [&](const EffectEstimate& e) { return e.name == s.effect; });
+    if (in_model) d.in_model.push_back(Score(s, m, log, model));
+  }
   bool failing = !d.failures.empty();
   for (const StreamReport& s : d.streams) failing = failing || !s.consistent;
   bool any = false;
@@ -182,6 +196,34 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
   return d;
 }
 
+ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
+                         const std::vector<std::string>& effects) {
+  ExtendedModel out{log, model, before.corrected};
+  for (const std::string& name : effects) {
+    const EffectSignature* signature = FindSignature(name);
+    if (ModelEffectIndex(name) >= 0) {
+      if (std::find(out.model.effects.begin(), out.model.effects.end(), name) ==
+          out.model.effects.end())
+        out.model.effects.push_back(name);
+    } else if (signature != nullptr && signature->correct) {
+      const auto it = std::find_if(before.candidates.begin(), before.candidates.end(),
+                                   [&](const CandidateScore& c) { return c.effect == name; });
+      if (it == before.candidates.end()) continue;  // already corrected
+      signature->correct(it->magnitude, &out.log);
+      out.corrected.push_back({name, it->magnitude, it->magnitude_sd});
+    } else {
+      std::string usable;
+      for (const EffectSignature& s : EffectSignatures()) {
+        if (ModelEffectIndex(s.effect) >= 0 || s.correct) usable += " " + s.effect;
+      }
+      throw std::invalid_argument("effect '" + name +
+                                  "' has neither a smoother term nor a measurement correction "
+                                  "yet; usable:" + usable);
+    }
+  }
+  return out;
+}
+
 void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   out << "diagnose: " << d.log << " (model effects: ";
   if (d.model_effects.empty()) out << "none";
@@ -190,6 +232,10 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   for (const std::string& note : d.notes) out << "  note: " << note << "\n";
   for (const EffectEstimate& e : d.fitted_effects) {
     out << "  fitted " << e.name << " = " << e.value << " +- " << e.sd << "\n";
+  }
+  for (const EffectEstimate& e : d.corrected) {
+    out << "  corrected in the measurements: " << e.name << " = " << e.value << " +- " << e.sd
+        << "\n";
   }
   out << "  streams (normalized residuals):\n";
   out << "    stream          samples   rms    chi2 p    consistent  Ljung-Box Q  p        white\n";
@@ -242,6 +288,9 @@ void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostre
         before.model_effects.end())
       out << " " << e;
   }
+  for (size_t i = before.corrected.size(); i < after.corrected.size(); ++i) {
+    out << " " << after.corrected[i].name << " (corrected)";
+  }
   out << ":\n";
   if (before.truth.available && after.truth.available) {
     char line[200];
@@ -261,6 +310,26 @@ void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostre
   }
   out << "  failure segments " << before.failures.size() << " -> " << after.failures.size()
       << "\n";
+  // Each added effect's own signature: what is left of it once it is in the model.
+  for (const CandidateScore& b : before.candidates) {
+    const bool added =
+        std::find(after.model_effects.begin(), after.model_effects.end(), b.effect) !=
+            after.model_effects.end() ||
+        std::any_of(after.corrected.begin(), after.corrected.end(),
+                    [&](const EffectEstimate& e) { return e.name == b.effect; });
+    if (!added) continue;
+    const auto it = std::find_if(after.in_model.begin(), after.in_model.end(),
+                                 [&](const CandidateScore& c) { return c.effect == b.effect; });
+    if (it == after.in_model.end()) continue;
+    const CandidateScore& left = *it;
+    char line[240];
+    std::snprintf(line, sizeof(line),
+                  "  %s signature: statistic %.1f -> %.1f, magnitude seen in the residuals %.4g "
+                  "-> %.4g +- %.2g\n",
+                  b.effect.c_str(), b.statistic, left.statistic, b.magnitude, left.magnitude,
+                  left.magnitude_sd);
+    out << line;
+  }
 }
 
 nlohmann::json ToJson(const Diagnosis& d) {
@@ -297,6 +366,10 @@ nlohmann::json ToJson(const Diagnosis& d) {
     j["candidates"].push_back(cj);
   }
   j["explained"] = d.explained;
+  j["corrected_effects"] = nlohmann::json::array();
+  for (const EffectEstimate& e : d.corrected) {
+    j["corrected_effects"].push_back({{"effect", e.name}, {"value", e.value}, {"sd", e.sd}});
+  }
   j["fitted_effects"] = nlohmann::json::array();
   for (const EffectEstimate& e : d.fitted_effects) {
     j["fitted_effects"].push_back({{"effect", e.name}, {"value", e.value}, {"sd", e.sd}});

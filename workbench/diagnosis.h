@@ -25,6 +25,8 @@ struct DiagnosisOptions {
   double alpha = 0.01;      // family-wise level of the candidate tests and the segment tests
   double window_s = 2.0;    // segment test window
   int whiteness_lags = 20;  // Ljung-Box lags
+  // Sensor effects already corrected in the log's measurements (AddEffects): not candidates.
+  std::vector<EffectEstimate> corrected;
 };
 
 struct StreamReport {
@@ -75,9 +77,13 @@ struct Diagnosis {
   std::vector<StreamReport> streams;
   std::vector<FailureSegment> failures;
   std::vector<CandidateScore> candidates;  // best first
+  // The effects already in the model (terms or corrections) scored by their own signatures,
+  // unadjusted: what is left of each in the residuals.
+  std::vector<CandidateScore> in_model;
   bool explained = true;  // false: failures or a rejected stream, and no significant candidate
   TruthErrors truth;
   std::vector<EffectEstimate> fitted_effects;  // the model's own effects, as the smoother fit them
+  std::vector<EffectEstimate> corrected;       // sensor effects corrected in the log
   bool used_fallback = false;
   std::vector<std::string> notes;
   ModelResiduals residuals;    // for plots
@@ -86,6 +92,18 @@ struct Diagnosis {
 
 Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
                    const DiagnosisOptions& options = {});
+
+// The loop's second half: `effects` switched on, each as a smoother term (added to
+// model.effects) or, for an effect that lives in a sensor, as a correction of the log's
+// measurements by the magnitude `before` fitted (effect_signatures.h). Throws
+// std::invalid_argument for a name outside the catalogue or an effect with neither.
+struct ExtendedModel {
+  DriveLog log;
+  ModelConfig model;
+  std::vector<EffectEstimate> corrected;
+};
+ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
+                         const std::vector<std::string>& effects);
 
 // The terminal summary: streams, failures, ranked candidates, the verdict.
 void PrintDiagnosis(const Diagnosis& diagnosis, std::ostream& out);

@@ -103,6 +103,12 @@ std::vector<EffectSignature> MakeSignatures() {
          });
          out.push_back(s);
          return out;
+       },
+       [](double magnitude, DriveLog* log) {
+         // A mean over [t - theta T, t] is the velocity at t - theta T / 2: move the stamps.
+         for (size_t i = log->gps.size(); i-- > 1;) {
+           log->gps[i].t -= 0.5 * magnitude * (log->gps[i].t - log->gps[i - 1].t);
+         }
        }});
   list.push_back({"wheel_radius_error",
                   "force balance against d f_tire / d radius; GNSS velocity residual against v", nullptr,
@@ -111,7 +117,8 @@ std::vector<EffectSignature> MakeSignatures() {
                         ForceSeries(m, kWheelRadiusError), GnssSeries(m, [&](size_t k) {
                           return m.states[k].x[ward::kVbx];
                         })};
-                  }});
+                  },
+                  nullptr});
   list.push_back(
       {"imu_mounting_pitch",
        "accelerometer z residual (a_z - g cos pitch cos roll) against a_x, both high-passed at 5 s", nullptr,
@@ -131,15 +138,26 @@ std::vector<EffectSignature> MakeSignatures() {
          s.y = HighPass(s.t, s.y, 5.0);
          s.g = HighPass(s.t, s.g, 5.0);
          return std::vector<SignatureSeries>{s};
+       },
+       [](double delta, DriveLog* log) {
+         // Rotate the sensor axes back by delta about body y.
+         const double cd = std::cos(delta), sd = std::sin(delta);
+         for (ImuSample& imu : log->imu) {
+           const double fx = imu.ax * cd + imu.az * sd, fz = -imu.ax * sd + imu.az * cd;
+           const double wx = imu.gx * cd + imu.gz * sd, wz = -imu.gx * sd + imu.gz * cd;
+           imu.ax = fx, imu.az = fz, imu.gx = wx, imu.gz = wz;
+         }
        }});
   list.push_back({"slope_slip", "force balance against d f_tire / d slope_slip (|grade| x traction)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{ForceSeries(m, kSlopeSlip)};
-                  }});
+                  },
+                  nullptr});
   list.push_back({"turn_slip", "force balance against -g |yaw rate| sgn(v)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{ForceSeries(m, kTurnSlip)};
-                  }});
+                  },
+                  nullptr});
   list.push_back(
       {"sinkage_resistance",
        "force balance against -g sgn(v) over the best patch of path (scanned, Bonferroni)", nullptr,
@@ -195,11 +213,13 @@ std::vector<EffectSignature> MakeSignatures() {
          std::snprintf(where, sizeof(where), "patch %.0f-%.0f m", best_a, best_b);
          base.where = where;
          return std::vector<SignatureSeries>{base};
-       }});
+       },
+       nullptr});
   list.push_back({"quadratic_drag", "force balance against -v |v| / m", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{ForceSeries(m, kQuadraticDrag)};
-                  }});
+                  },
+                  nullptr});
   list.push_back(
       {"clock_offset",
        "force balance against -d a_x / dt; attitude heading minus integrated gyro against the yaw "
@@ -255,6 +275,9 @@ std::vector<EffectSignature> MakeSignatures() {
            }
          }
          return std::vector<SignatureSeries>{force, yaw};
+       },
+       [](double offset, DriveLog* log) {
+         for (ImuSample& imu : log->imu) imu.t -= offset;
        }});
   return list;
 }

@@ -41,6 +41,10 @@ struct EffectSignature {
   std::function<std::vector<SignatureSeries>(const ModelResiduals&, const DriveLog&,
                                              const ModelConfig&)>
       series;
+  // For an effect that lives in a sensor rather than in the physics: undoes it in the log's
+  // measurements for a given magnitude, so the unchanged smoother runs on corrected streams
+  // (`diagnose --with`). Null when the effect needs a model term instead.
+  std::function<void(double magnitude, DriveLog* log)> correct;
 };
 
 // Every effect with a signature, in catalogue order.
