@@ -1,0 +1,145 @@
+// The workbench end to end on simulated hidden-effect logs (fixed seeds): nothing significant on
+// a log with nothing hidden; each sensor-side effect ranked first, significant, its magnitude
+// recovered, and with it added the error falls and its signature vanishes. The physics-side
+// effects (forces) are not yet found: their tests are below, disabled, as the targets they are
+// (docs/workbench.md).
+#include "workbench/diagnosis.h"
+
+#include <gtest/gtest.h>
+
+#include "model/effect_catalogue.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+
+namespace slipgraph {
+namespace {
+
+DriveLog Hidden(const std::string& effect, uint64_t seed = 1) {
+  const sim::ScenarioRun run = sim::ExpandScenario("hidden/" + effect, seed).at(0);
+  return sim::Simulate(run.scenario, run.seed).log;
+}
+
+ModelConfig NominalModel(const DriveLog& log) { return DefaultModelConfig(log.vehicle); }
+
+const StreamReport& Stream(const Diagnosis& d, const std::string& name) {
+  for (const StreamReport& s : d.streams) {
+    if (s.name == name) return s;
+  }
+  throw std::out_of_range(name);
+}
+
+TEST(Diagnosis, NothingHiddenNothingSignificant) {
+  const DriveLog log = Hidden("none");
+  const Diagnosis d = Diagnose(log, NominalModel(log));
+  ASSERT_FALSE(d.used_fallback);
+  ASSERT_EQ(d.candidates.size(), 8u);
+  for (const CandidateScore& c : d.candidates) {
+    EXPECT_FALSE(c.significant) << c.effect << " p " << c.p_value << " magnitude " << c.magnitude;
+  }
+  EXPECT_TRUE(d.explained);
+  EXPECT_TRUE(d.failures.empty());
+  for (const StreamReport& s : d.streams) EXPECT_GT(s.samples, 0u) << s.name;
+}
+
+struct SensorCase {
+  const char* effect;
+  double relative_tolerance;  // on the recovered magnitude against the catalogue's default
+};
+
+void PrintTo(const SensorCase& c, std::ostream* os) { *os << c.effect; }
+
+class SensorEffect : public ::testing::TestWithParam<SensorCase> {};
+
+TEST_P(SensorEffect, RankedFirstRecoveredAndRemovedByAddingIt) {
+  const SensorCase c = GetParam();
+  const DriveLog log = Hidden(c.effect);
+  const ModelConfig model = NominalModel(log);
+  const Diagnosis before = Diagnose(log, model);
+  ASSERT_FALSE(before.candidates.empty());
+  const CandidateScore& top = before.candidates.front();
+  EXPECT_EQ(top.effect, c.effect);
+  EXPECT_TRUE(top.significant);
+  for (size_t i = 1; i < before.candidates.size(); ++i) {
+    EXPECT_FALSE(before.candidates[i].significant) << before.candidates[i].effect;
+  }
+  const double truth = FindEffect(c.effect)->default_value;
+  EXPECT_NEAR(top.magnitude, truth, c.relative_tolerance * truth);
+
+  const ExtendedModel extended = AddEffects(log, model, before, {c.effect});
+  ASSERT_EQ(extended.corrected.size(), 1u);
+  DiagnosisOptions options;
+  options.corrected = extended.corrected;
+  const Diagnosis after = Diagnose(extended.log, extended.model, options);
+  ASSERT_EQ(after.in_model.size(), 1u);
+  // What is left of the effect in the residuals is not significant (|z| < 3).
+  EXPECT_LT(after.in_model[0].statistic, 9.0) << after.in_model[0].magnitude;
+  for (const CandidateScore& other : after.candidates) EXPECT_FALSE(other.significant);
+  const std::string effect = c.effect;
+  if (effect == "clock_offset") {
+    // The lag corrupts the velocity: the error falls by more than 30 %.
+    EXPECT_LT(after.truth.velocity_rmse, 0.7 * before.truth.velocity_rmse);
+    EXPECT_LT(Stream(after, "force_balance").whiteness.q,
+              0.5 * Stream(before, "force_balance").whiteness.q);
+  } else if (effect == "gps_velocity_averaging") {
+    // The velocity does not suffer (GNSS is weighted lightly); the GNSS residuals do: their RMS
+    // falls by more than 30 % and the failure segments go.
+    EXPECT_LT(Stream(after, "gnss").rms, 0.7 * Stream(before, "gnss").rms);
+    EXPECT_FALSE(before.failures.empty());
+    EXPECT_TRUE(after.failures.empty());
+  } else {
+    // The mounting angle lives in the z accelerometer, which the velocity model does not use:
+    // its own measure is the signature, which falls by more than 90 %.
+    EXPECT_LT(std::abs(after.in_model[0].magnitude), 0.1 * std::abs(top.magnitude));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Workbench, SensorEffect,
+                         ::testing::Values(SensorCase{"gps_velocity_averaging", 0.15},
+                                           SensorCase{"imu_mounting_pitch", 0.15},
+                                           SensorCase{"clock_offset", 0.10}),
+                         [](const auto& info) { return std::string(info.param.effect); });
+
+// A small Monte Carlo by default (the 20-seed run is bench/diagnose_monte_carlo): the sensor
+// effects stay top-ranked on other noise seeds.
+TEST(Diagnosis, SensorEffectsTopRankedOnTwoMoreSeeds) {
+  for (const char* effect : {"gps_velocity_averaging", "imu_mounting_pitch", "clock_offset"}) {
+    for (uint64_t seed : {2, 3}) {
+      const DriveLog log = Hidden(effect, seed);
+      const Diagnosis d = Diagnose(log, NominalModel(log));
+      ASSERT_FALSE(d.candidates.empty());
+      EXPECT_EQ(d.candidates.front().effect, effect) << "seed " << seed;
+      EXPECT_TRUE(d.candidates.front().significant) << effect << " seed " << seed;
+    }
+  }
+}
+
+TEST(Diagnosis, AddEffectsRejectsWhatItCannotAdd) {
+  const DriveLog log = Hidden("none");
+  const Diagnosis before;
+  EXPECT_THROW(AddEffects(log, NominalModel(log), before, {"sinkage_resistance"}),
+               std::invalid_argument);
+  const ExtendedModel term = AddEffects(log, NominalModel(log), before, {"quadratic_drag"});
+  EXPECT_EQ(term.model.effects, std::vector<std::string>{"quadratic_drag"});
+}
+
+// Targets not met yet (docs/workbench.md): the force-side effects are absorbed by the
+// smoother's slip, and the force balance at its solution is too uncertain to show them.
+TEST(Diagnosis, DISABLED_ForceEffectsRankedFirst) {
+  for (const char* effect :
+       {"quadratic_drag", "turn_slip", "slope_slip", "sinkage_resistance", "wheel_radius_error"}) {
+    const DriveLog log = Hidden(effect);
+    const Diagnosis d = Diagnose(log, NominalModel(log));
+    EXPECT_EQ(d.candidates.front().effect, effect);
+    EXPECT_TRUE(d.candidates.front().significant) << effect;
+  }
+}
+
+TEST(Diagnosis, DISABLED_OutsideTheCatalogueIsUnexplainedWithSegments) {
+  const DriveLog log = Hidden("corrugation");
+  const Diagnosis d = Diagnose(log, NominalModel(log));
+  EXPECT_FALSE(d.explained);
+  EXPECT_FALSE(d.failures.empty());
+}
+
+}  // namespace
+}  // namespace slipgraph
