@@ -9,6 +9,8 @@ namespace slipgraph {
 
 // The bundled sample log, used when a subcommand's LOG is omitted.
 std::string DefaultLogPath();
+// The bundled hidden-effect log, the default of `diagnose`.
+std::string DefaultHiddenEffectLogPath();
 
 void RegisterInfoCommand(CLI::App* app, int* status);
 void RegisterSimulateCommand(CLI::App* app, int* status);

@@ -20,7 +20,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, model, report, json;
     std::vector<std::string> with;
-    bool skip_bad = false, no_gps = false;
+    bool skip_bad = false, no_gps = false, add_best = false;
     DiagnosisOptions diagnosis;
   };
   auto options = std::make_shared<Options>();
@@ -28,11 +28,16 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       "diagnose",
       "Model vs measurements: residuals per stream, where the model fails, which catalogue "
       "effect is missing; --with EFFECT adds one and shows the change");
-  cmd->add_option("LOG", options->log, "Log or suite directory (default: the bundled sample)");
+  cmd->add_option("LOG", options->log,
+                  "Log or suite directory (default: the bundled hidden-effect log, "
+                  "data/hidden_clock_offset)");
   cmd->add_option("--model", options->model, "Model YAML over the vehicle's nominal model");
   cmd->add_option("--with", options->with,
                   "Switch a catalogue effect on in the model and report before and after "
                   "(repeatable)");
+  cmd->add_flag("--add-best", options->add_best,
+                "The whole loop: add the top-ranked significant candidate (if the smoother has a "
+                "term or a correction for it) and report before and after");
   cmd->add_option("--report", options->report, "Write a self-contained HTML report");
   cmd->add_option("--json", options->json, "Write one JSON object to this file ('-': stdout)");
   cmd->add_option("--alpha", options->diagnosis.alpha,
@@ -48,7 +53,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     }
     DiagnosisOptions diagnosis = options->diagnosis;
     diagnosis.smoother.filter.use_gps = !options->no_gps;
-    const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
+    const std::string path = options->log.empty() ? DefaultHiddenEffectLogPath() : options->log;
     const bool to_stdout = options->json == "-";
     std::ostream& text = to_stdout ? std::cerr : std::cout;
     nlohmann::json all = nlohmann::json::array();
@@ -59,12 +64,25 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       const Diagnosis before = Diagnose(log, model, diagnosis);
       PrintDiagnosis(before, text);
       nlohmann::json j = ToJson(before);
-      if (!options->with.empty()) {
-        const ExtendedModel extended = AddEffects(log, model, before, options->with);
+      std::vector<std::string> with = options->with;
+      if (options->add_best && with.empty()) {
+        const CandidateScore* best = before.candidates.empty() ? nullptr : &before.candidates[0];
+        if (best == nullptr || !best->significant) {
+          text << "--add-best: no significant candidate to add\n";
+        } else if (!CanAddEffect(best->effect)) {
+          text << "--add-best: " << best->effect
+               << " has no smoother term or measurement correction yet\n";
+        } else {
+          text << "\n--add-best: adding " << best->effect << "\n";
+          with.push_back(best->effect);
+        }
+      }
+      if (!with.empty()) {
+        const ExtendedModel extended = AddEffects(log, model, before, with);
         DiagnosisOptions after_options = diagnosis;
         after_options.corrected = extended.corrected;
         const Diagnosis after = Diagnose(extended.log, extended.model, after_options);
-        text << "\nwith " << options->with.size() << " effect(s) added:\n";
+        text << "\nwith " << with.size() << " effect(s) added:\n";
         PrintDiagnosis(after, text);
         PrintComparison(before, after, text);
         j["after"] = ToJson(after);

@@ -10,6 +10,7 @@
 namespace slipgraph {
 
 std::string DefaultLogPath() { return SLIPGRAPH_DEFAULT_LOG; }
+std::string DefaultHiddenEffectLogPath() { return SLIPGRAPH_DEFAULT_HIDDEN_LOG; }
 
 }  // namespace slipgraph
 

@@ -36,5 +36,9 @@ TEST(BundledData, HiddenQuadraticDragLog) {
   ExpectBundledMatchesSimulation("hidden_quadratic_drag", "hidden/quadratic_drag");
 }
 
+TEST(BundledData, HiddenClockOffsetLog) {
+  ExpectBundledMatchesSimulation("hidden_clock_offset", "hidden/clock_offset");
+}
+
 }  // namespace
 }  // namespace slipgraph

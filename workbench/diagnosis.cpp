@@ -101,7 +101,9 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m,
   CandidateScore c;
   c.effect = signature.effect;
   c.test = signature.test;
-  c.has_model_term = ModelEffectIndex(signature.effect) >= 0;
+  c.added_as = ModelEffectIndex(signature.effect) >= 0 ? "smoother term"
+               : signature.correct                       ? "measurement correction"
+                                                         : "";
   double searched = 1.0, precision = 0.0, weighted = 0.0;
   for (const SignatureSeries& s : signature.series(m, log, model)) {
     const SlopeFit fit = FitSlopeHac(s.y, s.g, s.y_common_sd);
@@ -196,6 +198,11 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
   return d;
 }
 
+bool CanAddEffect(const std::string& effect) {
+  const EffectSignature* signature = FindSignature(effect);
+  return ModelEffectIndex(effect) >= 0 || (signature != nullptr && signature->correct);
+}
+
 ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
                          const std::vector<std::string>& effects) {
   ExtendedModel out{log, model, before.corrected};
@@ -264,7 +271,8 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
                   c.magnitude, c.magnitude_sd);
     out << line;
     if (!c.where.empty()) out << "  (" << c.where << ")";
-    if (!c.has_model_term) out << "  [no smoother term yet]";
+    out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as)
+        << "]";
     out << "\n";
   }
   if (!d.candidates.empty() && d.candidates.front().significant) {
@@ -361,7 +369,7 @@ nlohmann::json ToJson(const Diagnosis& d) {
                          {"dof", c.dof},               {"p_value", c.p_value},
                          {"significant", c.significant}, {"magnitude", c.magnitude},
                          {"magnitude_sd", c.magnitude_sd}, {"test", c.test},
-                         {"has_model_term", c.has_model_term}};
+                         {"added_as", c.added_as}};
     if (!c.where.empty()) cj["where"] = c.where;
     j["candidates"].push_back(cj);
   }

@@ -62,7 +62,8 @@ struct CandidateScore {
   double p_value = 1.0;  // Bonferroni-adjusted for the search and the candidates scored
   bool significant = false;
   double magnitude = 0.0, magnitude_sd = 0.0;  // precision-weighted over the series
-  bool has_model_term = false;                 // `--with` can add it to the smoother
+  // How `--with` adds it: "smoother term", "measurement correction", or "" (not yet).
+  std::string added_as;
   std::vector<SeriesScore> series;
 };
 
@@ -102,6 +103,8 @@ struct ExtendedModel {
   ModelConfig model;
   std::vector<EffectEstimate> corrected;
 };
+// Whether AddEffects can add `effect` (a smoother term or a measurement correction).
+bool CanAddEffect(const std::string& effect);
 ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
                          const std::vector<std::string>& effects);
 

@@ -223,7 +223,7 @@ std::vector<EffectSignature> MakeSignatures() {
   list.push_back(
       {"clock_offset",
        "force balance against -d a_x / dt; attitude heading minus integrated gyro against the yaw "
-       "rate",
+       "rate, both high-passed at 5 s",
        [](const DriveLog& log) {
          // One IMU sample period: the resolution of the stamps themselves.
          return log.imu.size() > 1 ? (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1)
@@ -273,6 +273,10 @@ std::vector<EffectSignature> MakeSignatures() {
              yaw.y.push_back((psi_att - psi_gyro) / sd);
              yaw.g.push_back(rate / sd);
            }
+           // The difference walks (gyro noise and bias error integrate): test what varies faster
+           // than 5 s, as for the z accelerometer.
+           yaw.y = HighPass(yaw.t, yaw.y, 5.0);
+           yaw.g = HighPass(yaw.t, yaw.g, 5.0);
          }
          return std::vector<SignatureSeries>{force, yaw};
        },

@@ -1,0 +1,69 @@
+// The workbench's ranking over noise seeds (issue 6's Monte Carlo): for each catalogue effect
+// hidden in the `hidden` scenario, and for nothing hidden, over N seeds, how often the hidden
+// effect ranks first and is significant, how often anything at all is significant, and the mean
+// and sd of the top candidate's fitted magnitude. Prints a table (docs/workbench.md).
+// Run: build/bench/diagnose_monte_carlo [SEEDS=20] [EFFECT...]
+#include <cmath>
+#include <cstdio>
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "model/effect_catalogue.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "workbench/diagnosis.h"
+
+int main(int argc, char** argv) {
+  using namespace slipgraph;  // NOLINT
+  const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
+  std::vector<std::string> effects;
+  for (int i = 2; i < argc; ++i) effects.push_back(argv[i]);
+  if (effects.empty()) {
+    effects.push_back("none");
+    for (const EffectInfo& e : EffectCatalogue()) effects.push_back(e.name);
+  }
+  std::printf("| hidden | seeds | top-1 and significant | any significant | top candidate (most "
+              "often) | its magnitude mean +- sd | true magnitude |\n|---|---|---|---|---|---|---|\n");
+  for (const std::string& effect : effects) {
+    int top1 = 0, any = 0;
+    std::vector<double> magnitudes;
+    std::string most;
+    std::vector<std::pair<std::string, int>> counts;
+    for (int seed = 1; seed <= seeds; ++seed) {
+      const sim::ScenarioRun run = sim::ExpandScenario("hidden/" + effect, seed).at(0);
+      const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle));
+      if (d.candidates.empty()) continue;
+      const CandidateScore& top = d.candidates.front();
+      if (top.significant) {
+        ++any;
+        auto it = std::find_if(counts.begin(), counts.end(),
+                               [&](const auto& c) { return c.first == top.effect; });
+        if (it == counts.end()) counts.push_back({top.effect, 1});
+        else ++it->second;
+      }
+      if (top.effect == effect && top.significant) {
+        ++top1;
+        magnitudes.push_back(top.magnitude);
+      }
+    }
+    int best = 0;
+    for (const auto& [name, n] : counts) {
+      if (n > best) best = n, most = name;
+    }
+    double mean = 0.0, sq = 0.0;
+    for (double m : magnitudes) mean += m;
+    if (!magnitudes.empty()) mean /= magnitudes.size();
+    for (double m : magnitudes) sq += (m - mean) * (m - mean);
+    const double sd = magnitudes.size() > 1 ? std::sqrt(sq / (magnitudes.size() - 1)) : 0.0;
+    const EffectInfo* info = FindEffect(effect);
+    std::printf("| %s | %d | %d/%d | %d/%d | %s | %s | %s |\n", effect.c_str(), seeds, top1, seeds,
+                any, seeds, most.empty() ? "-" : most.c_str(),
+                magnitudes.empty() ? "-" : (std::to_string(mean) + " +- " + std::to_string(sd)).c_str(),
+                info ? std::to_string(info->default_value).c_str() : "0");
+    std::fflush(stdout);
+  }
+  return 0;
+}
