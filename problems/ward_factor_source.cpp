@@ -272,14 +272,17 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
                                                           params.gravity_mps2, imu_period_s_) *
                                       dt)
                           : q.v_bx_mps2_per_sqrt_hz * std::sqrt(dt);
+  const double omega_walk = std::isfinite(options_.omega_walk_radps2_per_sqrt_hz)
+                                ? options_.omega_walk_radps2_per_sqrt_hz
+                                : q.omega_radps2_per_sqrt_hz;
   const auto gauss_markov = [dt](double sd, double tau) {
     return sd * std::sqrt(1.0 - std::exp(-2.0 * dt / tau));
   };
   const std::array<double, WardDynamicsFactor::kResiduals> sd_step = {
       sd_v,
       gauss_markov(q.accel_bias_sd_mps2, q.accel_bias_tau_s),
-      q.omega_radps2_per_sqrt_hz * std::sqrt(dt),
-      q.omega_radps2_per_sqrt_hz * std::sqrt(dt),
+      omega_walk * std::sqrt(dt),
+      omega_walk * std::sqrt(dt),
       q.yaw_rate_radps2_per_sqrt_hz * std::sqrt(dt),
       gauss_markov(q.gyro_bias_sd_radps, q.gyro_bias_tau_s)};
   Add("dynamics",
