@@ -13,6 +13,7 @@
 #include "io/log_reader.h"
 #include "model/effect_catalogue.h"
 #include "workbench/diagnosis.h"
+#include "workbench/effect_signatures.h"
 
 namespace slipgraph {
 
@@ -47,7 +48,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->callback([options, status]() {
     for (const std::string& effect : options->with) {
-      if (FindEffect(effect) == nullptr) {
+      if (FindEffect(effect) == nullptr && FindSignature(effect) == nullptr) {
         throw CLI::ValidationError("--with", "unknown effect '" + effect + "'");
       }
     }

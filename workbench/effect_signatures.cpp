@@ -71,21 +71,6 @@ double DerivativeAround(const ModelResiduals& m, size_t k,
   return (MeanOver(m, i + 3, i + 9, f) - MeanOver(m, i - 8, i - 2, f)) / dt;
 }
 
-// x minus its centred moving average over window_s (samples in time order): removes what drifts
-// slower than the window, such as a sensor bias's Gauss-Markov walk.
-std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,
-                             double window_s) {
-  std::vector<double> out(x.size());
-  size_t begin = 0, end = 0;
-  double sum = 0.0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    while (end < x.size() && t[end] <= t[i] + 0.5 * window_s) sum += x[end++];
-    while (t[begin] < t[i] - 0.5 * window_s) sum -= x[begin++];
-    out[i] = x[i] - sum / static_cast<double>(end - begin);
-  }
-  return out;
-}
-
 std::vector<EffectSignature> MakeSignatures() {
   std::vector<EffectSignature> list;
   list.push_back(
@@ -288,10 +273,41 @@ std::vector<EffectSignature> MakeSignatures() {
 
 }  // namespace
 
-const std::vector<EffectSignature>& EffectSignatures() {
-  static const std::vector<EffectSignature> kSignatures = MakeSignatures();
-  return kSignatures;
+namespace {
+
+std::vector<EffectSignature>& Registry() {
+  static std::vector<EffectSignature> signatures = MakeSignatures();
+  return signatures;
 }
+
+}  // namespace
+
+const std::vector<EffectSignature>& EffectSignatures() { return Registry(); }
+
+void RegisterEffectSignature(EffectSignature signature) {
+  for (EffectSignature& s : Registry()) {
+    if (s.effect == signature.effect) {
+      s = std::move(signature);
+      return;
+    }
+  }
+  Registry().push_back(std::move(signature));
+}
+
+std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,
+                             double window_s) {
+  std::vector<double> out(x.size());
+  size_t begin = 0, end = 0;
+  double sum = 0.0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    while (end < x.size() && t[end] <= t[i] + 0.5 * window_s) sum += x[end++];
+    while (t[begin] < t[i] - 0.5 * window_s) sum -= x[begin++];
+    out[i] = x[i] - sum / static_cast<double>(end - begin);
+  }
+  return out;
+}
+
+
 
 const EffectSignature* FindSignature(const std::string& effect) {
   for (const EffectSignature& s : EffectSignatures()) {

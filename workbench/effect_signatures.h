@@ -5,11 +5,15 @@
 // pair. That is a score (Lagrange-multiplier) test of theta = 0 at the current solution, made
 // robust to the colored residuals a smoother leaves.
 //
-// Adding an effect's test is one entry in the table of effect_signatures.cpp.
+// The built-in signatures are the table in effect_signatures.cpp. A new effect is one file: a
+// signature (and, for a sensor effect, its correction) registered with a static
+// EffectSignatureRegistration; docs/adding-an-effect.md walks through one
+// (workbench/examples/gyro_scale_error.cpp, built and tested by tests/effect_example_test.cpp).
 #pragma once
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/drive_log.h"
@@ -47,8 +51,22 @@ struct EffectSignature {
   std::function<void(double magnitude, DriveLog* log)> correct;
 };
 
-// Every effect with a signature, in catalogue order.
+// Every effect with a signature: the built-ins in catalogue order, then the registered ones.
 const std::vector<EffectSignature>& EffectSignatures();
 const EffectSignature* FindSignature(const std::string& effect);
+
+// Adds a signature (an effect the catalogue does not have, or a second opinion replacing a
+// built-in of the same name).
+void RegisterEffectSignature(EffectSignature signature);
+struct EffectSignatureRegistration {
+  explicit EffectSignatureRegistration(EffectSignature signature) {
+    RegisterEffectSignature(std::move(signature));
+  }
+};
+
+// x minus its centred moving average over window_s (t ascending): removes what drifts slower
+// than the window, such as a sensor bias's walk. For signatures.
+std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,
+                             double window_s);
 
 }  // namespace slipgraph

@@ -1,0 +1,57 @@
+// Builds the walkthrough's example effect (workbench/examples/gyro_scale_error.cpp, compiled into
+// this test) and checks it end to end: on a simulated log whose gyro reads 3 % high it is ranked
+// first with its magnitude, `--with` corrects it and its signature goes; on the same log
+// undistorted it is not significant.
+#include <gtest/gtest.h>
+
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "workbench/diagnosis.h"
+#include "workbench/effect_signatures.h"
+
+namespace slipgraph {
+namespace {
+
+DriveLog HiddenNone() {
+  const sim::ScenarioRun run = sim::ExpandScenario("hidden/none", 1).at(0);
+  return sim::Simulate(run.scenario, run.seed).log;
+}
+
+TEST(EffectExample, RegisteredAlongsideTheBuiltIns) {
+  ASSERT_NE(FindSignature("gyro_scale_error"), nullptr);
+  EXPECT_NE(FindSignature("clock_offset"), nullptr);
+  EXPECT_EQ(EffectSignatures().size(), 9u);
+}
+
+TEST(EffectExample, FoundCorrectedAndQuietWhenAbsent) {
+  const DriveLog clean = HiddenNone();
+  DriveLog log = clean;
+  for (ImuSample& imu : log.imu) imu.gz *= 1.03;  // the hidden effect: a 3 % scale error
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+
+  const Diagnosis before = Diagnose(log, model);
+  ASSERT_FALSE(before.candidates.empty());
+  const CandidateScore& top = before.candidates.front();
+  EXPECT_EQ(top.effect, "gyro_scale_error");
+  EXPECT_TRUE(top.significant);
+  EXPECT_NEAR(top.magnitude, 0.03, 0.006);
+  EXPECT_EQ(top.added_as, "measurement correction");
+
+  const ExtendedModel extended = AddEffects(log, model, before, {"gyro_scale_error"});
+  DiagnosisOptions options;
+  options.corrected = extended.corrected;
+  const Diagnosis after = Diagnose(extended.log, extended.model, options);
+  ASSERT_EQ(after.in_model.size(), 1u);
+  // What is left is 3 % of it (measured 0.0293 +- 0.0002 found, 0.0009 +- 0.0002 left: the
+  // fit comes out 2 % low, part of the scale going into the gyro bias estimate, and the test is
+  // sharp enough to see the rest).
+  EXPECT_LT(std::abs(after.in_model[0].magnitude), 0.1 * top.magnitude);
+
+  const Diagnosis quiet = Diagnose(clean, model);
+  for (const CandidateScore& c : quiet.candidates) {
+    EXPECT_FALSE(c.significant) << c.effect << " " << c.magnitude;
+  }
+}
+
+}  // namespace
+}  // namespace slipgraph
