@@ -12,6 +12,7 @@
 #include "factors/diagonal_prior.h"
 #include "factors/disturbance_decay_prior.h"
 #include "factors/disturbance_walk_factor.h"
+#include "factors/wheel_speed_walk_factor.h"
 #include "factors/effect_accelerometer_factor.h"
 #include "factors/encoder_factor.h"
 #include "factors/gnss_velocity_factor.h"
@@ -275,20 +276,25 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
   const double omega_walk = std::isfinite(options_.omega_walk_radps2_per_sqrt_hz)
                                 ? options_.omega_walk_radps2_per_sqrt_hz
                                 : q.omega_radps2_per_sqrt_hz;
+  const bool robust_omega = options_.omega_walk_huber_sigmas > 0.0;
   const auto gauss_markov = [dt](double sd, double tau) {
     return sd * std::sqrt(1.0 - std::exp(-2.0 * dt / tau));
   };
   const std::array<double, WardDynamicsFactor::kResiduals> sd_step = {
       sd_v,
       gauss_markov(q.accel_bias_sd_mps2, q.accel_bias_tau_s),
-      omega_walk * std::sqrt(dt),
-      omega_walk * std::sqrt(dt),
+      robust_omega ? 1e6 : omega_walk * std::sqrt(dt),
+      robust_omega ? 1e6 : omega_walk * std::sqrt(dt),
       q.yaw_rate_radps2_per_sqrt_hz * std::sqrt(dt),
       gauss_markov(q.gyro_bias_sd_radps, q.gyro_bias_tau_s)};
   Add("dynamics",
       WardDynamicsFactor::Create(params, c.attitude, dt, accel_driven ? c.accel_x : std::nan(""),
                                  sd_step),
       nullptr, previous, x, offsets);
+  if (robust_omega) {
+    Add("wheel_speed_walk", WheelSpeedWalkFactor::Create(omega_walk * std::sqrt(dt)),
+        new ceres::HuberLoss(options_.omega_walk_huber_sigmas), previous, x);
+  }
   Add("disturbance_walk", DisturbanceWalkFactor::Create(q.a_dist_mps3_per_sqrt_hz * std::sqrt(dt)),
       new ceres::HuberLoss(options_.disturbance_huber_sigmas), previous, x);
   Add("rate_bound",

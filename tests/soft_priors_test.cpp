@@ -1,5 +1,5 @@
 // Soft priors of the smoother: first-state and offset priors, the disturbance random walk and
-// decay (WC2), oppose-motion (WC1), at-rest (WC4) and bounds (WC5).
+// decay (WC2), the wheel-speed walk, oppose-motion (WC1), at-rest (WC4) and bounds (WC5).
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -10,6 +10,7 @@
 #include "factors/disturbance_decay_prior.h"
 #include "factors/disturbance_walk_factor.h"
 #include "factors/oppose_motion_prior.h"
+#include "factors/wheel_speed_walk_factor.h"
 #include "tests/factor_check.h"
 
 namespace slipgraph {
@@ -35,6 +36,16 @@ TEST(DisturbanceFactors, WalkAndDecay) {
   const std::unique_ptr<ceres::CostFunction> decay(DisturbanceDecayPrior::Create(2.0));
   EXPECT_DOUBLE_EQ(testing::Residuals(*decay, {b})[0], -1.25);
   testing::ExpectJacobiansMatchNumeric(*decay, {b});
+}
+
+TEST(WheelSpeedWalkFactor, BothWheelsIncrementsOnly) {
+  const double a[kStateSize] = {1.0, 0, -1.0, 4.0, 5.0, 0.2, 0};
+  const double b[kStateSize] = {2.0, 0.1, 3.0, 4.5, 4.0, 0.7, 0.01};
+  const std::unique_ptr<ceres::CostFunction> walk(WheelSpeedWalkFactor::Create(0.25));
+  const std::vector<double> r = testing::Residuals(*walk, {a, b});
+  EXPECT_DOUBLE_EQ(r[0], 2.0);   // (4.5 - 4.0) / 0.25
+  EXPECT_DOUBLE_EQ(r[1], -4.0);  // (4.0 - 5.0) / 0.25
+  testing::ExpectJacobiansMatchNumeric(*walk, {a, b});
 }
 
 TEST(OpposeMotionPrior, PenalizesOnlyAPushingDisturbance) {
