@@ -1,4 +1,5 @@
-// `slipgraph import`: convert a recording into the drive-log format with a mapping file, then
+// `slipgraph import`: convert a recording (a ROS 1 bag, recognised by its header, or a MATLAB
+// v7.3 file) into the drive-log format with a mapping file, then
 // run the plausibility checks on the result (a wrong mapping shows as a physical impossibility).
 #include <filesystem>
 #include <iostream>
@@ -7,6 +8,7 @@
 #include "io/log_summary.h"
 #include "io/log_writer.h"
 #include "io/matlab_import.h"
+#include "io/rosbag_import.h"
 #include "io/yaml_config.h"
 
 namespace slipgraph {
@@ -17,7 +19,7 @@ void RegisterImportCommand(CLI::App* app, int* status) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
-      "import", "Convert a recording (MATLAB v7.3 / HDF5 now; ROS bags next) into a drive log");
+      "import", "Convert a recording (a ROS 1 bag, or MATLAB v7.3 / HDF5) into a drive log");
   cmd->add_option("SOURCE", options->source, "The recording")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", options->out, "Drive-log directory to write")->required();
   cmd->add_option("--mapping", options->mapping,
@@ -33,7 +35,9 @@ void RegisterImportCommand(CLI::App* app, int* status) {
     const Vehicle vehicle = ReadVehicleYaml(options->vehicle, &warnings);
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
     ImportReport report;
-    DriveLog log = ImportMatlab(options->source, options->mapping, vehicle, &report);
+    DriveLog log = IsRosBag(options->source)
+                       ? ImportRosBag(options->source, options->mapping, vehicle, &report)
+                       : ImportMatlab(options->source, options->mapping, vehicle, &report);
     WriteDriveLog(log, options->out);
     std::cout << "import: " << options->source << " -> " << options->out << "\n";
     for (const std::string& line : report.lines) std::cout << "  " << line << "\n";

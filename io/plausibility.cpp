@@ -55,7 +55,7 @@ Plausibility CheckPlausibility(const DriveLog& log) {
   }
   // Gravity at rest.
   {
-    double az = 0.0, norm = 0.0;
+    double ax = 0.0, ay = 0.0, az = 0.0, norm = 0.0;
     long n = 0;
     size_t i = 0;
     for (const auto& [a, b] : still) {
@@ -64,7 +64,7 @@ Plausibility CheckPlausibility(const DriveLog& log) {
       for (; i < log.imu.size() && log.imu[i].t <= b; ++i) {
         const ImuSample& s = log.imu[i];
         if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) continue;
-        az += s.az;
+        ax += s.ax, ay += s.ay, az += s.az;
         norm += std::sqrt(s.ax * s.ax + s.ay * s.ay + s.az * s.az);
         ++n;
       }
@@ -73,7 +73,7 @@ Plausibility CheckPlausibility(const DriveLog& log) {
     if (!at_rest) {  // never still: the whole log (motion averages out over a drive)
       for (const ImuSample& s : log.imu) {
         if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) continue;
-        az += s.az;
+        ax += s.ax, ay += s.ay, az += s.az;
         norm += std::sqrt(s.ax * s.ax + s.ay * s.ay + s.az * s.az);
         ++n;
       }
@@ -86,6 +86,16 @@ Plausibility CheckPlausibility(const DriveLog& log) {
         out.problems.push_back(where + ": the specific force is " + Format(f.rest_norm_mps2) +
                                " m/s^2, not about 9.81: wrong units or scale (g instead of "
                                "m/s^2?)");
+      } else if (std::abs(f.rest_az_mps2) < 0.9 * f.rest_norm_mps2) {
+        // Gravity mostly on x or y: a sensor frame rotated by 90 deg (or mounted sideways).
+        const double mx = ax / n, my = ay / n;
+        const char* axis = std::abs(mx) > std::abs(my) ? "x" : "y";
+        const double along = std::abs(mx) > std::abs(my) ? mx : my;
+        out.problems.push_back(where + ": gravity is along " + (along < 0.0 ? "-" : "+") + axis +
+                               " (ax " + Format(mx) + ", ay " + Format(my) + ", az " +
+                               Format(f.rest_az_mps2) +
+                               " m/s^2), not +z: the IMU frame is rotated against the body; map "
+                               "it with a rotation (body_from_sensor)");
       } else if (f.rest_az_mps2 < 0.0) {
         out.problems.push_back(where + ": az is " + Format(f.rest_az_mps2) +
                                " m/s^2, expected about +9.81: the IMU's z axis points down "
