@@ -116,7 +116,7 @@ void WardEkf::PredictTo(double t) {
 
 bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r, double gate_chi2,
                      int max_consecutive_rejections, StreamCounters* counters,
-                     int* consecutive_rejections) {
+                     int* consecutive_rejections, const std::vector<const char*>* names) {
   const int m = static_cast<int>(nu.size());
   if (m == 0) return false;
   if (!std::isinf(gate_chi2)) {
@@ -150,6 +150,11 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
     const StateVector Ph = P_ * h;
     const double s = h.dot(Ph) + r(i);
     const StateVector k = Ph / s;
+    if (options_.record_innovations && names != nullptr && i < static_cast<int>(names->size())) {
+      EkfStats::InnovationSeries& series = stats_.innovations[(*names)[i]];
+      series.t.push_back(t_);
+      series.normalized.push_back(innovation / std::sqrt(s));
+    }
     x_ += k * innovation;
     const StateMatrix AP = P_ - k * Ph.transpose();
     const StateVector APh = AP * h;
@@ -249,8 +254,13 @@ void WardEkf::AddImu(const ImuSample& imu) {
     accel_nis_ema_ += (nu(0) * nu(0) / s - accel_nis_ema_) * weight;
   }
   if (gz_ok) add_row(kZYawRate, imu.gz, noise.imu_sd_gyro_radps * noise.imu_sd_gyro_radps);
+  std::vector<const char*> names;  // empty (no allocation) unless innovations are recorded
+  if (options_.record_innovations) {
+    if (ax_ok) names.push_back("accelerometer");
+    if (gz_ok) names.push_back("gyro");
+  }
   Update(nu, H, r, options_.imu_gate_chi2, options_.imu_max_consecutive_rejections, &stats_.imu,
-         &imu_rejections_);
+         &imu_rejections_, &names);
 }
 
 void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
@@ -283,8 +293,13 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
   };
   if (left_ok) add_row(kOmegaLeft, omega_left);
   if (right_ok) add_row(kOmegaRight, omega_right);
+  std::vector<const char*> names;  // empty (no allocation) unless innovations are recorded
+  if (options_.record_innovations) {
+    if (left_ok) names.push_back("encoder_left");
+    if (right_ok) names.push_back("encoder_right");
+  }
   Update(nu, H, r, options_.wheels_gate_chi2, options_.wheels_max_consecutive_rejections,
-         &stats_.wheels, &wheel_rejections_);
+         &stats_.wheels, &wheel_rejections_, &names);
 
   if (left_ok && right_ok) {
     last_wheels_t_ = t_;
@@ -362,8 +377,9 @@ void WardEkf::AddGps(const GpsSample& gps) {
   nu(0) = along - x_(kVbx);
   H(0, kVbx) = 1.0;
   r(0) = sd * sd;
+  static const std::vector<const char*> kGnss = {"gnss"};
   Update(nu, H, r, options_.gps_gate_chi2, options_.gps_max_consecutive_rejections, &stats_.gps,
-         &gps_rejections_);
+         &gps_rejections_, &kGnss);
 }
 
 EkfEstimate WardEkf::Estimate() const {

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <map>
 #include <limits>
 #include <string>
 #include <vector>
@@ -55,6 +56,9 @@ struct EkfOptions {
   double wheel_still_radps = 0.15;
   // Initial standard deviations of the state (the wheel speeds start at their first reading).
   std::array<double, ward::kStateSize> initial_sd = {0.2, 0.02, 0.5, 1.0, 1.0, 0.1, 0.002};
+  // Keep every applied measurement's normalized innovation (EkfStats::innovations), for the
+  // filter's consistency tests (NIS, whiteness). Off in the streaming front end.
+  bool record_innovations = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -75,6 +79,15 @@ struct EkfStats {
   // stiff tire law blow up): the filter went back to its last finite state, covariance inflated.
   long divergence_resets = 0;
   double first_divergence_t = -1.0;
+  // With EkfOptions::record_innovations: per measurement ("accelerometer", "gyro",
+  // "encoder_left", "encoder_right", "gnss") the applied updates' times and normalized
+  // innovations nu / sqrt(h P h^T + r) (of the sequential scalar updates, so the rows of one
+  // update are decorrelated; their squares sum to its NIS). A consistent filter's are white with
+  // unit variance.
+  struct InnovationSeries {
+    std::vector<double> t, normalized;
+  };
+  std::map<std::string, InnovationSeries> innovations;
 };
 
 struct EkfEstimate {
@@ -116,9 +129,10 @@ class WardEkf {
   void PredictTo(double t);
   // Kalman update with innovation nu, Jacobian H and diagonal noise variances r; gated with
   // `gate_chi2`. Returns false when gated out.
+  // names (optional): the measurement each row is, for the recorded innovations.
   bool Update(const RowVector& nu, const RowMatrix& H, const RowVector& r, double gate_chi2,
               int max_consecutive_rejections, StreamCounters* counters,
-              int* consecutive_rejections);
+              int* consecutive_rejections, const std::vector<const char*>* names = nullptr);
   void ApplyWeakConstraints(double dt_cycle);
   // After every measurement: keep the last finite (x, P); on a non-finite one go back to it with
   // the covariance inflated, and count it. Never a silent NaN.

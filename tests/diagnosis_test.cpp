@@ -39,6 +39,19 @@ TEST(Diagnosis, NothingHiddenNothingSignificant) {
   EXPECT_TRUE(d.explained);
   EXPECT_TRUE(d.failures.empty());
   for (const StreamReport& s : d.streams) EXPECT_GT(s.samples, 0u) << s.name;
+  // The EKF's GNSS innovations are consistent here (measured NIS mean 0.98, 94 % inside the 95 %
+  // bound, white); its wheel and gyro innovations are far inside theirs (NIS 0.01-0.4: the
+  // process noise is conservative).
+  ASSERT_EQ(d.filter.size(), 5u);
+  for (const InnovationReport& f : d.filter) {
+    if (f.name == "gnss") {
+      EXPECT_NEAR(f.nis_mean, 1.0, 0.3);
+      EXPECT_GT(f.inside_95, 0.88);
+      EXPECT_TRUE(f.white);
+    } else {
+      EXPECT_LT(f.nis_mean, 1.0) << f.name;
+    }
+  }
 }
 
 struct SensorCase {

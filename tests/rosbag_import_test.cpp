@@ -121,6 +121,15 @@ TEST_F(HuskyBag, FilterSmootherAndDiagnoseRunThrough) {
   }
   EXPECT_FALSE(d.failures.empty());
   EXPECT_FALSE(d.candidates.empty());
+  // The EKF's GNSS innovations: NIS mean 2.2, 82 % inside the 95 % bound (docs/real_logs.md).
+  ASSERT_EQ(d.filter.size(), 5u);
+  for (const InnovationReport& f : d.filter) {
+    if (f.name == "gnss") {
+      EXPECT_GT(f.nis_mean, 1.3);
+      EXPECT_LT(f.nis_mean, 4.0);
+      EXPECT_FALSE(f.white);
+    }
+  }
 }
 
 }  // namespace

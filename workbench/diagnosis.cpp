@@ -135,7 +135,24 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
   Diagnosis d;
   d.log = log.directory;
   d.model_effects = model.effects;
-  d.solution = SmoothBatch(log, model, options.smoother);
+  BatchSmootherOptions smoother = options.smoother;
+  smoother.filter.ekf.record_innovations = true;
+  d.solution = SmoothBatch(log, model, smoother);
+  for (const auto& [name, series] : d.solution.ekf.stats.innovations) {
+    InnovationReport f;
+    f.name = name;
+    f.updates = series.normalized.size();
+    size_t inside = 0;
+    for (double z : series.normalized) {
+      f.nis_mean += z * z;
+      inside += std::abs(z) <= 1.96;
+    }
+    if (f.updates > 0) f.nis_mean /= f.updates, f.inside_95 = double(inside) / f.updates;
+    f.whiteness = LjungBox(series.normalized, std::min<int>(options.whiteness_lags, f.updates / 4));
+    f.white = f.whiteness.p_value >= options.alpha;
+    d.filter.push_back(f);
+  }
+  d.solution.ekf.stats.innovations.clear();  // not kept: the report has what it needs
   d.used_fallback = d.solution.used_fallback;
   d.notes = d.solution.notes;
   d.fitted_effects = d.solution.effects;
@@ -253,6 +270,15 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
                   s.whiteness.q, s.whiteness.p_value, s.white ? "yes" : "NO");
     out << line;
   }
+  out << "  filter consistency (EKF innovations, normalized):\n";
+  out << "    measurement     updates  NIS mean  inside 95 %  Ljung-Box Q  p        white\n";
+  for (const InnovationReport& f : d.filter) {
+    char line[200];
+    std::snprintf(line, sizeof(line), "    %-15s %7zu  %8.3f  %10.1f %%  %11.1f  %8.2g %s\n",
+                  f.name.c_str(), f.updates, f.nis_mean, 100.0 * f.inside_95, f.whiteness.q,
+                  f.whiteness.p_value, f.white ? "yes" : "NO");
+    out << line;
+  }
   out << "  where it fails (" << d.failures.size() << " segments):\n";
   for (const FailureSegment& f : d.failures) {
     char line[200];
@@ -353,6 +379,15 @@ nlohmann::json ToJson(const Diagnosis& d) {
                             {"ljung_box_q", s.whiteness.q},
                             {"whiteness_p", s.whiteness.p_value},
                             {"white", s.white}};
+  }
+  j["filter"] = nlohmann::json::object();
+  for (const InnovationReport& f : d.filter) {
+    j["filter"][f.name] = {{"updates", f.updates},
+                           {"nis_mean", f.nis_mean},
+                           {"inside_95", f.inside_95},
+                           {"ljung_box_q", f.whiteness.q},
+                           {"whiteness_p", f.whiteness.p_value},
+                           {"white", f.white}};
   }
   j["failures"] = nlohmann::json::array();
   for (const FailureSegment& f : d.failures) {

@@ -39,6 +39,17 @@ struct StreamReport {
   bool white = true;  // whiteness.p_value >= alpha
 };
 
+// The EKF's consistency on one measurement: its normalized innovations (ward_ekf.h), which a
+// consistent filter makes white with unit variance.
+struct InnovationReport {
+  std::string name;
+  size_t updates = 0;
+  double nis_mean = 0.0;         // mean normalized innovation squared (1 when consistent)
+  double inside_95 = 0.0;        // fraction with |z| <= 1.96
+  WhitenessTest whiteness;
+  bool white = true;
+};
+
 struct FailureSegment {
   double t_start = 0.0, t_end = 0.0;
   std::vector<std::string> streams;
@@ -76,6 +87,7 @@ struct Diagnosis {
   std::string log;
   std::vector<std::string> model_effects;
   std::vector<StreamReport> streams;
+  std::vector<InnovationReport> filter;  // the EKF front end's innovations, per measurement
   std::vector<FailureSegment> failures;
   std::vector<CandidateScore> candidates;  // best first
   // The effects already in the model (terms or corrections) scored by their own signatures,
