@@ -3,9 +3,9 @@
 // effect ranks first and is significant, how often anything at all is significant, and the mean
 // and sd of the top candidate's fitted magnitude. Prints a table (docs/workbench.md).
 // Run: build/bench/diagnose_monte_carlo [SEEDS=20] [EFFECT...]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -24,8 +24,9 @@ int main(int argc, char** argv) {
     effects.push_back("none");
     for (const EffectInfo& e : EffectCatalogue()) effects.push_back(e.name);
   }
-  std::printf("| hidden | seeds | top-1 and significant | any significant | top candidate (most "
-              "often) | its magnitude mean +- sd | true magnitude |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| hidden | seeds | top-1 and significant | any significant | top candidate (most "
+      "often) | its magnitude mean +- sd | true magnitude |\n|---|---|---|---|---|---|---|\n");
   for (const std::string& effect : effects) {
     int top1 = 0, any = 0;
     std::vector<double> magnitudes;
@@ -41,8 +42,10 @@ int main(int argc, char** argv) {
         ++any;
         auto it = std::find_if(counts.begin(), counts.end(),
                                [&](const auto& c) { return c.first == top.effect; });
-        if (it == counts.end()) counts.push_back({top.effect, 1});
-        else ++it->second;
+        if (it == counts.end())
+          counts.push_back({top.effect, 1});
+        else
+          ++it->second;
       }
       if (top.effect == effect && top.significant) {
         ++top1;
@@ -59,10 +62,11 @@ int main(int argc, char** argv) {
     for (double m : magnitudes) sq += (m - mean) * (m - mean);
     const double sd = magnitudes.size() > 1 ? std::sqrt(sq / (magnitudes.size() - 1)) : 0.0;
     const EffectInfo* info = FindEffect(effect);
-    std::printf("| %s | %d | %d/%d | %d/%d | %s | %s | %s |\n", effect.c_str(), seeds, top1, seeds,
-                any, seeds, most.empty() ? "-" : most.c_str(),
-                magnitudes.empty() ? "-" : (std::to_string(mean) + " +- " + std::to_string(sd)).c_str(),
-                info ? std::to_string(info->default_value).c_str() : "0");
+    std::printf(
+        "| %s | %d | %d/%d | %d/%d | %s | %s | %s |\n", effect.c_str(), seeds, top1, seeds, any,
+        seeds, most.empty() ? "-" : most.c_str(),
+        magnitudes.empty() ? "-" : (std::to_string(mean) + " +- " + std::to_string(sd)).c_str(),
+        info ? std::to_string(info->default_value).c_str() : "0");
     std::fflush(stdout);
   }
   return 0;

@@ -103,8 +103,7 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
   const double yaw_offset =
       imu_map && imu_map["yaw_offset"] ? imu_map["yaw_offset"].as<double>() : 0.0;
   const std::string imu_topic = imu_map ? Text(imu_map, "topic", mapping_path, "imu") : "";
-  const std::string wheel_topic =
-      wheel_map ? Text(wheel_map, "topic", mapping_path, "wheels") : "";
+  const std::string wheel_topic = wheel_map ? Text(wheel_map, "topic", mapping_path, "wheels") : "";
   const std::string gps_topic = gps_map ? Text(gps_map, "topic", mapping_path, "gps") : "";
   const double track = wheel_map ? Number(wheel_map, "track", mapping_path, "wheels") : 0.0;
   const double radius = wheel_map ? Number(wheel_map, "radius", mapping_path, "wheels") : 0.0;
@@ -131,9 +130,9 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
         const Eigen::Vector3d f = body_from_sensor * Eigen::Vector3d(imu->linear_acceleration.x,
                                                                      imu->linear_acceleration.y,
                                                                      imu->linear_acceleration.z);
-        const Eigen::Vector3d w = body_from_sensor * Eigen::Vector3d(imu->angular_velocity.x,
-                                                                     imu->angular_velocity.y,
-                                                                     imu->angular_velocity.z);
+        const Eigen::Vector3d w =
+            body_from_sensor * Eigen::Vector3d(imu->angular_velocity.x, imu->angular_velocity.y,
+                                               imu->angular_velocity.z);
         const double t = imu->header.stamp.toSec();
         log.imu.push_back({t, f.x(), f.y(), f.z(), w.x(), w.y(), w.z()});
         ++imu_n;
@@ -145,7 +144,8 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
             continue;
           }
           // World from body = world from sensor x sensor from body.
-          const Eigen::Matrix3d r = q.normalized().toRotationMatrix() * body_from_sensor.transpose();
+          const Eigen::Matrix3d r =
+              q.normalized().toRotationMatrix() * body_from_sensor.transpose();
           AttitudeSample a;
           a.t = t;
           a.yaw = std::remainder(std::atan2(r(1, 0), r(0, 0)) + yaw_offset, 2.0 * M_PI);
@@ -206,10 +206,9 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
                             ", rotated by body_from_sensor");
   }
   if (wheel_map) {
-    report->lines.push_back("wheels: " + std::to_string(wheel_n) + " messages from " +
-                            wheel_topic + ", side speeds from the body twist (track " +
-                            std::to_string(track) + " m, radius " + std::to_string(radius) +
-                            " m)");
+    report->lines.push_back("wheels: " + std::to_string(wheel_n) + " messages from " + wheel_topic +
+                            ", side speeds from the body twist (track " + std::to_string(track) +
+                            " m, radius " + std::to_string(radius) + " m)");
   }
   // GNSS: local ENU at the first fix, velocity by central difference.
   if (!fix_t.empty()) {
@@ -229,8 +228,8 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
       GpsSample g;
       g.t = fix_t[i];
       g.x = enu[i].x(), g.y = enu[i].y(), g.z = enu[i].z();
-      const Eigen::Vector3d v = dt > 0.0 ? Eigen::Vector3d((enu[b] - enu[a]) / dt)
-                                         : Eigen::Vector3d::Constant(kMissing);
+      const Eigen::Vector3d v =
+          dt > 0.0 ? Eigen::Vector3d((enu[b] - enu[a]) / dt) : Eigen::Vector3d::Constant(kMissing);
       g.vx = v.x(), g.vy = v.y(), g.vz = v.z();
       g.sd_xy = fix_sd[i], g.sd_z = fix_sd[i], g.sd_v = sd_v;
       log.gps.push_back(g);

@@ -14,8 +14,8 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <map>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -131,8 +131,8 @@ class WardEkf {
   // `gate_chi2`. Returns false when gated out.
   // names (optional): the measurement each row is, for the recorded innovations.
   bool Update(const RowVector& nu, const RowMatrix& H, const RowVector& r, double gate_chi2,
-              int max_consecutive_rejections, StreamCounters* counters,
-              int* consecutive_rejections, const std::vector<const char*>* names = nullptr);
+              int max_consecutive_rejections, StreamCounters* counters, int* consecutive_rejections,
+              const std::vector<const char*>* names = nullptr);
   void ApplyWeakConstraints(double dt_cycle);
   // After every measurement: keep the last finite (x, P); on a non-finite one go back to it with
   // the covariance inflated, and count it. Never a silent NaN.

@@ -113,7 +113,9 @@ TEST_F(MatlabImport, SmootherAndDiagnoseRunThroughAndSayWhereTheModelFails) {
   // Bounds stated in docs/real_logs.md: the encoders within their stated noise; the GNSS
   // velocity (central differences of 10 Hz fixes) and the gyro far outside theirs, and said.
   for (const StreamReport& s : d.streams) {
-    if (s.name == "encoder_left" || s.name == "encoder_right") EXPECT_LT(s.rms, 1.0);
+    if (s.name == "encoder_left" || s.name == "encoder_right") {
+      EXPECT_LT(s.rms, 1.0);
+    }
     if (s.name == "gnss" || s.name == "gyro") {
       EXPECT_GT(s.rms, 3.0) << s.name;
       EXPECT_FALSE(s.consistent) << s.name;
@@ -121,7 +123,9 @@ TEST_F(MatlabImport, SmootherAndDiagnoseRunThroughAndSayWhereTheModelFails) {
   }
   // The EKF's GNSS innovations: NIS mean about 190, 39 % inside the 95 % bound.
   for (const InnovationReport& f : d.filter) {
-    if (f.name == "gnss") EXPECT_GT(f.nis_mean, 20.0);
+    if (f.name == "gnss") {
+      EXPECT_GT(f.nis_mean, 20.0);
+    }
   }
 }
 

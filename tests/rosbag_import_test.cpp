@@ -81,12 +81,12 @@ TEST_F(HuskyBag, ImportsEveryMessageAndPassesPlausibility) {
 
 TEST_F(HuskyBag, WrongMappingsAreNamed) {
   // The IMU with its z flipped (still a rotation: y flips too).
-  const Plausibility flipped = CheckPlausibility(Import(MappingWith(
-      "[[0, 0, -1], [-1, 0, 0], [0, 1, 0]]", "[[0, 0, -1], [1, 0, 0], [0, -1, 0]]")));
+  const Plausibility flipped = CheckPlausibility(Import(
+      MappingWith("[[0, 0, -1], [-1, 0, 0], [0, 1, 0]]", "[[0, 0, -1], [1, 0, 0], [0, -1, 0]]")));
   EXPECT_TRUE(Mentions(flipped, "z axis points down"));
   // No rotation at all: gravity on the sensor's y.
-  const Plausibility sideways = CheckPlausibility(
-      Import(MappingWith("[[0, 0, -1], [-1, 0, 0], [0, 1, 0]]", "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]")));
+  const Plausibility sideways = CheckPlausibility(Import(
+      MappingWith("[[0, 0, -1], [-1, 0, 0], [0, 1, 0]]", "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]")));
   EXPECT_TRUE(Mentions(sideways, "gravity is along +y"));
   // Swapped wheel sides.
   DriveLog swapped = Import(kMapping);
@@ -116,8 +116,12 @@ TEST_F(HuskyBag, FilterSmootherAndDiagnoseRunThrough) {
   // Bounds stated in docs/real_logs.md: GNSS and encoder residuals near their stated noise; the
   // model is not consistent everywhere on this log, and says where.
   for (const StreamReport& s : d.streams) {
-    if (s.name == "gnss") EXPECT_LT(s.rms, 2.0);
-    if (s.name == "encoder_left" || s.name == "encoder_right") EXPECT_LT(s.rms, 1.0);
+    if (s.name == "gnss") {
+      EXPECT_LT(s.rms, 2.0);
+    }
+    if (s.name == "encoder_left" || s.name == "encoder_right") {
+      EXPECT_LT(s.rms, 1.0);
+    }
   }
   EXPECT_FALSE(d.failures.empty());
   EXPECT_FALSE(d.candidates.empty());

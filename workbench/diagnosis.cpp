@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "evaluation/html_report.h"
-#include "factors/ward_state.h"
 #include "factors/model_effects.h"
+#include "factors/ward_state.h"
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
@@ -38,7 +38,7 @@ std::vector<double> ForceBalance(const ModelResiduals& m, std::vector<double>* t
     if (!std::isfinite(c.unexplained_force)) continue;
     t->push_back(c.t);
     r.push_back(c.unexplained_force /
-                 std::sqrt(c.force_sd * c.force_sd + c.force_state_sd * c.force_state_sd));
+                std::sqrt(c.force_sd * c.force_sd + c.force_state_sd * c.force_state_sd));
   }
   return r;
 }
@@ -49,8 +49,7 @@ struct Series {
 };
 
 std::vector<FailureSegment> FindFailures(const std::vector<Series>& streams,
-                                         const ModelResiduals& m,
-                                         const DiagnosisOptions& options) {
+                                         const ModelResiduals& m, const DiagnosisOptions& options) {
   if (m.states.empty()) return {};
   const double t0 = m.states.front().t, t1 = m.states.back().t;
   const size_t windows = std::max<size_t>(1, std::ceil((t1 - t0) / options.window_s));
@@ -96,14 +95,14 @@ std::vector<FailureSegment> FindFailures(const std::vector<Series>& streams,
   return out;
 }
 
-CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m,
-                     const DriveLog& log, const ModelConfig& model) {
+CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, const DriveLog& log,
+                     const ModelConfig& model) {
   CandidateScore c;
   c.effect = signature.effect;
   c.test = signature.test;
   c.added_as = ModelEffectIndex(signature.effect) >= 0 ? "smoother term"
-               : signature.correct                       ? "measurement correction"
-                                                         : "";
+               : signature.correct                     ? "measurement correction"
+                                                       : "";
   double searched = 1.0, precision = 0.0, weighted = 0.0;
   for (const SignatureSeries& s : signature.series(m, log, model)) {
     const SlopeFit fit = FitSlopeHac(s.y, s.g, s.y_common_sd);
@@ -130,8 +129,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m,
 
 }  // namespace
 
-Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
-                   const DiagnosisOptions& options) {
+Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
   Diagnosis d;
   d.log = log.directory;
   d.model_effects = model.effects;
@@ -173,9 +171,8 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,
 
   std::vector<const EffectSignature*> candidates;
   for (const EffectSignature& s : EffectSignatures()) {
-    const bool corrected =
-        std::any_of(options.corrected.begin(), options.corrected.end(),
-                    [&](const EffectEstimate& e) { return e.name == s.effect; });
+    const bool corrected = std::any_of(options.corrected.begin(), options.corrected.end(),
+                                       [&](const EffectEstimate& e) { return e.name == s.effect; });
     if (!corrected &&
         std::find(model.effects.begin(), model.effects.end(), s.effect) == model.effects.end()) {
       candidates.push_back(&s);
@@ -242,7 +239,8 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
       }
       throw std::invalid_argument("effect '" + name +
                                   "' has neither a smoother term nor a measurement correction "
-                                  "yet; usable:" + usable);
+                                  "yet; usable:" +
+                                  usable);
     }
   }
   return out;
@@ -292,13 +290,13 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   out << "  candidate effects (robust score tests, Bonferroni-adjusted p):\n";
   for (const CandidateScore& c : d.candidates) {
     char line[240];
-    std::snprintf(line, sizeof(line), "    %-24s stat %8.1f (dof %d)  p %8.2g  %-3s  magnitude %.4g +- %.2g",
+    std::snprintf(line, sizeof(line),
+                  "    %-24s stat %8.1f (dof %d)  p %8.2g  %-3s  magnitude %.4g +- %.2g",
                   c.effect.c_str(), c.statistic, c.dof, c.p_value, c.significant ? "YES" : "no",
                   c.magnitude, c.magnitude_sd);
     out << line;
     if (!c.where.empty()) out << "  (" << c.where << ")";
-    out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as)
-        << "]";
+    out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as) << "]";
     out << "\n";
   }
   if (!d.candidates.empty() && d.candidates.front().significant) {
@@ -342,15 +340,13 @@ void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostre
                   before.streams[i].whiteness.q, after.streams[i].whiteness.q);
     out << line;
   }
-  out << "  failure segments " << before.failures.size() << " -> " << after.failures.size()
-      << "\n";
+  out << "  failure segments " << before.failures.size() << " -> " << after.failures.size() << "\n";
   // Each added effect's own signature: what is left of it once it is in the model.
   for (const CandidateScore& b : before.candidates) {
-    const bool added =
-        std::find(after.model_effects.begin(), after.model_effects.end(), b.effect) !=
-            after.model_effects.end() ||
-        std::any_of(after.corrected.begin(), after.corrected.end(),
-                    [&](const EffectEstimate& e) { return e.name == b.effect; });
+    const bool added = std::find(after.model_effects.begin(), after.model_effects.end(),
+                                 b.effect) != after.model_effects.end() ||
+                       std::any_of(after.corrected.begin(), after.corrected.end(),
+                                   [&](const EffectEstimate& e) { return e.name == b.effect; });
     if (!added) continue;
     const auto it = std::find_if(after.in_model.begin(), after.in_model.end(),
                                  [&](const CandidateScore& c) { return c.effect == b.effect; });
@@ -400,10 +396,14 @@ nlohmann::json ToJson(const Diagnosis& d) {
   }
   j["candidates"] = nlohmann::json::array();
   for (const CandidateScore& c : d.candidates) {
-    nlohmann::json cj = {{"effect", c.effect},         {"statistic", c.statistic},
-                         {"dof", c.dof},               {"p_value", c.p_value},
-                         {"significant", c.significant}, {"magnitude", c.magnitude},
-                         {"magnitude_sd", c.magnitude_sd}, {"test", c.test},
+    nlohmann::json cj = {{"effect", c.effect},
+                         {"statistic", c.statistic},
+                         {"dof", c.dof},
+                         {"p_value", c.p_value},
+                         {"significant", c.significant},
+                         {"magnitude", c.magnitude},
+                         {"magnitude_sd", c.magnitude_sd},
+                         {"test", c.test},
                          {"added_as", c.added_as}};
     if (!c.where.empty()) cj["where"] = c.where;
     j["candidates"].push_back(cj);
@@ -458,9 +458,9 @@ std::string Section(const Diagnosis& d, const std::string& heading) {
   html << "<table border=1 cellpadding=3><tr><th>effect</th><th>statistic</th><th>dof</th>"
           "<th>p</th><th>significant</th><th>magnitude</th><th>sd</th><th>test</th></tr>\n";
   for (const CandidateScore& c : d.candidates) {
-    html << "<tr><td>" << HtmlEscape(c.effect) << "</td><td>" << c.statistic << "</td><td>"
-         << c.dof << "</td><td>" << c.p_value << "</td><td>" << (c.significant ? "yes" : "no")
-         << "</td><td>" << c.magnitude << "</td><td>" << c.magnitude_sd << "</td><td>"
+    html << "<tr><td>" << HtmlEscape(c.effect) << "</td><td>" << c.statistic << "</td><td>" << c.dof
+         << "</td><td>" << c.p_value << "</td><td>" << (c.significant ? "yes" : "no") << "</td><td>"
+         << c.magnitude << "</td><td>" << c.magnitude_sd << "</td><td>"
          << HtmlEscape(c.test + (c.where.empty() ? "" : " (" + c.where + ")")) << "</td></tr>\n";
   }
   html << "</table>\n";
@@ -475,8 +475,8 @@ std::string Section(const Diagnosis& d, const std::string& heading) {
 std::string DiagnosisHtml(const Diagnosis& before, const Diagnosis* after) {
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>slipgraph diagnose "
-       << HtmlEscape(before.log) << "</title></head><body>\n<h1>slipgraph diagnose: "
-       << HtmlEscape(before.log) << "</h1>\n";
+       << HtmlEscape(before.log)
+       << "</title></head><body>\n<h1>slipgraph diagnose: " << HtmlEscape(before.log) << "</h1>\n";
   html << Section(before, after ? "before" : "model vs measurements");
   if (after != nullptr) {
     std::ostringstream text;

@@ -32,7 +32,7 @@ struct DiagnosisOptions {
 struct StreamReport {
   std::string name;
   size_t samples = 0;
-  double rms = 0.0;  // of the normalized residuals (1 when the model's sd is right)
+  double rms = 0.0;           // of the normalized residuals (1 when the model's sd is right)
   double chi_square_p = 1.0;  // upper tail of sum r^2 under chi-square(samples)
   bool consistent = true;     // chi_square_p >= alpha
   WhitenessTest whiteness;
@@ -44,8 +44,8 @@ struct StreamReport {
 struct InnovationReport {
   std::string name;
   size_t updates = 0;
-  double nis_mean = 0.0;         // mean normalized innovation squared (1 when consistent)
-  double inside_95 = 0.0;        // fraction with |z| <= 1.96
+  double nis_mean = 0.0;   // mean normalized innovation squared (1 when consistent)
+  double inside_95 = 0.0;  // fraction with |z| <= 1.96
   WhitenessTest whiteness;
   bool white = true;
 };
@@ -65,7 +65,7 @@ struct SeriesScore {
 struct CandidateScore {
   std::string effect;
   std::string test;
-  std::string where;      // the chosen patch or change point, when the test searched
+  std::string where;  // the chosen patch or change point, when the test searched
   // ((|magnitude| - negligible) / magnitude_sd)^2: chi-square, 1 dof, under the null
   // |theta| <= negligible (workbench/effect_signatures.h).
   double statistic = 0.0;
@@ -99,8 +99,8 @@ struct Diagnosis {
   std::vector<EffectEstimate> corrected;       // sensor effects corrected in the log
   bool used_fallback = false;
   std::vector<std::string> notes;
-  ModelResiduals residuals;    // for plots
-  SmootherResult solution;     // for plots
+  ModelResiduals residuals;  // for plots
+  SmootherResult solution;   // for plots
 };
 
 Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,

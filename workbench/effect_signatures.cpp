@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/measurement_stream.h"
-
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
+#include "io/measurement_stream.h"
 
 namespace slipgraph {
 namespace {
@@ -66,8 +65,8 @@ double DerivativeAround(const ModelResiduals& m, size_t k,
                         const std::function<double(const StateContext&)>& f) {
   const long i = static_cast<long>(k);
   if (i < 8 || i + 9 > static_cast<long>(m.states.size())) return kNaN;
-  const double dt = 0.5 * (m.states[i + 8].t + m.states[i + 3].t) -
-                    0.5 * (m.states[i - 3].t + m.states[i - 8].t);
+  const double dt =
+      0.5 * (m.states[i + 8].t + m.states[i + 3].t) - 0.5 * (m.states[i - 3].t + m.states[i - 8].t);
   return (MeanOver(m, i + 3, i + 9, f) - MeanOver(m, i - 8, i - 2, f)) / dt;
 }
 
@@ -96,17 +95,18 @@ std::vector<EffectSignature> MakeSignatures() {
          }
        }});
   list.push_back({"wheel_radius_error",
-                  "force balance against d f_tire / d radius; GNSS velocity residual against v", nullptr,
+                  "force balance against d f_tire / d radius; GNSS velocity residual against v",
+                  nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{
-                        ForceSeries(m, kWheelRadiusError), GnssSeries(m, [&](size_t k) {
-                          return m.states[k].x[ward::kVbx];
-                        })};
+                        ForceSeries(m, kWheelRadiusError),
+                        GnssSeries(m, [&](size_t k) { return m.states[k].x[ward::kVbx]; })};
                   },
                   nullptr});
   list.push_back(
       {"imu_mounting_pitch",
-       "accelerometer z residual (a_z - g cos pitch cos roll) against a_x, both high-passed at 5 s", nullptr,
+       "accelerometer z residual (a_z - g cos pitch cos roll) against a_x, both high-passed at 5 s",
+       nullptr,
        [](const ModelResiduals& m, const DriveLog&, const ModelConfig& model) {
          SignatureSeries s;
          s.stream = "accelerometer_z";
@@ -133,7 +133,8 @@ std::vector<EffectSignature> MakeSignatures() {
            imu.ax = fx, imu.az = fz, imu.gx = wx, imu.gz = wz;
          }
        }});
-  list.push_back({"slope_slip", "force balance against d f_tire / d slope_slip (|grade| x traction)", nullptr,
+  list.push_back({"slope_slip",
+                  "force balance against d f_tire / d slope_slip (|grade| x traction)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{ForceSeries(m, kSlopeSlip)};
                   },
@@ -306,8 +307,6 @@ std::vector<double> HighPass(const std::vector<double>& t, const std::vector<dou
   }
   return out;
 }
-
-
 
 const EffectSignature* FindSignature(const std::string& effect) {
   for (const EffectSignature& s : EffectSignatures()) {

@@ -83,7 +83,8 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
     s.force_sd = std::nan("");
     s.force_per_effect.fill(std::nan(""));
     // The latest attitude at or before the state (1 us tolerance for stamp rounding), and the
-    // IMU sample nearest it: the latest within half a 100 Hz period after, if not staler than 50 ms.
+    // IMU sample nearest it: the latest within half a 100 Hz period after, if not staler than 50
+    // ms.
     const long a = LatestAtOrBefore(log.attitude, s.t, 1e-6);
     if (a >= 0) s.pitch_rad = log.attitude[a].pitch, s.roll_rad = log.attitude[a].roll;
     long i = LatestAtOrBefore(log.imu, s.t, 0.005);

@@ -10,12 +10,12 @@
 namespace slipgraph {
 
 struct SlopeFit {
-  double slope = 0.0;     // theta in y = c + theta g + e
-  double sd = 0.0;        // its HAC standard error
-  double naive_sd = 0.0;  // the white-noise standard error, for comparison
+  double slope = 0.0;      // theta in y = c + theta g + e
+  double sd = 0.0;         // its HAC standard error
+  double naive_sd = 0.0;   // the white-noise standard error, for comparison
   double common_sd = 0.0;  // the common-mode part of sd (0 without common_sd)
   double intercept = 0.0;
-  double lag = 0.0;       // the Bartlett bandwidth used (samples)
+  double lag = 0.0;                 // the Bartlett bandwidth used (samples)
   double variance_explained = 0.0;  // 1 - var(e) / var(y)
   size_t n = 0;
   double z() const { return sd > 0.0 ? slope / sd : 0.0; }

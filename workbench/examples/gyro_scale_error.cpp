@@ -33,8 +33,8 @@ std::vector<SignatureSeries> GyroScaleSeries(const ModelResiduals& m, const Driv
     const long a = LatestAtOrBefore(log.attitude, c.t, 1e-6);
     if (a < 0 || std::abs(log.attitude[a].t - c.t) > 1e-3) continue;
     const double yaw = log.attitude[a].yaw;
-    psi_att = std::isfinite(previous_att) ? psi_att + std::remainder(yaw - previous_att, 2 * M_PI)
-                                          : yaw;
+    psi_att =
+        std::isfinite(previous_att) ? psi_att + std::remainder(yaw - previous_att, 2 * M_PI) : yaw;
     previous_att = yaw;
     const double sd = log.attitude[a].sd_yaw > 0.0 ? log.attitude[a].sd_yaw : 0.01;
     s.t.push_back(c.t);
