@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
@@ -58,6 +59,10 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     const bool to_stdout = options->json == "-";
     std::ostream& text = to_stdout ? std::cerr : std::cout;
     nlohmann::json all = nlohmann::json::array();
+    // Suite totals: how often each effect was the significant top candidate, and how many logs
+    // nothing explained.
+    std::map<std::string, int> top_counts;
+    int unexplained = 0;
     std::string html;
     for (const std::string& log_dir : ListLogs(path)) {
       const DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
@@ -92,13 +97,27 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
         html = DiagnosisHtml(before, nullptr);
       }
       all.push_back(j);
+      if (!before.candidates.empty() && before.candidates.front().significant) {
+        ++top_counts[before.candidates.front().effect];
+      }
+      unexplained += !before.explained;
+    }
+    if (all.size() > 1) {
+      text << "\nsuite " << path << ": " << all.size() << " logs; significant top candidate:";
+      if (top_counts.empty()) text << " none";
+      for (const auto& [effect, count] : top_counts) text << " " << effect << " (" << count << ")";
+      text << "; unexplained failures in " << unexplained << " log(s)\n";
     }
     if (!options->report.empty()) {
       std::ofstream(options->report) << html;
       text << "report: " << options->report << "\n";
     }
     if (!options->json.empty()) {
-      const nlohmann::json out = all.size() == 1 ? all[0] : nlohmann::json{{"logs", all}};
+      nlohmann::json out = all.size() == 1 ? all[0] : nlohmann::json{{"logs", all}};
+      if (all.size() > 1) {
+        out["total"] = {
+            {"logs", all.size()}, {"top_candidates", top_counts}, {"unexplained", unexplained}};
+      }
       if (to_stdout) {
         std::cout << out.dump(2) << "\n";
       } else {
