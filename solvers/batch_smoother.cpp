@@ -86,6 +86,12 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
           result.estimates[k].sd[i] = std::sqrt(std::max(0.0, covariance.states[k](i, i)));
         }
       }
+      result.velocity_next_correlation.assign(n, 0.0);
+      for (size_t k = 0; k + 1 < n; ++k) {
+        const double var = covariance.states[k](kVbx, kVbx) * covariance.states[k + 1](kVbx, kVbx);
+        result.velocity_next_correlation[k] =
+            var > 0.0 ? covariance.next[k](kVbx, kVbx) / std::sqrt(var) : 0.0;
+      }
     } else {
       result.notes.push_back("covariance recovery failed (" + covariance.error +
                              "): EKF sd reported");

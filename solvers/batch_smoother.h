@@ -42,6 +42,9 @@ struct SmootherResult {
   ceres::Solver::Summary summary;
   bool used_fallback = false;  // true: estimates are the EKF's (see notes)
   bool covariance_ok = false;
+  // corr(v_bx error at k, at k+1) from the chain covariance (empty without it): how long the
+  // solution's own velocity error persists.
+  std::vector<double> velocity_next_correlation;
   std::vector<std::string> notes;
 };
 

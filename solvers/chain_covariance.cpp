@@ -91,9 +91,11 @@ ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vecto
   }
   // Takahashi: diagonal (and first sub-diagonal) blocks of T^-1, from the last state back.
   out.states.assign(n, MatrixXd());
+  out.next.assign(n > 0 ? n - 1 : 0, MatrixXd());
   out.states[n - 1] = D_inv[n - 1];
   for (int k = n - 2; k >= 0; --k) {
     const MatrixXd sub = -out.states[k + 1] * N[k];  // Sigma_{k+1,k}
+    out.next[k] = sub;
     out.states[k] = D_inv[k] - N[k].transpose() * sub;
   }
   if (g == 0) {
@@ -114,6 +116,7 @@ ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vecto
   }
   out.globals = llt.solve(MatrixXd::Identity(g, g));
   for (int k = 0; k < n; ++k) out.states[k] += X[k] * out.globals * X[k].transpose();
+  for (int k = 0; k + 1 < n; ++k) out.next[k] += X[k + 1] * out.globals * X[k].transpose();
   out.ok = true;
   return out;
 }

@@ -29,6 +29,7 @@ struct ChainCovariance {
   bool ok = false;
   std::string error;                    // why not (not a chain, not positive definite)
   std::vector<Eigen::MatrixXd> states;  // cov(x_k), one per state
+  std::vector<Eigen::MatrixXd> next;    // cov(x_{k+1}, x_k), one per consecutive pair
   Eigen::MatrixXd globals;              // cov of the global parameters, stacked (tangent space)
 };
 

@@ -48,6 +48,7 @@ TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
   ceres::Covariance covariance(covariance_options);
   std::vector<std::pair<const double*, const double*>> blocks;
   for (size_t k = 0; k < states.size(); k += 37) blocks.emplace_back(states[k], states[k]);
+  for (size_t k = 0; k + 1 < states.size(); k += 37) blocks.emplace_back(states[k + 1], states[k]);
   blocks.emplace_back(problem->offsets.data(), problem->offsets.data());
   ASSERT_TRUE(covariance.Compute(blocks, problem->problem.get()));
   for (size_t k = 0; k < states.size(); k += 37) {
@@ -58,6 +59,19 @@ TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
         const double scale = std::sqrt(expected(i, i) * expected(j, j));
         EXPECT_NEAR(chain.states[k](i, j), expected(i, j), 1e-6 * scale)
             << "state " << k << " (" << i << ", " << j << ")";
+      }
+    }
+  }
+  // Consecutive states' cross-covariance, cov(x_{k+1}, x_k), with the border correction.
+  ASSERT_EQ(chain.next.size(), states.size() - 1);
+  for (size_t k = 0; k + 1 < states.size(); k += 37) {
+    Eigen::Matrix<double, 7, 7, Eigen::RowMajor> expected;
+    covariance.GetCovarianceBlock(states[k + 1], states[k], expected.data());
+    for (int i = 0; i < 7; ++i) {
+      for (int j = 0; j < 7; ++j) {
+        const double scale = std::sqrt(chain.states[k + 1](i, i) * chain.states[k](j, j));
+        EXPECT_NEAR(chain.next[k](i, j), expected(i, j), 1e-6 * scale)
+            << "pair " << k << " (" << i << ", " << j << ")";
       }
     }
   }
@@ -107,6 +121,8 @@ TEST(ChainCovariance, RandomWalkVariancesByHand) {
   const ChainCovariance chain = ComputeChainCovariance(&problem, {x, x + 1, x + 2, x + 3}, {});
   ASSERT_TRUE(chain.ok) << chain.error;
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(chain.states[k](0, 0), k + 1.0, 1e-12);
+  // cov(x_{k+1}, x_k) = var(x_k) = k + 1 for a random walk.
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(chain.next[k](0, 0), k + 1.0, 1e-12);
 }
 
 }  // namespace

@@ -71,6 +71,35 @@ TEST(FitSlopeHac, CommonModeTermByHand) {
   EXPECT_NEAR(fit.sd, shared / sgg, 1e-9);
 }
 
+TEST(FitSlopeHac, CommonModeAsAMarkovChain) {
+  // y exactly on the line, so the sd is the common-mode term alone: with correlation 1 between
+  // neighbours it is the fully correlated one; with 0 the errors are independent,
+  // sqrt(sum a_i^2) / S_gg; with 0.5, sum_ij a_i a_j 0.5^|i-j| by brute force.
+  const std::vector<double> g = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+  std::vector<double> y, c;
+  for (double v : g) y.push_back(1.0 + 2.0 * v), c.push_back(0.1 + 0.05 * v);
+  const double mean = 5.5;
+  double sgg = 0.0;
+  std::vector<double> a;
+  for (size_t i = 0; i < g.size(); ++i) {
+    sgg += (g[i] - mean) * (g[i] - mean);
+    a.push_back((g[i] - mean) * c[i]);
+  }
+  const auto brute = [&](double rho) {
+    double v = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      for (size_t j = 0; j < a.size(); ++j)
+        v += a[i] * a[j] * std::pow(rho, std::abs(int(i) - int(j)));
+    }
+    return std::sqrt(v) / sgg;
+  };
+  for (double rho : {0.0, 0.5, 1.0}) {
+    const SlopeFit fit = FitSlopeHac(y, g, c, std::vector<double>(g.size(), rho));
+    EXPECT_NEAR(fit.common_sd, brute(rho), 1e-12) << rho;
+  }
+  EXPECT_NEAR(FitSlopeHac(y, g, c).common_sd, brute(1.0), 1e-12);
+}
+
 TEST(FitSlopeHac, SkipsNonFiniteAndRefusesTooFewSamples) {
   std::vector<double> y = {1, 2, std::nan(""), 4, 5, 6, 7, 8, 9, 10, 11};
   std::vector<double> g = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};

@@ -16,12 +16,20 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
   SignatureSeries s;
   s.stream = "accelerometer";
-  for (const StateContext& c : m.states) {
-    if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) continue;
+  for (size_t k = 0; k < m.states.size(); ++k) {
+    const StateContext& c = m.states[k];
+    if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) {
+      // A skipped state still carries the chain's correlation to the next kept one.
+      if (!s.y_common_next_corr.empty()) {
+        s.y_common_next_corr.back() *= c.force_state_next_correlation;
+      }
+      continue;
+    }
     s.t.push_back(c.t);
     s.y.push_back(c.unexplained_force / c.force_sd);
     s.g.push_back(c.force_per_effect[effect] / c.force_sd);
     s.y_common_sd.push_back(c.force_state_sd / c.force_sd);
+    s.y_common_next_corr.push_back(c.force_state_next_correlation);
   }
   return s;
 }

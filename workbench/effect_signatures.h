@@ -28,8 +28,10 @@ struct SignatureSeries {
   std::string stream;
   std::vector<double> t, y, g;
   // Optional: the sd of a common-mode error in y (the solution's own uncertainty, normalized
-  // like y), which the test treats as fully correlated across samples (a conservative bound).
+  // like y); fully correlated across samples unless y_common_next_corr says how it decays.
   std::vector<double> y_common_sd;
+  // Optional: that error's correlation between entry i and i + 1 (else fully correlated).
+  std::vector<double> y_common_next_corr;
   // How many alternatives the signature searched to choose this series (a change point, a patch):
   // the p-value is multiplied by it (Bonferroni). 1 for a fixed shape.
   double searched = 1.0;

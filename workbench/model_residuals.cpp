@@ -82,6 +82,9 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
     s.unexplained_force = std::nan("");
     s.force_sd = std::nan("");
     s.force_per_effect.fill(std::nan(""));
+    if (k < solution.velocity_next_correlation.size()) {
+      s.force_state_next_correlation = solution.velocity_next_correlation[k];
+    }
     // The latest attitude at or before the state (1 us tolerance for stamp rounding), and the
     // IMU sample nearest it: the latest within half a 100 Hz period after, if not staler than 50
     // ms.

@@ -38,6 +38,9 @@ struct StateContext {
   // sensitivity of u to v_bx and the wheel speeds times their marginal sd. It is not noise that
   // averages out: the tire law's slope makes 1 cm/s of velocity worth about 0.6 m/s^2.
   double force_state_sd = 0.0;
+  // Correlation of that error with the next state's (the velocity error's, from the chain
+  // covariance; 1 when unknown, i.e. fully correlated).
+  double force_state_next_correlation = 1.0;
   std::array<double, kModelEffectCount> force_per_effect{};
   double accel_x = 0.0, accel_z = 0.0;  // the IMU sample nearest the state (NaN if none)
   double gyro_z = 0.0;

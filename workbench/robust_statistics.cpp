@@ -8,16 +8,22 @@
 namespace slipgraph {
 
 SlopeFit FitSlopeHac(const std::vector<double>& y, const std::vector<double>& g,
-                     const std::vector<double>& common_sd) {
+                     const std::vector<double>& common_sd,
+                     const std::vector<double>& common_next_corr) {
   SlopeFit fit;
-  std::vector<double> ys, gs, cs;
+  std::vector<double> ys, gs, cs, chain;  // chain[i]: corr(kept i, kept i + 1)
   const bool common = common_sd.size() == y.size();
+  const bool markov = common && common_next_corr.size() == y.size();
+  double carried = 1.0;  // correlation from the last kept sample to the current one
   for (size_t i = 0; i < y.size() && i < g.size(); ++i) {
     if (std::isfinite(y[i]) && std::isfinite(g[i])) {
+      if (!ys.empty()) chain.push_back(carried);
       ys.push_back(y[i]);
       gs.push_back(g[i]);
       cs.push_back(common && std::isfinite(common_sd[i]) ? common_sd[i] : 0.0);
+      carried = 1.0;
     }
+    if (markov) carried *= std::isfinite(common_next_corr[i]) ? common_next_corr[i] : 1.0;
   }
   const size_t n = ys.size();
   if (n < 10) return fit;
@@ -60,10 +66,24 @@ SlopeFit FitSlopeHac(const std::vector<double>& y, const std::vector<double>& g,
     for (size_t i = l; i < n; ++i) c += h[i] * h[i - l];
     lrv += 2.0 * (1.0 - l / (lag + 1.0)) * c;
   }
-  double shared = 0.0;
-  for (size_t i = 0; i < n; ++i) shared += (gs[i] - mg) * cs[i];
-  fit.common_sd = std::abs(shared) / sgg;
-  fit.sd = std::sqrt(std::max(lrv, 0.0) + shared * shared) / sgg;
+  // Var(sum a_i e_i) with a_i = (g_i - mean g) c_i: fully correlated e, or a Markov chain
+  // (r_i = a_i + rho_{i-1} r_{i-1}; the sum is sum a_i (2 r_i - a_i)).
+  double shared_var = 0.0;
+  if (markov) {
+    double r = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const double a = (gs[i] - mg) * cs[i];
+      r = a + (i > 0 ? chain[i - 1] * r : 0.0);
+      shared_var += a * (2.0 * r - a);
+    }
+    shared_var = std::max(shared_var, 0.0);
+  } else {
+    double shared = 0.0;
+    for (size_t i = 0; i < n; ++i) shared += (gs[i] - mg) * cs[i];
+    shared_var = shared * shared;
+  }
+  fit.common_sd = std::sqrt(shared_var) / sgg;
+  fit.sd = std::sqrt(std::max(lrv, 0.0) + shared_var) / sgg;
   return fit;
 }
 

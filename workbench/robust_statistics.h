@@ -27,8 +27,11 @@ struct SlopeFit {
 // common_sd (optional, same length): the sd of an error in y shared by all samples (fully
 // correlated); its contribution (sum (g_i - mean g) common_sd_i)^2 / S_gg^2 is added to the
 // slope's variance.
+// common_next_corr (optional, same length): the correlation of that error between sample i and
+// i + 1 (a Markov chain: corr(i, j) is the product between them) instead of full correlation.
 SlopeFit FitSlopeHac(const std::vector<double>& y, const std::vector<double>& g,
-                     const std::vector<double>& common_sd = {});
+                     const std::vector<double>& common_sd = {},
+                     const std::vector<double>& common_next_corr = {});
 
 // Ljung-Box Q over lags 1..max_lag of the finite samples of r (mean removed), and its upper tail
 // probability under chi-square(max_lag). Fewer samples than 2 max_lag gives p = 1.
