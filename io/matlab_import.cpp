@@ -8,6 +8,7 @@
 
 #include "io/hdf5_matrix.h"
 #include "io/input_error.h"
+#include "io/mapping_file.h"
 
 namespace slipgraph {
 namespace {
@@ -28,41 +29,22 @@ std::vector<std::string> Names(const YAML::Node& node, const std::string& key,
   return node[key].as<std::vector<std::string>>();
 }
 
-// Strict: a key the importer does not know is an error naming it (a typo must not fall back to
-// a default silently).
-void CheckKeys(const YAML::Node& node, const std::string& section,
-               const std::vector<std::string>& known, const std::string& path) {
-  if (!node.IsMap()) throw InputError(path, 0, section, "", "expected a map");
-  for (const auto& item : node) {
-    const std::string key = item.first.as<std::string>();
-    if (std::find(known.begin(), known.end(), key) == known.end()) {
-      throw InputError(path, item.first.Mark().line + 1,
-                       section.empty() ? key : section + "." + key, "", "unknown key");
-    }
-  }
-}
-
 }  // namespace
 
 DriveLog ImportMatlab(const std::string& source, const std::string& mapping_path,
                       const Vehicle& vehicle, ImportReport* report) {
-  YAML::Node mapping;
-  try {
-    mapping = YAML::LoadFile(mapping_path);
-  } catch (const YAML::Exception& e) {
-    throw InputError(mapping_path, e.mark.line + 1, "", "", e.what());
-  }
-  CheckKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
+  const YAML::Node mapping = LoadMappingFile(mapping_path);
+  CheckMappingKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
   if (mapping["imu"]) {
-    CheckKeys(mapping["imu"], "imu", {"t", "ax", "ay", "az", "gx", "gy", "gz", "frame"},
-              mapping_path);
+    CheckMappingKeys(mapping["imu"], "imu", {"t", "ax", "ay", "az", "gx", "gy", "gz", "frame"},
+                     mapping_path);
   }
   if (mapping["wheels"]) {
-    CheckKeys(mapping["wheels"], "wheels", {"t", "left", "right", "left_sign", "right_sign"},
-              mapping_path);
+    CheckMappingKeys(mapping["wheels"], "wheels", {"t", "left", "right", "left_sign", "right_sign"},
+                     mapping_path);
   }
   if (mapping["gps"]) {
-    CheckKeys(mapping["gps"], "gps", {"t", "enu", "sd_xy", "sd_v"}, mapping_path);
+    CheckMappingKeys(mapping["gps"], "gps", {"t", "enu", "sd_xy", "sd_v"}, mapping_path);
   }
   if (Text(mapping, "format", mapping_path) != "matlab_v73") {
     throw InputError(mapping_path, 0, "format", mapping["format"].as<std::string>(),

@@ -14,21 +14,10 @@
 #include <limits>
 
 #include "io/input_error.h"
+#include "io/mapping_file.h"
 
 namespace slipgraph {
 namespace {
-
-void CheckKeys(const YAML::Node& node, const std::string& section,
-               const std::vector<std::string>& known, const std::string& path) {
-  if (!node.IsMap()) throw InputError(path, 0, section, "", "expected a map");
-  for (const auto& item : node) {
-    const std::string key = item.first.as<std::string>();
-    if (std::find(known.begin(), known.end(), key) == known.end()) {
-      throw InputError(path, item.first.Mark().line + 1,
-                       section.empty() ? key : section + "." + key, "", "unknown key");
-    }
-  }
-}
 
 std::string Text(const YAML::Node& node, const std::string& key, const std::string& path,
                  const std::string& section) {
@@ -74,29 +63,24 @@ bool IsRosBag(const std::string& path) {
 
 DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_path,
                       const Vehicle& vehicle, ImportReport* report) {
-  YAML::Node mapping;
-  try {
-    mapping = YAML::LoadFile(mapping_path);
-  } catch (const YAML::Exception& e) {
-    throw InputError(mapping_path, e.mark.line + 1, "", "", e.what());
-  }
-  CheckKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
+  const YAML::Node mapping = LoadMappingFile(mapping_path);
+  CheckMappingKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
   if (!mapping["format"] || mapping["format"].as<std::string>() != "ros1_bag") {
     throw InputError(mapping_path, 0, "format", "", "expected 'ros1_bag' for a ROS bag");
   }
   const YAML::Node imu_map = mapping["imu"], wheel_map = mapping["wheels"],
                    gps_map = mapping["gps"];
   if (imu_map) {
-    CheckKeys(imu_map, "imu", {"topic", "body_from_sensor", "attitude", "yaw_offset"},
-              mapping_path);
+    CheckMappingKeys(imu_map, "imu", {"topic", "body_from_sensor", "attitude", "yaw_offset"},
+                     mapping_path);
   }
   if (wheel_map) {
-    CheckKeys(wheel_map, "wheels", {"topic", "from", "track", "radius"}, mapping_path);
+    CheckMappingKeys(wheel_map, "wheels", {"topic", "from", "track", "radius"}, mapping_path);
     if (Text(wheel_map, "from", mapping_path, "wheels") != "body_twist") {
       throw InputError(mapping_path, 0, "wheels.from", "", "only 'body_twist' is supported");
     }
   }
-  if (gps_map) CheckKeys(gps_map, "gps", {"topic", "sd_v"}, mapping_path);
+  if (gps_map) CheckMappingKeys(gps_map, "gps", {"topic", "sd_v"}, mapping_path);
   const Eigen::Matrix3d body_from_sensor =
       imu_map ? Rotation(imu_map["body_from_sensor"], mapping_path) : Eigen::Matrix3d::Identity();
   const bool attitude = imu_map && imu_map["attitude"] && imu_map["attitude"].as<bool>();
