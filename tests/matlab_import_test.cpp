@@ -14,6 +14,7 @@
 #include "io/plausibility.h"
 #include "io/yaml_config.h"
 #include "solvers/ekf_runner.h"
+#include "tests/import_test_util.h"
 #include "workbench/diagnosis.h"
 
 namespace slipgraph {
@@ -34,22 +35,10 @@ DriveLog Import(const std::string& mapping) {
 
 // The shipped mapping with one line replaced.
 std::string Altered(const std::string& from, const std::string& to) {
-  std::ifstream in(kMapping);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  const std::string path = ::testing::TempDir() + "/altered_mapping.yaml";
-  std::ofstream(path) << text;
-  return path;
+  return testing::AlteredMapping(kMapping, from, to, "altered_mapping.yaml");
 }
 
-bool Mentions(const Plausibility& p, const std::string& text) {
-  for (const std::string& problem : p.problems) {
-    if (problem.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
+using testing::Mentions;
 
 class MatlabImport : public ::testing::Test {
  protected:

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/log_reader.h"
+#include "tests/import_test_util.h"
 
 namespace slipgraph {
 namespace {
@@ -16,12 +17,7 @@ DriveLog Clean() {
   return ReadDriveLog(std::string(SLIPGRAPH_DATA_DIR) + "/hidden_quadratic_drag");
 }
 
-bool Mentions(const Plausibility& p, const std::string& text) {
-  for (const std::string& problem : p.problems) {
-    if (problem.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
+using testing::Mentions;
 
 TEST(Plausibility, CleanLogPasses) {
   const Plausibility p = CheckPlausibility(Clean());

@@ -16,6 +16,7 @@
 #include "io/yaml_config.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
+#include "tests/import_test_util.h"
 #include "workbench/diagnosis.h"
 
 namespace slipgraph {
@@ -41,22 +42,10 @@ DriveLog Import(const std::string& mapping) {
 
 // The shipped mapping with one line replaced.
 std::string MappingWith(const std::string& from, const std::string& to) {
-  std::ifstream in(kMapping);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  const std::string path = (fs::temp_directory_path() / "slipgraph_husky_wrong.yaml").string();
-  std::ofstream(path) << text;
-  return path;
+  return testing::AlteredMapping(kMapping, from, to, "slipgraph_husky_wrong.yaml");
 }
 
-bool Mentions(const Plausibility& p, const std::string& text) {
-  for (const std::string& problem : p.problems) {
-    if (problem.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
+using testing::Mentions;
 
 class HuskyBag : public ::testing::Test {
  protected:

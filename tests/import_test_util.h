@@ -1,0 +1,38 @@
+// Helpers for the importer and plausibility tests: a mapping file with one piece of text replaced
+// (a deliberately wrong mapping), and whether a plausibility report names a problem.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "io/plausibility.h"
+
+namespace slipgraph {
+namespace testing {
+
+// Writes `mapping_path` with the first `from` replaced by `to` to a temporary file named `name`
+// and returns its path; fails the test when `from` is not there.
+inline std::string AlteredMapping(const std::string& mapping_path, const std::string& from,
+                                  const std::string& to, const std::string& name) {
+  std::ifstream in(mapping_path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+inline bool Mentions(const Plausibility& p, const std::string& text) {
+  for (const std::string& problem : p.problems) {
+    if (problem.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace testing
+}  // namespace slipgraph
