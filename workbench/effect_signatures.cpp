@@ -12,8 +12,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The unexplained force balance against one effect term's derivative (model_effects.h).
-SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
+// The unexplained force balance against a shape h(state index) in m/s^2 per unit magnitude, over
+// the states where the model says a_dist ~ 0; `states` (optional) receives each entry's state.
+SignatureSeries ForceSeriesWith(const ModelResiduals& m, const std::function<double(size_t)>& h,
+                                std::vector<size_t>* states = nullptr) {
   SignatureSeries s;
   s.stream = "accelerometer";
   for (size_t k = 0; k < m.states.size(); ++k) {
@@ -27,11 +29,17 @@ SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
     }
     s.t.push_back(c.t);
     s.y.push_back(c.unexplained_force / c.force_sd);
-    s.g.push_back(c.force_per_effect[effect] / c.force_sd);
+    s.g.push_back(h(k) / c.force_sd);
     s.y_common_sd.push_back(c.force_state_sd / c.force_sd);
     s.y_common_next_corr.push_back(c.force_state_next_correlation);
+    if (states != nullptr) states->push_back(k);
   }
   return s;
+}
+
+// The force balance against one effect term's derivative (model_effects.h).
+SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
+  return ForceSeriesWith(m, [&](size_t k) { return m.states[k].force_per_effect[effect]; });
 }
 
 // The GNSS velocity residuals against a shape h(state index) in m/s per unit magnitude.
@@ -162,38 +170,41 @@ std::vector<EffectSignature> MakeSignatures() {
            s_path[k] = s_path[k - 1] + std::abs(m.states[k - 1].x[ward::kVbx]) *
                                            (m.states[k].t - m.states[k - 1].t);
          }
-         SignatureSeries base;
-         base.stream = "accelerometer";
-         std::vector<double> s_of, sign_of;
-         for (size_t k = 0; k < m.states.size(); ++k) {
-           const StateContext& c = m.states[k];
-           if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) continue;
-           base.t.push_back(c.t);
-           base.y.push_back(c.unexplained_force / c.force_sd);
-           base.y_common_sd.push_back(c.force_state_sd / c.force_sd);
-           const double v = c.x[ward::kVbx];
-           sign_of.push_back(-9.80665 * std::tanh(20.0 * v) / c.force_sd);
-           s_of.push_back(s_path[k]);
+         // -g sgn(v) everywhere, then zeroed outside the chosen patch.
+         std::vector<size_t> entry_state;
+         SignatureSeries base = ForceSeriesWith(
+             m, [&](size_t k) { return -9.80665 * std::tanh(20.0 * m.states[k].x[ward::kVbx]); },
+             &entry_state);
+         const std::vector<double> sign_of = base.g;
+         std::vector<double> s_of;
+         for (size_t k : entry_state) s_of.push_back(s_path[k]);
+         // Patches [a, b) on a 1 m grid, at least 3 m long; the best by the white-noise score,
+         // from prefix sums over the entries (in path order: s never decreases).
+         const size_t n = base.y.size();
+         double mean_y = 0.0;
+         for (double y : base.y) mean_y += y;
+         if (n > 0) mean_y /= n;
+         std::vector<double> sum_gy(n + 1, 0.0), sum_gg(n + 1, 0.0), sum_g(n + 1, 0.0);
+         for (size_t i = 0; i < n; ++i) {
+           sum_gy[i + 1] = sum_gy[i] + sign_of[i] * (base.y[i] - mean_y);
+           sum_gg[i + 1] = sum_gg[i] + sign_of[i] * sign_of[i];
+           sum_g[i + 1] = sum_g[i] + sign_of[i];
          }
-         // Patches [a, b) on a 1 m grid, at least 3 m long; the best by the white-noise score.
+         const auto first_at = [&](double s) {
+           return static_cast<size_t>(std::lower_bound(s_of.begin(), s_of.end(), s) - s_of.begin());
+         };
          const double length = s_path.empty() ? 0.0 : s_path.back();
          const double step = 1.0, min_patch = 3.0;
          double best = -1.0, best_a = 0.0, best_b = 0.0, searched = 0.0;
-         double mean_y = 0.0;
-         for (double y : base.y) mean_y += y;
-         if (!base.y.empty()) mean_y /= base.y.size();
          for (double a = 0.0; a + min_patch <= length; a += step) {
+           const size_t i = first_at(a);
            for (double b = a + min_patch; b <= length + step; b += step) {
-             double sgy = 0.0, sgg = 0.0, sg = 0.0;
-             size_t count = 0;
-             for (size_t i = 0; i < base.y.size(); ++i) {
-               if (s_of[i] < a || s_of[i] >= b) continue;
-               sgy += sign_of[i] * (base.y[i] - mean_y), sgg += sign_of[i] * sign_of[i];
-               sg += sign_of[i], ++count;
-             }
+             const size_t j = first_at(b);
              searched += 1.0;
-             const double centred = sgg - sg * sg / std::max<size_t>(base.y.size(), 1);
-             if (count < 10 || centred <= 0.0) continue;
+             const double sgy = sum_gy[j] - sum_gy[i], sgg = sum_gg[j] - sum_gg[i];
+             const double sg = sum_g[j] - sum_g[i];
+             const double centred = sgg - sg * sg / std::max<size_t>(n, 1);
+             if (j - i < 10 || centred <= 0.0) continue;
              const double score = sgy * sgy / centred;
              if (score > best) best = score, best_a = a, best_b = b;
            }
@@ -224,17 +235,9 @@ std::vector<EffectSignature> MakeSignatures() {
                                    : 0.01;
        },
        [](const ModelResiduals& m, const DriveLog& log, const ModelConfig&) {
-         SignatureSeries force;
-         force.stream = "accelerometer";
          const auto accel = [](const StateContext& c) { return c.accel_x; };
-         for (size_t k = 0; k < m.states.size(); ++k) {
-           const StateContext& c = m.states[k];
-           if (!std::isfinite(c.unexplained_force) || !(c.force_sd > 0.0)) continue;
-           force.t.push_back(c.t);
-           force.y.push_back(c.unexplained_force / c.force_sd);
-           force.y_common_sd.push_back(c.force_state_sd / c.force_sd);
-           force.g.push_back(-DerivativeAround(m, k, accel) / c.force_sd);
-         }
+         const SignatureSeries force =
+             ForceSeriesWith(m, [&](size_t k) { return -DerivativeAround(m, k, accel); });
          // The gyro's integrated heading against the attitude stream's heading, which is
          // stamped on the log's clock: IMU stamps late by delta make the integral lag by delta,
          // psi_att - psi_gyro = const + delta yaw_rate. (The wheels are no reference here: the
@@ -243,29 +246,11 @@ std::vector<EffectSignature> MakeSignatures() {
          SignatureSeries yaw;
          yaw.stream = "attitude_yaw";
          if (log.attitude.size() > 10) {
-           double psi_gyro = 0.0, previous_t = m.states.front().t, previous_rate = 0.0;
-           double psi_att = 0.0, previous_att = kNaN;
-           for (size_t k = 0; k < m.states.size(); ++k) {
-             const StateContext& c = m.states[k];
-             const double rate = c.gyro_z - m.gyro_offset - c.x[ward::kGyroBias];
-             if (!std::isfinite(rate)) continue;
-             if (k > 0) psi_gyro += 0.5 * (rate + previous_rate) * (c.t - previous_t);
-             previous_t = c.t, previous_rate = rate;
-             const long a = LatestAtOrBefore(log.attitude, c.t, 1e-6);
-             if (a < 0 || std::abs(log.attitude[a].t - c.t) > 1e-3) continue;
-             const double measured = log.attitude[a].yaw;
-             if (!std::isfinite(measured)) continue;
-             // Unwrapped attitude heading.
-             psi_att = std::isfinite(previous_att)
-                           ? psi_att + std::remainder(measured - previous_att, 2.0 * M_PI)
-                           : measured;
-             previous_att = measured;
-             const double sd = std::isfinite(log.attitude[a].sd_yaw) && log.attitude[a].sd_yaw > 0.0
-                                   ? log.attitude[a].sd_yaw
-                                   : 0.01;
-             yaw.t.push_back(c.t);
-             yaw.y.push_back((psi_att - psi_gyro) / sd);
-             yaw.g.push_back(rate / sd);
+           const HeadingSeries h = AttitudeAndGyroHeadings(m, log);
+           yaw.t = h.t;
+           for (size_t i = 0; i < h.t.size(); ++i) {
+             yaw.y.push_back((h.attitude[i] - h.gyro[i]) / h.sd[i]);
+             yaw.g.push_back(h.rate[i] / h.sd[i]);
            }
            // The difference walks (gyro noise and bias error integrate): test what varies faster
            // than 5 s, as for the z accelerometer.
@@ -321,6 +306,35 @@ const EffectSignature* FindSignature(const std::string& effect) {
     if (s.effect == effect) return &s;
   }
   return nullptr;
+}
+
+HeadingSeries AttitudeAndGyroHeadings(const ModelResiduals& m, const DriveLog& log) {
+  HeadingSeries h;
+  double psi_gyro = 0.0, psi_att = 0.0, previous_att = kNaN;
+  double previous_t = m.states.empty() ? 0.0 : m.states.front().t, previous_rate = 0.0;
+  bool started = false;
+  for (const StateContext& c : m.states) {
+    const double rate = c.gyro_z - m.gyro_offset - c.x[ward::kGyroBias];
+    if (!std::isfinite(rate)) continue;
+    if (started) psi_gyro += 0.5 * (rate + previous_rate) * (c.t - previous_t);
+    started = true;
+    previous_t = c.t, previous_rate = rate;
+    const long a = LatestAtOrBefore(log.attitude, c.t, 1e-6);
+    if (a < 0 || std::abs(log.attitude[a].t - c.t) > 1e-3) continue;
+    const double measured = log.attitude[a].yaw;
+    if (!std::isfinite(measured)) continue;
+    psi_att = std::isfinite(previous_att)
+                  ? psi_att + std::remainder(measured - previous_att, 2.0 * M_PI)
+                  : measured;
+    previous_att = measured;
+    const double sd = log.attitude[a].sd_yaw > 0.0 ? log.attitude[a].sd_yaw : 0.01;
+    h.t.push_back(c.t);
+    h.attitude.push_back(psi_att);
+    h.gyro.push_back(psi_gyro);
+    h.rate.push_back(rate);
+    h.sd.push_back(sd);
+  }
+  return h;
 }
 
 }  // namespace slipgraph

@@ -66,6 +66,15 @@ struct EffectSignatureRegistration {
   }
 };
 
+// The attitude stream's unwrapped heading beside the gyro's integrated one (trapezoid over the
+// states of g_z - c_gz - b_gz, starting at 0), at the states that have an attitude sample, with
+// the gyro's rate there and the attitude yaw's sd (0.01 rad when the log has none). Clock-offset
+// and gyro-scale tests compare the two.
+struct HeadingSeries {
+  std::vector<double> t, attitude, gyro, rate, sd;
+};
+HeadingSeries AttitudeAndGyroHeadings(const ModelResiduals& m, const DriveLog& log);
+
 // x minus its centred moving average over window_s (t ascending): removes what drifts slower
 // than the window, such as a sensor bias's walk. For signatures.
 std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,

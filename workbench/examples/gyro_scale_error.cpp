@@ -11,10 +11,6 @@
 // estimate make the difference walk slowly, so both sides are high-passed at 20 s (turns take a
 // few seconds; a 5 s window would cut the signal with the walk). The correction divides the
 // gyro by (1 + s).
-#include <cmath>
-
-#include "factors/ward_state.h"
-#include "io/measurement_stream.h"
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
@@ -24,22 +20,11 @@ std::vector<SignatureSeries> GyroScaleSeries(const ModelResiduals& m, const Driv
                                              const ModelConfig&) {
   SignatureSeries s;
   s.stream = "attitude_yaw";
-  double psi_gyro = 0.0, psi_att = 0.0, previous_att = std::nan("");
-  for (size_t k = 0; k < m.states.size(); ++k) {
-    const StateContext& c = m.states[k];
-    const double rate = c.gyro_z - m.gyro_offset - c.x[ward::kGyroBias];
-    if (!std::isfinite(rate)) continue;
-    if (k > 0) psi_gyro += rate * (c.t - m.states[k - 1].t);
-    const long a = LatestAtOrBefore(log.attitude, c.t, 1e-6);
-    if (a < 0 || std::abs(log.attitude[a].t - c.t) > 1e-3) continue;
-    const double yaw = log.attitude[a].yaw;
-    psi_att =
-        std::isfinite(previous_att) ? psi_att + std::remainder(yaw - previous_att, 2 * M_PI) : yaw;
-    previous_att = yaw;
-    const double sd = log.attitude[a].sd_yaw > 0.0 ? log.attitude[a].sd_yaw : 0.01;
-    s.t.push_back(c.t);
-    s.y.push_back((psi_att - psi_gyro) / sd);
-    s.g.push_back(-psi_gyro / sd);
+  const HeadingSeries h = AttitudeAndGyroHeadings(m, log);
+  s.t = h.t;
+  for (size_t i = 0; i < h.t.size(); ++i) {
+    s.y.push_back((h.attitude[i] - h.gyro[i]) / h.sd[i]);
+    s.g.push_back(-h.gyro[i] / h.sd[i]);
   }
   s.y = HighPass(s.t, s.y, 20.0);
   s.g = HighPass(s.t, s.g, 20.0);
