@@ -52,6 +52,11 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
   SimResult result;
   DriveLog& log = result.log;
   log.vehicle = sc.vehicle;
+  // vehicle.yaml states the encoder noise simulated here, quantization included (4096 counts/rev
+  // at 100 Hz: 0.066 rad/s, not the 0.05 the vehicle's sheet says). With the sheet's value the
+  // smoother followed the encoders' rounding and its velocity came out 4 mm/s low while moving
+  // on hidden/none, which the workbench then took for drag (docs/workbench.md).
+  log.vehicle.sensors.wheels_sd_omega_radps = EncoderSpeedSd(sc.sensors);
   log.present_files = {"vehicle.yaml", "imu.csv", "wheels.csv", "truth.csv", "events.csv"};
 
   const Vehicle& veh = sc.vehicle;

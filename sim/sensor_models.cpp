@@ -123,6 +123,15 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   log_->imu.push_back(imu);
 }
 
+double EncoderSpeedSd(const SensorSpec& spec) {
+  double variance = spec.sd_omega_radps * spec.sd_omega_radps;
+  if (spec.encoder_counts_per_rev > 0 && spec.wheel_rate_hz > 0.0) {
+    const double q = 2.0 * M_PI / spec.encoder_counts_per_rev * spec.wheel_rate_hz;
+    variance += 2.0 * q * q / 12.0;
+  }
+  return std::sqrt(variance);
+}
+
 void SensorSimulator::EmitWheels(const KinematicState& s) {
   const double dt = wheel_period_ * step_s_;
   WheelSample sample;

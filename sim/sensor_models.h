@@ -35,6 +35,11 @@ struct ImuErrors {
   double gyro_offset_radps[3] = {0.0, 0.0, 0.0};
 };
 
+// The sd of one simulated encoder speed sample: the white noise and the quantization of a count
+// difference over one wheel period (two independent uniform rounding errors of one count each,
+// variance 2 q^2 / 12 with q the speed of one count per period).
+double EncoderSpeedSd(const SensorSpec& spec);
+
 class SensorSimulator {
  public:
   // `step_s` is the simulator's integration step: every rate must be a whole number of steps.

@@ -105,7 +105,8 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
                                                        : "";
   double searched = 1.0, precision = 0.0, weighted = 0.0;
   for (const SignatureSeries& s : signature.series(m, log, model)) {
-    const SlopeFit fit = FitSlopeHac(s.y, s.g, s.y_common_sd, s.y_common_next_corr);
+    const SlopeFit fit =
+        s.fit ? *s.fit : FitSlopeHac(s.y, s.g, s.y_common_sd, s.y_common_next_corr);
     if (fit.n == 0 || !(fit.sd > 0.0)) continue;
     c.series.push_back({s.stream, fit});
     ++c.dof;

@@ -42,6 +42,22 @@ SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
   return ForceSeriesWith(m, [&](size_t k) { return m.states[k].force_per_effect[effect]; });
 }
 
+// The effect's score test on the whole graph (workbench/graph_score_test.h) as a series.
+SignatureSeries GraphSeries(const ModelResiduals& m, int effect) {
+  SignatureSeries s;
+  s.stream = "graph";
+  const GraphScore& g = m.graph_scores[effect];
+  if (!g.tested) return s;
+  SlopeFit fit;
+  fit.slope = g.magnitude;
+  fit.sd = g.sd();
+  fit.naive_sd = g.model_sd;
+  fit.lag = g.lag;
+  fit.n = g.states;
+  s.fit = fit;
+  return s;
+}
+
 // The GNSS velocity residuals against a shape h(state index) in m/s per unit magnitude.
 SignatureSeries GnssSeries(const ModelResiduals& m, const std::function<double(size_t)>& h) {
   SignatureSeries s;
@@ -114,9 +130,7 @@ std::vector<EffectSignature> MakeSignatures() {
                   "force balance against d f_tire / d radius; GNSS velocity residual against v",
                   nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{
-                        ForceSeries(m, kWheelRadiusError),
-                        GnssSeries(m, [&](size_t k) { return m.states[k].x[ward::kVbx]; })};
+                    return std::vector<SignatureSeries>{GraphSeries(m, kWheelRadiusError)};
                   },
                   nullptr});
   list.push_back(
@@ -152,12 +166,12 @@ std::vector<EffectSignature> MakeSignatures() {
   list.push_back({"slope_slip",
                   "force balance against d f_tire / d slope_slip (|grade| x traction)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{ForceSeries(m, kSlopeSlip)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, kSlopeSlip)};
                   },
                   nullptr});
   list.push_back({"turn_slip", "force balance against -g |yaw rate| sgn(v)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{ForceSeries(m, kTurnSlip)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, kTurnSlip)};
                   },
                   nullptr});
   list.push_back(
@@ -222,7 +236,7 @@ std::vector<EffectSignature> MakeSignatures() {
        nullptr});
   list.push_back({"quadratic_drag", "force balance against -v |v| / m", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{ForceSeries(m, kQuadraticDrag)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, kQuadraticDrag)};
                   },
                   nullptr});
   list.push_back(

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "workbench/model_residuals.h"
+#include "workbench/robust_statistics.h"
 
 namespace slipgraph {
 
@@ -36,6 +38,9 @@ struct SignatureSeries {
   // the p-value is multiplied by it (Bonferroni). 1 for a fixed shape.
   double searched = 1.0;
   std::string where;  // the chosen alternative, for the report ("patch 18-36 m")
+  // Set when the signature has already tested theta = 0 by other means (the score test on the
+  // whole graph, workbench/graph_score_test.h): used as is; y and g are then empty.
+  std::optional<SlopeFit> fit;
 };
 
 struct EffectSignature {

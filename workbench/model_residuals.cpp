@@ -170,6 +170,11 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
     }
   }
   out.streams = {accel, gyro, left, right, gnss};
+  std::vector<int> in_model;
+  for (const std::string& name : model.effects) {
+    if (ModelEffectIndex(name) >= 0) in_model.push_back(ModelEffectIndex(name));
+  }
+  out.graph_scores = GraphScoreTests(*problem, in_model);
   return out;
 }
 

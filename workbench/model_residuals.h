@@ -12,6 +12,7 @@
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "solvers/batch_smoother.h"
+#include "workbench/graph_score_test.h"
 
 namespace slipgraph {
 
@@ -53,6 +54,8 @@ struct ModelResiduals {
   double accel_offset = 0.0, gyro_offset = 0.0;
   std::array<double, kModelEffectCount> effects{};  // the solution's magnitudes (0 when off)
   std::vector<double> gnss_times;                   // the GNSS samples' times, for averaging
+  // Each model effect's score test on the whole graph (untested for those in the model).
+  std::array<GraphScore, kModelEffectCount> graph_scores{};
   const StreamResiduals* Find(const std::string& name) const;
 };
 

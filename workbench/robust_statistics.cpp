@@ -50,22 +50,9 @@ SlopeFit FitSlopeHac(const std::vector<double>& y, const std::vector<double>& g,
   }
   fit.variance_explained = syy > 0.0 ? 1.0 - see / syy : 0.0;
   fit.naive_sd = std::sqrt(see / std::max<double>(1.0, n - 2.0) / sgg);
-  // Andrews (1991) bandwidth for the Bartlett kernel from an AR(1) fit of h.
-  double num = 0.0, den = 0.0;
-  for (size_t i = 1; i < n; ++i) num += h[i] * h[i - 1], den += h[i - 1] * h[i - 1];
-  double rho = den > 0.0 ? num / den : 0.0;
-  rho = std::clamp(rho, -0.99, 0.99);
-  const double alpha = 4.0 * rho * rho / std::pow((1.0 - rho) * (1.0 + rho), 2.0);
-  const double lag = std::min(1.1447 * std::cbrt(alpha * n), 0.25 * n);
+  double lag = 0.0;
+  const double lrv = BartlettLongRunVariance(h, &lag);
   fit.lag = lag;
-  double lrv = 0.0;
-  for (size_t i = 0; i < n; ++i) lrv += h[i] * h[i];
-  const size_t max_l = static_cast<size_t>(std::floor(lag));
-  for (size_t l = 1; l <= max_l; ++l) {
-    double c = 0.0;
-    for (size_t i = l; i < n; ++i) c += h[i] * h[i - l];
-    lrv += 2.0 * (1.0 - l / (lag + 1.0)) * c;
-  }
   // Var(sum a_i e_i) with a_i = (g_i - mean g) c_i: fully correlated e, or a Markov chain
   // (r_i = a_i + rho_{i-1} r_{i-1}; the sum is sum a_i (2 r_i - a_i)).
   double shared_var = 0.0;
@@ -85,6 +72,27 @@ SlopeFit FitSlopeHac(const std::vector<double>& y, const std::vector<double>& g,
   fit.common_sd = std::sqrt(shared_var) / sgg;
   fit.sd = std::sqrt(std::max(lrv, 0.0) + shared_var) / sgg;
   return fit;
+}
+
+double BartlettLongRunVariance(const std::vector<double>& h, double* lag_out) {
+  const size_t n = h.size();
+  // Andrews (1991) bandwidth for the Bartlett kernel from an AR(1) fit of h.
+  double num = 0.0, den = 0.0;
+  for (size_t i = 1; i < n; ++i) num += h[i] * h[i - 1], den += h[i - 1] * h[i - 1];
+  double rho = den > 0.0 ? num / den : 0.0;
+  rho = std::clamp(rho, -0.99, 0.99);
+  const double alpha = 4.0 * rho * rho / std::pow((1.0 - rho) * (1.0 + rho), 2.0);
+  const double lag = std::min(1.1447 * std::cbrt(alpha * n), 0.25 * n);
+  if (lag_out != nullptr) *lag_out = lag;
+  double lrv = 0.0;
+  for (size_t i = 0; i < n; ++i) lrv += h[i] * h[i];
+  const size_t max_l = static_cast<size_t>(std::floor(lag));
+  for (size_t l = 1; l <= max_l; ++l) {
+    double c = 0.0;
+    for (size_t i = l; i < n; ++i) c += h[i] * h[i - l];
+    lrv += 2.0 * (1.0 - l / (lag + 1.0)) * c;
+  }
+  return std::max(lrv, 0.0);
 }
 
 WhitenessTest LjungBox(const std::vector<double>& r, int max_lag) {

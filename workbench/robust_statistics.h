@@ -33,6 +33,11 @@ SlopeFit FitSlopeHac(const std::vector<double>& y, const std::vector<double>& g,
                      const std::vector<double>& common_sd = {},
                      const std::vector<double>& common_next_corr = {});
 
+// The Newey-West (Bartlett kernel) estimate of Var(sum h_i) for a zero-mean, autocorrelated and
+// heteroskedastic series h, with Andrews' (1991) AR(1) plug-in bandwidth (returned in *lag, in
+// samples, when lag is not null).
+double BartlettLongRunVariance(const std::vector<double>& h, double* lag = nullptr);
+
 // Ljung-Box Q over lags 1..max_lag of the finite samples of r (mean removed), and its upper tail
 // probability under chi-square(max_lag). Fewer samples than 2 max_lag gives p = 1.
 struct WhitenessTest {

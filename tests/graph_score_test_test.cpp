@@ -1,0 +1,109 @@
+// The graph score test against an independent computation: its one-step magnitude must be the
+// effect's component of a full Gauss-Newton step with every effect column free (block
+// elimination), and its model sd the square root of that component's variance in (J'J)^-1,
+// computed densely on a short log (agreement to 1e-3 of the sd: the system is ill-conditioned, the
+// factors' sigmas span 1e-4 to 1e2).
+#include "workbench/graph_score_test.h"
+
+#include <ceres/crs_matrix.h>
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/batch_smoother.h"
+
+namespace slipgraph {
+namespace {
+
+// 2.5 s of driving in a turn with quadratic drag, at the EKF's estimates (not an optimum: the
+// test also covers the residual's projection).
+struct ShortLog {
+  DriveLog log;
+  ModelConfig model;
+  FilterResult ekf;
+};
+
+ShortLog MakeShortLog() {
+  sim::Scenario sc = sim::ExpandScenario("hidden/quadratic_drag", 1).at(0).scenario;
+  sc.rest_start_s = 0.3;
+  sc.commands = {{2.2, 1.0, 0.3}};
+  ShortLog s{sim::Simulate(sc, 3).log, {}, {}};
+  s.model = DefaultModelConfig(s.log.vehicle);
+  s.ekf = RunEkf(s.log, s.model, {});
+  return s;
+}
+
+ModelConfig WithAllEffects(ModelConfig model) {
+  model.effects.clear();
+  for (const char* name : ModelEffectNames()) model.effects.push_back(name);
+  return model;
+}
+
+TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
+  const ShortLog s = MakeShortLog();
+  const ModelConfig all = WithAllEffects(s.model);
+  for (const std::vector<int>& in_model : {std::vector<int>{}, std::vector<int>{kTurnSlip}}) {
+    std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, all, s.ekf);
+    const auto scores = GraphScoreTests(*problem, in_model);
+
+    // Dense J and r over the same columns (states, offsets, effects).
+    ceres::Problem::EvaluateOptions options;
+    for (auto& x : problem->states) options.parameter_blocks.push_back(x.data());
+    options.parameter_blocks.push_back(problem->offsets.data());
+    options.parameter_blocks.push_back(problem->effects.data());
+    std::vector<double> r;
+    ceres::CRSMatrix crs;
+    ASSERT_TRUE(problem->problem->Evaluate(options, nullptr, &r, nullptr, &crs));
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+    for (int i = 0; i < crs.num_rows; ++i) {
+      for (int p = crs.rows[i]; p < crs.rows[i + 1]; ++p) J(i, crs.cols[p]) = crs.values[p];
+    }
+    const Eigen::VectorXd residuals = Eigen::Map<Eigen::VectorXd>(r.data(), r.size());
+    const int first_effect = crs.num_cols - kModelEffectCount;
+
+    for (int e = 0; e < kModelEffectCount; ++e) {
+      const bool in = std::find(in_model.begin(), in_model.end(), e) != in_model.end();
+      if (in) {
+        EXPECT_FALSE(scores[e].tested);
+        continue;
+      }
+      // Free: every column but the other tested effects (held at 0, as the test holds them).
+      std::vector<int> free;
+      for (int c = 0; c < first_effect; ++c) free.push_back(c);
+      for (int f = 0; f < kModelEffectCount; ++f) {
+        const bool f_in = std::find(in_model.begin(), in_model.end(), f) != in_model.end();
+        if (f == e || f_in) free.push_back(first_effect + f);
+      }
+      Eigen::MatrixXd Jf(J.rows(), free.size());
+      for (size_t c = 0; c < free.size(); ++c) Jf.col(c) = J.col(free[c]);
+      // The same ridge as the test's on the nuisance part: none on the effect's own column.
+      Eigen::MatrixXd H = Jf.transpose() * Jf;
+      for (size_t c = 0; c < free.size(); ++c) {
+        if (free[c] != first_effect + e) H(c, c) = H(c, c) * (1.0 + 1e-10) + 1e-12;
+      }
+      const Eigen::LDLT<Eigen::MatrixXd> ldlt(H);
+      const Eigen::VectorXd step = ldlt.solve(-Jf.transpose() * residuals);
+      const size_t at = std::find(free.begin(), free.end(), first_effect + e) - free.begin();
+      Eigen::VectorXd unit = Eigen::VectorXd::Zero(free.size());
+      unit[at] = 1.0;
+      const double variance = ldlt.solve(unit)[at];
+      ASSERT_TRUE(scores[e].tested) << e;
+      EXPECT_NEAR(scores[e].magnitude, step[at], 1e-3 * std::sqrt(variance)) << e;
+      EXPECT_NEAR(scores[e].model_sd, std::sqrt(variance), 1e-3 * std::sqrt(variance)) << e;
+      EXPECT_GT(scores[e].robust_sd, 0.0) << e;
+    }
+  }
+}
+
+TEST(GraphScoreTest, NothingToTestWithEveryEffectInTheModel) {
+  const ShortLog s = MakeShortLog();
+  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
+  const auto scores =
+      GraphScoreTests(*problem, {kQuadraticDrag, kTurnSlip, kSlopeSlip, kWheelRadiusError});
+  for (const GraphScore& g : scores) EXPECT_FALSE(g.tested);
+}
+
+}  // namespace
+}  // namespace slipgraph
