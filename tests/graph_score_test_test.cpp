@@ -5,6 +5,7 @@
 // factors' sigmas span 1e-4 to 1e2).
 #include "workbench/graph_score_test.h"
 
+#include <ceres/cost_function.h>
 #include <ceres/crs_matrix.h>
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "factors/ward_state.h"
 #include "solvers/batch_smoother.h"
 
 namespace slipgraph {
@@ -53,6 +55,14 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
     for (auto& x : problem->states) options.parameter_blocks.push_back(x.data());
     options.parameter_blocks.push_back(problem->offsets.data());
     options.parameter_blocks.push_back(problem->effects.data());
+    std::vector<bool> prior_row;
+    for (const auto& [kind, ids] : problem->blocks) {
+      for (ceres::ResidualBlockId id : ids) {
+        options.residual_blocks.push_back(id);
+        const int rows = problem->problem->GetCostFunctionForResidualBlock(id)->num_residuals();
+        prior_row.insert(prior_row.end(), rows, kind == "effect_prior");
+      }
+    }
     std::vector<double> r;
     ceres::CRSMatrix crs;
     ASSERT_TRUE(problem->problem->Evaluate(options, nullptr, &r, nullptr, &crs));
@@ -69,7 +79,12 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
         EXPECT_FALSE(scores[e].tested);
         continue;
       }
-      // Free: every column but the other tested effects (held at 0, as the test holds them).
+      // Free: every column but the other tested effects (held at 0, as the test holds them); the
+      // effects' weak prior is not data, as in the test.
+      Eigen::MatrixXd Je = J;
+      for (size_t i = 0; i < prior_row.size(); ++i) {
+        if (prior_row[i]) Je(i, first_effect + e) = 0.0;
+      }
       std::vector<int> free;
       for (int c = 0; c < first_effect; ++c) free.push_back(c);
       for (int f = 0; f < kModelEffectCount; ++f) {
@@ -77,7 +92,7 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
         if (f == e || f_in) free.push_back(first_effect + f);
       }
       Eigen::MatrixXd Jf(J.rows(), free.size());
-      for (size_t c = 0; c < free.size(); ++c) Jf.col(c) = J.col(free[c]);
+      for (size_t c = 0; c < free.size(); ++c) Jf.col(c) = Je.col(free[c]);
       // The same ridge as the test's on the nuisance part: none on the effect's own column.
       Eigen::MatrixXd H = Jf.transpose() * Jf;
       for (size_t c = 0; c < free.size(); ++c) {
@@ -95,6 +110,33 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
       EXPECT_GT(scores[e].robust_sd, 0.0) << e;
     }
   }
+}
+
+// Drag is an external force -v |v| / m: tested as a force shape it must score as its own
+// column does, and a basis that splits it in two must add up to it.
+TEST(GraphScoreTest, AForceShapeScoresLikeTheEffectItIs) {
+  const ShortLog s = MakeShortLog();
+  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
+  const GraphProjector graph(*problem, {});
+  ASSERT_TRUE(graph.ok());
+  const double mass = s.log.vehicle.mass_kg;
+  std::vector<double> drag(problem->states.size()), first(drag.size(), 0.0), second(first);
+  for (size_t k = 0; k < drag.size(); ++k) {
+    const double v = problem->states[k][ward::kVbx];
+    drag[k] = -v * std::abs(v) / mass;
+    (k < drag.size() / 2 ? first : second)[k] = drag[k];
+  }
+  const GraphScore effect = graph.EffectScores()[kQuadraticDrag];
+  const GraphScore force = graph.TestForce(drag);
+  ASSERT_TRUE(force.tested);
+  EXPECT_NEAR(force.magnitude, effect.magnitude, 1e-6 * effect.model_sd);
+  EXPECT_NEAR(force.model_sd, effect.model_sd, 1e-9 * effect.model_sd);
+  EXPECT_NEAR(force.robust_sd, effect.robust_sd, 1e-6 * effect.robust_sd);
+
+  const ProjectedBasis basis = graph.ProjectForces({first, second});
+  const double score = basis.score.sum(), information = basis.gram.sum();
+  EXPECT_NEAR(-score / information, effect.magnitude, 1e-6 * effect.model_sd);
+  EXPECT_NEAR(1.0 / std::sqrt(information), effect.model_sd, 1e-9 * effect.model_sd);
 }
 
 TEST(GraphScoreTest, NothingToTestWithEveryEffectInTheModel) {

@@ -37,24 +37,22 @@ SignatureSeries ForceSeriesWith(const ModelResiduals& m, const std::function<dou
   return s;
 }
 
-// The force balance against one effect term's derivative (model_effects.h).
-SignatureSeries ForceSeries(const ModelResiduals& m, int effect) {
-  return ForceSeriesWith(m, [&](size_t k) { return m.states[k].force_per_effect[effect]; });
-}
-
 // The effect's score test on the whole graph (workbench/graph_score_test.h) as a series.
-SignatureSeries GraphSeries(const ModelResiduals& m, int effect) {
-  SignatureSeries s;
-  s.stream = "graph";
-  const GraphScore& g = m.graph_scores[effect];
-  if (!g.tested) return s;
+std::optional<SlopeFit> FitOf(const GraphScore& g) {
+  if (!g.tested) return std::nullopt;
   SlopeFit fit;
   fit.slope = g.magnitude;
   fit.sd = g.sd();
   fit.naive_sd = g.model_sd;
   fit.lag = g.lag;
   fit.n = g.states;
-  s.fit = fit;
+  return fit;
+}
+
+SignatureSeries GraphSeries(const ModelResiduals& m, int effect) {
+  SignatureSeries s;
+  s.stream = "graph";
+  s.fit = FitOf(m.graph_scores[effect]);
   return s;
 }
 
@@ -176,62 +174,72 @@ std::vector<EffectSignature> MakeSignatures() {
                   nullptr});
   list.push_back(
       {"sinkage_resistance",
-       "force balance against -g sgn(v) over the best patch of path (scanned, Bonferroni)", nullptr,
+       "score test on the graph of an external force -g sgn(v) over the best patch of path, "
+       "against the same force over the whole path (scanned on a 1 m grid, patches of 3 m and "
+       "more, Bonferroni)",
+       nullptr,
        [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-         // Distance along the path at each state.
-         std::vector<double> s_path(m.states.size(), 0.0);
-         for (size_t k = 1; k < m.states.size(); ++k) {
+         SignatureSeries s;
+         s.stream = "graph";
+         if (m.graph == nullptr || !m.graph->ok() || m.states.empty()) return std::vector{s};
+         // Distance along the path at each state, and one basis shape per metre of it.
+         const size_t n = m.states.size();
+         std::vector<double> s_path(n, 0.0);
+         for (size_t k = 1; k < n; ++k) {
            s_path[k] = s_path[k - 1] + std::abs(m.states[k - 1].x[ward::kVbx]) *
                                            (m.states[k].t - m.states[k - 1].t);
          }
-         // -g sgn(v) everywhere, then zeroed outside the chosen patch.
-         std::vector<size_t> entry_state;
-         SignatureSeries base = ForceSeriesWith(
-             m, [&](size_t k) { return -9.80665 * std::tanh(20.0 * m.states[k].x[ward::kVbx]); },
-             &entry_state);
-         const std::vector<double> sign_of = base.g;
-         std::vector<double> s_of;
-         for (size_t k : entry_state) s_of.push_back(s_path[k]);
-         // Patches [a, b) on a 1 m grid, at least 3 m long; the best by the white-noise score,
-         // from prefix sums over the entries (in path order: s never decreases).
-         const size_t n = base.y.size();
-         double mean_y = 0.0;
-         for (double y : base.y) mean_y += y;
-         if (n > 0) mean_y /= n;
-         std::vector<double> sum_gy(n + 1, 0.0), sum_gg(n + 1, 0.0), sum_g(n + 1, 0.0);
-         for (size_t i = 0; i < n; ++i) {
-           sum_gy[i + 1] = sum_gy[i] + sign_of[i] * (base.y[i] - mean_y);
-           sum_gg[i + 1] = sum_gg[i] + sign_of[i] * sign_of[i];
-           sum_g[i + 1] = sum_g[i] + sign_of[i];
-         }
-         const auto first_at = [&](double s) {
-           return static_cast<size_t>(std::lower_bound(s_of.begin(), s_of.end(), s) - s_of.begin());
+         const auto Resistance = [&](size_t k) {
+           return -9.80665 * std::tanh(20.0 * m.states[k].x[ward::kVbx]);
          };
-         const double length = s_path.empty() ? 0.0 : s_path.back();
-         const double step = 1.0, min_patch = 3.0;
-         double best = -1.0, best_a = 0.0, best_b = 0.0, searched = 0.0;
-         for (double a = 0.0; a + min_patch <= length; a += step) {
-           const size_t i = first_at(a);
-           for (double b = a + min_patch; b <= length + step; b += step) {
-             const size_t j = first_at(b);
-             searched += 1.0;
-             const double sgy = sum_gy[j] - sum_gy[i], sgg = sum_gg[j] - sum_gg[i];
-             const double sg = sum_g[j] - sum_g[i];
-             const double centred = sgg - sg * sg / std::max<size_t>(n, 1);
-             if (j - i < 10 || centred <= 0.0) continue;
-             const double score = sgy * sgy / centred;
-             if (score > best) best = score, best_a = a, best_b = b;
+         const size_t metres = static_cast<size_t>(std::floor(s_path.back())) + 1;
+         std::vector<std::vector<double>> basis(metres, std::vector<double>(n, 0.0));
+         for (size_t k = 0; k < n; ++k) basis[static_cast<size_t>(s_path[k])][k] = Resistance(k);
+         const ProjectedBasis projected = m.graph->ProjectForces(basis);
+         // Patch [a, b): score and information are sums over its metres (prefix sums).
+         std::vector<double> score(metres + 1, 0.0);
+         Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(metres + 1, metres + 1);
+         for (size_t j = 0; j < metres; ++j) score[j + 1] = score[j] + projected.score[j];
+         for (size_t i = 0; i < metres; ++i) {
+           for (size_t j = 0; j < metres; ++j) {
+             gram(i + 1, j + 1) = projected.gram(i, j) + gram(i, j + 1) + gram(i + 1, j) - gram(i, j);
            }
          }
-         base.g.resize(base.y.size());
-         for (size_t i = 0; i < base.y.size(); ++i) {
-           base.g[i] = s_of[i] >= best_a && s_of[i] < best_b ? sign_of[i] : 0.0;
+         // Against the whole path's resistance (a rolling-resistance error, or the disturbance's
+         // own priors, would show there): the patch must stand out from it, so the whole-path
+         // shape is projected out too. G_pa: the patch's Gram with the whole path.
+         const double g_all = gram(metres, metres), s_all = score[metres];
+         if (!(g_all > 0.0)) return std::vector{s};
+         const auto WithPath = [&](size_t a, size_t b) {
+           return gram(b, metres) - gram(a, metres);
+         };
+         const size_t min_patch = 3;
+         double best = -1.0, searched = 0.0;
+         size_t best_a = 0, best_b = 0;
+         for (size_t a = 0; a + min_patch <= metres; ++a) {
+           for (size_t b = a + min_patch; b <= metres; ++b) {
+             const double g_pa = WithPath(a, b);
+             const double information =
+                 gram(b, b) - gram(a, b) - gram(b, a) + gram(a, a) - g_pa * g_pa / g_all;
+             if (!(information > 1e-12 * g_all)) continue;
+             searched += 1.0;
+             const double sab = score[b] - score[a] - g_pa / g_all * s_all;
+             if (sab * sab / information > best) best = sab * sab / information, best_a = a, best_b = b;
+           }
          }
-         base.searched = std::max(1.0, searched);
+         if (best < 0.0) return std::vector{s};
+         const double share = WithPath(best_a, best_b) / g_all;
+         std::vector<double> h(n, 0.0);
+         for (size_t k = 0; k < n; ++k) {
+           const bool in = s_path[k] >= best_a && s_path[k] < best_b;
+           h[k] = ((in ? 1.0 : 0.0) - share) * Resistance(k);
+         }
+         s.fit = FitOf(m.graph->TestForce(h));
+         s.searched = std::max(1.0, searched);
          char where[64];
-         std::snprintf(where, sizeof(where), "patch %.0f-%.0f m", best_a, best_b);
-         base.where = where;
-         return std::vector<SignatureSeries>{base};
+         std::snprintf(where, sizeof(where), "patch %zu-%zu m", best_a, best_b);
+         s.where = where;
+         return std::vector{s};
        },
        nullptr});
   list.push_back({"quadratic_drag", "force balance against -v |v| / m", nullptr,

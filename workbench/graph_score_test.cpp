@@ -3,10 +3,9 @@
 #include <ceres/cost_function.h>
 #include <ceres/crs_matrix.h>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "factors/ward_state.h"
@@ -14,27 +13,30 @@
 
 namespace slipgraph {
 
-std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,
-                                                          const std::vector<int>& in_model) {
-  std::array<GraphScore, kModelEffectCount> out{};
+GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_model)
+    : in_model_(in_model) {
   ceres::Problem& p = *problem.problem;
-  const size_t n = problem.states.size();
-  if (n == 0 || !p.HasParameterBlock(problem.effects.data())) return out;
+  states_ = problem.states.size();
+  if (states_ == 0 || !p.HasParameterBlock(problem.effects.data())) return;
 
   // Columns: the states, the offsets, the effects (in that order).
   ceres::Problem::EvaluateOptions options;
   for (auto& x : problem.states) options.parameter_blocks.push_back(x.data());
   options.parameter_blocks.push_back(problem.offsets.data());
   options.parameter_blocks.push_back(problem.effects.data());
-  const int effect_column = static_cast<int>(ward::kStateSize * n + 2);
-  // Rows: every residual block, remembering its state (global priors count with the first).
-  std::vector<int> row_state;
+  effect_column_ = static_cast<int>(ward::kStateSize * states_ + 2);
+  // Rows: every residual block, remembering its state (global priors count with the first) and
+  // whether a force term enters it.
   for (const auto& [kind, ids] : problem.blocks) {
     const std::vector<long>& states = problem.block_states.at(kind);
+    const bool model = kind == "accelerometer" || kind == "dynamics";
+    const bool prior = kind == "effect_prior";
     for (size_t b = 0; b < ids.size(); ++b) {
       options.residual_blocks.push_back(ids[b]);
       const int rows = p.GetCostFunctionForResidualBlock(ids[b])->num_residuals();
-      row_state.insert(row_state.end(), rows, static_cast<int>(std::max(0L, states[b])));
+      row_state_.insert(row_state_.end(), rows, static_cast<int>(std::max(0L, states[b])));
+      row_is_model_.insert(row_is_model_.end(), rows, model);
+      row_is_prior_.insert(row_is_prior_.end(), rows, prior);
     }
   }
   std::vector<double> r;
@@ -43,64 +45,105 @@ std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,
   if (!p.Evaluate(options, &cost, &r, nullptr, &crs)) {
     throw std::runtime_error("graph score test: Ceres could not evaluate the problem");
   }
-  using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  const Sparse J = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>(
+  J_ = Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>>(
       crs.num_rows, crs.num_cols, static_cast<int>(crs.values.size()), crs.rows.data(),
       crs.cols.data(), crs.values.data());
   const Eigen::Map<const Eigen::VectorXd> residuals(r.data(), static_cast<Eigen::Index>(r.size()));
 
-  // Nuisance columns: states, offsets and the effects in the model; the others are tested.
-  std::vector<int> nuisance, tested;
-  for (int c = 0; c < effect_column; ++c) nuisance.push_back(c);
-  for (int e = 0; e < kModelEffectCount; ++e) {
-    const bool in = std::find(in_model.begin(), in_model.end(), e) != in_model.end();
-    (in ? nuisance : tested).push_back(effect_column + e);
-  }
-  if (tested.empty()) return out;
-  const auto Select = [&](const std::vector<int>& columns) {
-    Sparse s(J.cols(), static_cast<Eigen::Index>(columns.size()));
-    std::vector<Eigen::Triplet<double>> ones;
-    for (size_t i = 0; i < columns.size(); ++i) ones.emplace_back(columns[i], int(i), 1.0);
-    s.setFromTriplets(ones.begin(), ones.end());
-    return Sparse(J * s);
-  };
-  const Sparse N = Select(nuisance);
-  const Eigen::MatrixXd T = Eigen::MatrixXd(Select(tested));
+  // Nuisance columns: states, offsets and the effects in the model.
+  std::vector<Eigen::Triplet<double>> select;
+  int c = 0;
+  for (; c < effect_column_; ++c) select.emplace_back(c, c, 1.0);
+  for (int e : in_model) select.emplace_back(effect_column_ + e, c++, 1.0);
+  Sparse S(J_.cols(), c);
+  S.setFromTriplets(select.begin(), select.end());
+  N_ = J_ * S;
 
   // N'N, with a relative ridge of 1e-10 on its diagonal (and 1e-12 where a column is empty) for
-  // directions no factor constrains: they carry no information about any effect either.
-  Sparse A = Sparse(N.transpose() * N);
-  for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) *= 1.0 + 1e-10;
-  for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += 1e-12;
-  Eigen::SimplicialLDLT<Sparse> solver(A);
-  if (solver.info() != Eigen::Success) return out;
-  const Eigen::MatrixXd X = solver.solve(Eigen::MatrixXd(N.transpose() * T));
-  const Eigen::VectorXd y = solver.solve(Eigen::VectorXd(N.transpose() * residuals));
-  if (solver.info() != Eigen::Success) return out;
-  const Eigen::MatrixXd W = T - N * X;                     // the effects' own directions
-  const Eigen::VectorXd r_perp = residuals - N * y;        // r, had the solve fully converged
+  // directions no factor constrains: they carry no information about any term either.
+  Sparse A = Sparse(N_.transpose() * N_);
+  for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) = A.coeff(i, i) * (1.0 + 1e-10) + 1e-12;
+  solver_.compute(A);
+  if (solver_.info() != Eigen::Success) return;
+  const Eigen::VectorXd y = solver_.solve(Eigen::VectorXd(N_.transpose() * residuals));
+  if (solver_.info() != Eigen::Success) return;
+  r_perp_ = residuals - N_ * y;  // r, had the solve fully converged
+  ok_ = true;
+}
 
-  for (size_t j = 0; j < tested.size(); ++j) {
-    GraphScore& g = out[tested[j] - effect_column];
-    const double information = W.col(j).squaredNorm();
-    if (!(information > 0.0)) continue;
-    const double score = W.col(j).dot(r_perp);
-    // The score's contributions per state from the residuals once the one-step magnitude is
-    // taken out (as a regression's HAC uses its fitted residuals): under the alternative the raw
-    // residuals still hold the effect, which would inflate the variance and hide it.
-    const double theta = -score / information;
-    std::vector<double> contribution(n, 0.0);
-    for (Eigen::Index i = 0; i < W.rows(); ++i) {
-      contribution[row_state[i]] += W(i, j) * (r_perp[i] + W(i, j) * theta);
+GraphScore GraphProjector::Test(const Eigen::VectorXd& t) const {
+  GraphScore g;
+  if (!ok_) return g;
+  const Eigen::VectorXd w = t - N_ * solver_.solve(Eigen::VectorXd(N_.transpose() * t));
+  const double information = w.squaredNorm();
+  if (!(information > 0.0)) return g;
+  const double score = w.dot(r_perp_);
+  // The score's contributions per state from the residuals once the one-step magnitude is taken
+  // out (as a regression's HAC uses its fitted residuals): under the alternative the raw
+  // residuals still hold the term, which would inflate the variance and hide it.
+  const double theta = -score / information;
+  std::vector<double> contribution(states_, 0.0);
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    contribution[row_state_[i]] += w[i] * (r_perp_[i] + w[i] * theta);
+  }
+  const double robust_variance = BartlettLongRunVariance(contribution, &g.lag);
+  g.tested = true;
+  g.magnitude = theta;
+  g.model_sd = 1.0 / std::sqrt(information);
+  g.robust_sd = std::sqrt(robust_variance) / information;
+  g.states = states_;
+  return g;
+}
+
+std::array<GraphScore, kModelEffectCount> GraphProjector::EffectScores() const {
+  std::array<GraphScore, kModelEffectCount> out{};
+  for (int e = 0; e < kModelEffectCount; ++e) {
+    if (std::find(in_model_.begin(), in_model_.end(), e) != in_model_.end()) continue;
+    // The data's column: the weak prior the model puts on a magnitude once it is switched on
+    // (effect_prior) is not evidence about it.
+    Eigen::VectorXd t = J_.col(effect_column_ + e);
+    for (Eigen::Index i = 0; i < t.size(); ++i) {
+      if (row_is_prior_[i]) t[i] = 0.0;
     }
-    const double robust_variance = BartlettLongRunVariance(contribution, &g.lag);
-    g.tested = true;
-    g.magnitude = theta;
-    g.model_sd = 1.0 / std::sqrt(information);
-    g.robust_sd = std::sqrt(robust_variance) / information;
-    g.states = n;
+    out[e] = Test(t);
   }
   return out;
+}
+
+Eigen::VectorXd GraphProjector::ForceColumn(const std::vector<double>& h) const {
+  // An external force enters where a_dist does in the model's equations: t = sum_k h_k
+  // J(:, a_dist_k) over the accelerometer and dynamics rows.
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(J_.rows());
+  for (size_t k = 0; k < states_ && k < h.size(); ++k) {
+    if (h[k] == 0.0 || !std::isfinite(h[k])) continue;
+    for (Sparse::InnerIterator it(J_, ward::kStateSize * k + ward::kAdist); it; ++it) {
+      if (row_is_model_[it.row()]) t[it.row()] += h[k] * it.value();
+    }
+  }
+  return t;
+}
+
+GraphScore GraphProjector::TestForce(const std::vector<double>& h) const {
+  return Test(ForceColumn(h));
+}
+
+ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<double>>& shapes) const {
+  ProjectedBasis out;
+  const Eigen::Index m = static_cast<Eigen::Index>(shapes.size());
+  out.score = Eigen::VectorXd::Zero(m);
+  out.gram = Eigen::MatrixXd::Zero(m, m);
+  if (!ok_ || m == 0) return out;
+  Eigen::MatrixXd T(J_.rows(), m);
+  for (Eigen::Index j = 0; j < m; ++j) T.col(j) = ForceColumn(shapes[j]);
+  const Eigen::MatrixXd W = T - N_ * solver_.solve(Eigen::MatrixXd(N_.transpose() * T));
+  out.score = W.transpose() * r_perp_;
+  out.gram = W.transpose() * W;
+  return out;
+}
+
+std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,
+                                                          const std::vector<int>& in_model) {
+  return GraphProjector(problem, in_model).EffectScores();
 }
 
 }  // namespace slipgraph

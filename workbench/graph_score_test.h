@@ -1,14 +1,14 @@
-// Rao's score (Lagrange-multiplier) test of each model effect's magnitude on the whole factor
-// graph at a smoother's solution.
+// Rao's score (Lagrange-multiplier) test of a missing term on the whole factor graph at a
+// smoother's solution.
 //
 // The smoother absorbs a missing force into what the model lets move: the velocity shifts a few
 // mm/s, the slip follows, and the force balance closes again; a test that looks at one residual
 // stream (the force balance against the effect's shape) then sees almost nothing. The score test
 // on the graph does not: with J the whitened Jacobian of every factor at the solution, split into
-// the nuisance columns N (states, IMU offsets, the effects already in the model) and the effect's
-// column t, and r the whitened residuals,
+// the nuisance columns N (states, IMU offsets, the effects already in the model) and the tested
+// term's column t, and r the whitened residuals,
 //
-//   w = (I - N (N'N)^-1 N') t          the effect's direction the nuisance cannot mimic
+//   w = (I - N (N'N)^-1 N') t          the term's direction the nuisance cannot mimic
 //   S = w' r,   I = w' w               efficient score and information
 //   theta = -S / I,   sd = 1 / sqrt(I)  (one Gauss-Newton step from theta = 0)
 //
@@ -18,9 +18,19 @@
 // w_i e_i, e = r + w theta the residuals with the one-step magnitude taken out, and Var(S) from
 // the Newey-West long-run variance of c_k (Boos 1992; Wooldridge's robust LM test). The
 // workbench uses the larger of the two.
+//
+// The tested term is a model effect's column (factors/model_effects.h) or any external force
+// shape h_k (m/s^2 per unit magnitude at state k), which enters the graph where the disturbance
+// does in the model's own equations (the accelerometer and dynamics factors, not the
+// disturbance's priors). A scan over many shapes (a patch of path) uses the projected basis: the
+// score and the Gram matrix of the projected columns, so any sum of basis shapes is tested
+// without another solve.
 #pragma once
 
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "factors/model_effects.h"
@@ -30,7 +40,7 @@ namespace slipgraph {
 
 struct GraphScore {
   bool tested = false;     // false: in the model already, or the system was singular
-  double magnitude = 0.0;  // one-step estimate -S / I, in the catalogue's unit
+  double magnitude = 0.0;  // one-step estimate -S / I, in the term's unit
   double model_sd = 0.0;   // 1 / sqrt(I): the factors' own sigmas
   double robust_sd = 0.0;  // sqrt(Var_HAC(S)) / I
   double lag = 0.0;        // the Bartlett bandwidth of the robust variance (states)
@@ -38,9 +48,47 @@ struct GraphScore {
   double sd() const { return robust_sd > model_sd ? robust_sd : model_sd; }
 };
 
-// `problem` holds every model effect as a parameter block (no manifold) and its parameter blocks
-// are set to the solution; `in_model` lists the effects the user's model has (nuisance, not
-// tested). Throws std::runtime_error when Ceres cannot evaluate the problem.
+// The projected scores and Gram matrix of a basis of force shapes.
+struct ProjectedBasis {
+  Eigen::VectorXd score;  // S_j = w_j' r
+  Eigen::MatrixXd gram;   // w_i' w_j
+};
+
+class GraphProjector {
+ public:
+  // `problem` holds every model effect as a parameter block (no manifold) and its parameter
+  // blocks are set to the solution; `in_model` lists the effects the user's model has (nuisance,
+  // not tested). Throws std::runtime_error when Ceres cannot evaluate the problem.
+  GraphProjector(WardProblem& problem, const std::vector<int>& in_model);
+
+  bool ok() const { return ok_; }
+  size_t states() const { return states_; }
+
+  // Each model effect not in the model, tested alone (the other candidates held at 0).
+  std::array<GraphScore, kModelEffectCount> EffectScores() const;
+  // An external force of shape h (one value per state, m/s^2 per unit magnitude).
+  GraphScore TestForce(const std::vector<double>& h) const;
+  // A basis of external force shapes (each one value per state), projected.
+  ProjectedBasis ProjectForces(const std::vector<std::vector<double>>& shapes) const;
+
+ private:
+  using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  Eigen::VectorXd ForceColumn(const std::vector<double>& h) const;
+  GraphScore Test(const Eigen::VectorXd& t) const;
+
+  bool ok_ = false;
+  size_t states_ = 0;
+  std::vector<int> in_model_;
+  std::vector<int> row_state_;
+  std::vector<bool> row_is_model_;  // accelerometer and dynamics rows: where a force enters
+  std::vector<bool> row_is_prior_;  // the effects' weak prior: not data
+  Sparse J_, N_;
+  Eigen::VectorXd r_perp_;
+  int effect_column_ = 0;
+  Eigen::SimplicialLDLT<Sparse> solver_;
+};
+
+// Convenience: GraphProjector(problem, in_model).EffectScores().
 std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,
                                                           const std::vector<int>& in_model);
 

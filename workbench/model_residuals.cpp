@@ -174,7 +174,9 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
   for (const std::string& name : model.effects) {
     if (ModelEffectIndex(name) >= 0) in_model.push_back(ModelEffectIndex(name));
   }
-  out.graph_scores = GraphScoreTests(*problem, in_model);
+  auto graph = std::make_shared<GraphProjector>(*problem, in_model);
+  out.graph_scores = graph->EffectScores();
+  out.graph = std::move(graph);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,11 @@ struct ModelResiduals {
   double accel_offset = 0.0, gyro_offset = 0.0;
   std::array<double, kModelEffectCount> effects{};  // the solution's magnitudes (0 when off)
   std::vector<double> gnss_times;                   // the GNSS samples' times, for averaging
-  // Each model effect's score test on the whole graph (untested for those in the model).
+  // Each model effect's score test on the whole graph (untested for those in the model), and the
+  // graph's projector for signatures that test other force shapes (null if it could not be
+  // built).
   std::array<GraphScore, kModelEffectCount> graph_scores{};
+  std::shared_ptr<const GraphProjector> graph;
   const StreamResiduals* Find(const std::string& name) const;
 };
 
