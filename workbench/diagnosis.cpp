@@ -43,6 +43,18 @@ std::vector<double> ForceBalance(const ModelResiduals& m, std::vector<double>* t
   return r;
 }
 
+// The operating conditions over a failure segment: mean speed, |pitch|, |yaw rate|.
+void SetConditions(const ModelResiduals& m, FailureSegment* f) {
+  double speed = 0.0, pitch = 0.0, yaw = 0.0;
+  int n = 0;
+  for (const StateContext& c : m.states) {
+    if (c.t < f->t_start || c.t > f->t_end) continue;
+    speed += std::abs(c.x[ward::kVbx]), pitch += std::abs(c.pitch_rad);
+    yaw += std::abs(c.x[ward::kYawRate]), ++n;
+  }
+  if (n > 0) f->speed_mps = speed / n, f->abs_pitch_rad = pitch / n, f->abs_yaw_rate_radps = yaw / n;
+}
+
 struct Series {
   std::string name;
   std::vector<double> t, r;
@@ -82,16 +94,7 @@ std::vector<FailureSegment> FindFailures(const std::vector<Series>& streams,
       out.push_back({a, b, {flagged[w].begin(), flagged[w].end()}});
     }
   }
-  for (FailureSegment& f : out) {
-    double speed = 0.0, pitch = 0.0, yaw = 0.0;
-    int n = 0;
-    for (const StateContext& c : m.states) {
-      if (c.t < f.t_start || c.t > f.t_end) continue;
-      speed += std::abs(c.x[ward::kVbx]), pitch += std::abs(c.pitch_rad);
-      yaw += std::abs(c.x[ward::kYawRate]), ++n;
-    }
-    if (n > 0) f.speed_mps = speed / n, f.abs_pitch_rad = pitch / n, f.abs_yaw_rate_radps = yaw / n;
-  }
+  for (FailureSegment& f : out) SetConditions(m, &f);
   return out;
 }
 
@@ -109,6 +112,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
         s.fit ? *s.fit : FitSlopeHac(s.y, s.g, s.y_common_sd, s.y_common_next_corr);
     if (fit.n == 0 || !(fit.sd > 0.0)) continue;
     c.series.push_back({s.stream, fit});
+    if (s.graph_column) c.graph_column = s.graph_column;
     ++c.dof;
     searched = std::max(searched, s.searched);
     if (!s.where.empty()) c.where = s.where;
@@ -198,11 +202,34 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
                     [&](const EffectEstimate& e) { return e.name == s.effect; });
     if (in_model) d.in_model.push_back(Score(s, m, log, model));
   }
-  bool failing = !d.failures.empty();
+  // A force along the path the model lacks, whatever its shape, and what is left of it once the
+  // best candidate is taken out; its local stretches are failures too.
+  const CandidateScore* best =
+      !d.candidates.empty() && d.candidates.front().significant ? &d.candidates.front() : nullptr;
+  Eigen::VectorXd best_column;
+  if (best != nullptr && best->graph_column && m.graph != nullptr && m.graph->ok()) {
+    best_column = best->graph_column(*m.graph);
+  }
+  d.path_force = TestForceAlongPath(m, best_column.size() > 0 ? &best_column : nullptr,
+                                    best_column.size() > 0 ? best->effect : "", options.alpha);
+  for (const PathForceTest::Stretch& stretch : d.path_force.stretches) {
+    if (std::isnan(stretch.t_start) || std::isnan(stretch.t_end)) continue;
+    FailureSegment f{stretch.t_start, stretch.t_end, {"force_along_path"}};
+    SetConditions(m, &f);
+    d.failures.push_back(f);
+  }
+  std::sort(d.failures.begin(), d.failures.end(),
+            [](const FailureSegment& a, const FailureSegment& b) { return a.t_start < b.t_start; });
+  const bool path_force = d.path_force.tested && d.path_force.p_value < options.alpha;
+  bool failing = !d.failures.empty() || path_force;
   for (const StreamReport& s : d.streams) failing = failing || !s.consistent;
   bool any = false;
   for (const CandidateScore& c : d.candidates) any = any || c.significant;
-  d.explained = any || !failing;
+  // A significant candidate explains the misfit unless the force along the path stays
+  // significant once its direction is taken out (only known for a candidate on the graph).
+  const bool left_over = path_force && !std::isnan(d.path_force.after_p_value) &&
+                         d.path_force.after_p_value < options.alpha;
+  d.explained = (any || !failing) && !left_over;
 
   if (!log.truth.empty()) {
     const Evaluation e = Evaluate(log, EstimateTable(d.solution.estimates));
@@ -300,11 +327,30 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as) << "]";
     out << "\n";
   }
-  if (!d.candidates.empty() && d.candidates.front().significant) {
+  if (d.path_force.tested) {
+    char line[240];
+    std::snprintf(line, sizeof(line),
+                  "  any force along the path (omnibus, %g m cells): X2 %.1f on %g dof, p %.2g",
+                  d.path_force.metre, d.path_force.statistic, d.path_force.dof,
+                  d.path_force.p_value);
+    out << line;
+    if (!d.path_force.after_effect.empty()) {
+      std::snprintf(line, sizeof(line), "; left after %s: X2 %.1f on %g dof, p %.2g",
+                    d.path_force.after_effect.c_str(), d.path_force.after_statistic,
+                    d.path_force.after_dof, d.path_force.after_p_value);
+      out << line;
+    }
+    out << "\n";
+  }
+  if (!d.candidates.empty() && d.candidates.front().significant && d.explained) {
     out << "  most likely missing: " << d.candidates.front().effect << " ("
         << d.candidates.front().magnitude << " +- " << d.candidates.front().magnitude_sd << ")\n";
   } else if (!d.explained) {
-    out << "  no candidate explains it: the failures above are outside the catalogue's tests\n";
+    out << (!d.candidates.empty() && d.candidates.front().significant
+                ? "  no candidate explains it: the best, " + d.candidates.front().effect +
+                      ", leaves a significant force along the path\n"
+                : std::string("  no candidate explains it: the failures above are outside the "
+                              "catalogue's tests\n"));
   } else {
     out << "  no candidate is significant, and the model is consistent with the measurements\n";
   }
@@ -354,11 +400,19 @@ void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostre
     if (it == after.in_model.end()) continue;
     const CandidateScore& left = *it;
     char line[240];
-    std::snprintf(line, sizeof(line),
-                  "  %s signature: statistic %.1f -> %.1f, magnitude seen in the residuals %.4g "
-                  "-> %.4g +- %.2g\n",
-                  b.effect.c_str(), b.statistic, left.statistic, b.magnitude, left.magnitude,
-                  left.magnitude_sd);
+    if (left.dof == 0) {
+      // A smoother term's score is zero at its own estimate: nothing left to test.
+      std::snprintf(line, sizeof(line),
+                    "  %s signature: statistic %.1f, magnitude seen in the residuals %.4g -> "
+                    "estimated with the states\n",
+                    b.effect.c_str(), b.statistic, b.magnitude);
+    } else {
+      std::snprintf(line, sizeof(line),
+                    "  %s signature: statistic %.1f -> %.1f, magnitude seen in the residuals %.4g "
+                    "-> %.4g +- %.2g\n",
+                    b.effect.c_str(), b.statistic, left.statistic, b.magnitude, left.magnitude,
+                    left.magnitude_sd);
+    }
     out << line;
   }
 }
@@ -410,6 +464,20 @@ nlohmann::json ToJson(const Diagnosis& d) {
     j["candidates"].push_back(cj);
   }
   j["explained"] = d.explained;
+  if (d.path_force.tested) {
+    nlohmann::json pf;
+    pf["metre"] = d.path_force.metre;
+    pf["statistic"] = d.path_force.statistic;
+    pf["dof"] = d.path_force.dof;
+    pf["p_value"] = d.path_force.p_value;
+    if (!d.path_force.after_effect.empty()) {
+      pf["after_effect"] = d.path_force.after_effect;
+      pf["after_statistic"] = d.path_force.after_statistic;
+      pf["after_dof"] = d.path_force.after_dof;
+      pf["after_p_value"] = d.path_force.after_p_value;
+    }
+    j["path_force"] = pf;
+  }
   j["corrected_effects"] = nlohmann::json::array();
   for (const EffectEstimate& e : d.corrected) {
     j["corrected_effects"].push_back({{"effect", e.name}, {"value", e.value}, {"sd", e.sd}});

@@ -5,6 +5,7 @@
 // when none is significant.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
@@ -16,6 +17,7 @@
 #include "model/model_config.h"
 #include "solvers/batch_smoother.h"
 #include "workbench/model_residuals.h"
+#include "workbench/path_force_test.h"
 #include "workbench/robust_statistics.h"
 
 namespace slipgraph {
@@ -76,6 +78,8 @@ struct CandidateScore {
   // How `--with` adds it: "smoother term", "measurement correction", or "" (not yet).
   std::string added_as;
   std::vector<SeriesScore> series;
+  // The tested term's raw column on the graph, when the test was on the graph.
+  std::function<Eigen::VectorXd(const GraphProjector&)> graph_column;
 };
 
 struct TruthErrors {
@@ -93,7 +97,12 @@ struct Diagnosis {
   // The effects already in the model (terms or corrections) scored by their own signatures,
   // unadjusted: what is left of each in the residuals.
   std::vector<CandidateScore> in_model;
-  bool explained = true;  // false: failures or a rejected stream, and no significant candidate
+  // Any force along the path the model lacks (the omnibus test), and what is left of it after
+  // the best candidate (workbench/path_force_test.h).
+  PathForceTest path_force;
+  // false: failures, a rejected stream or a force along the path, and no significant candidate
+  // that takes it away.
+  bool explained = true;
   TruthErrors truth;
   std::vector<EffectEstimate> fitted_effects;  // the model's own effects, as the smoother fit them
   std::vector<EffectEstimate> corrected;       // sensor effects corrected in the log

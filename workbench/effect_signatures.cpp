@@ -55,6 +55,7 @@ SignatureSeries GraphSeries(const ModelResiduals& m, int effect) {
   SignatureSeries s;
   s.stream = "graph";
   s.fit = FitOf(m.graph_scores[effect]);
+  s.graph_column = [effect](const GraphProjector& g) { return g.EffectColumn(effect); };
   return s;
 }
 
@@ -273,6 +274,7 @@ std::vector<EffectSignature> MakeSignatures() {
            h[k] = ((in ? 1.0 : 0.0) - share) * Resistance(k);
          }
          s.fit = FitOf(m.graph->TestForce(h));
+         s.graph_column = [h](const GraphProjector& g) { return g.ForceColumn(h); };
          // As a multiplier on the chosen patch's own p-value (the factors' sd): the effective
          // number of patches searched.
          s.searched = std::max(1.0, scan_p / std::max(1e-300, NormalTwoSided(std::sqrt(best))));

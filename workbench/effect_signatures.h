@@ -41,6 +41,9 @@ struct SignatureSeries {
   // Set when the signature has already tested theta = 0 by other means (the score test on the
   // whole graph, workbench/graph_score_test.h): used as is; y and g are then empty.
   std::optional<SlopeFit> fit;
+  // For a test on the graph: the tested term's raw column (GraphProjector::EffectColumn or
+  // ForceColumn), so the diagnosis can ask what is left of a misfit once it is taken out.
+  std::function<Eigen::VectorXd(const GraphProjector&)> graph_column;
 };
 
 struct EffectSignature {

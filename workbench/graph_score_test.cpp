@@ -95,17 +95,21 @@ GraphScore GraphProjector::Test(const Eigen::VectorXd& t) const {
   return g;
 }
 
+Eigen::VectorXd GraphProjector::EffectColumn(int effect) const {
+  // The data's column: the weak prior the model puts on a magnitude once it is switched on
+  // (effect_prior) is not evidence about it.
+  Eigen::VectorXd t = J_.col(effect_column_ + effect);
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    if (row_is_prior_[i]) t[i] = 0.0;
+  }
+  return t;
+}
+
 std::array<GraphScore, kModelEffectCount> GraphProjector::EffectScores() const {
   std::array<GraphScore, kModelEffectCount> out{};
   for (int e = 0; e < kModelEffectCount; ++e) {
     if (std::find(in_model_.begin(), in_model_.end(), e) != in_model_.end()) continue;
-    // The data's column: the weak prior the model puts on a magnitude once it is switched on
-    // (effect_prior) is not evidence about it.
-    Eigen::VectorXd t = J_.col(effect_column_ + e);
-    for (Eigen::Index i = 0; i < t.size(); ++i) {
-      if (row_is_prior_[i]) t[i] = 0.0;
-    }
-    out[e] = Test(t);
+    out[e] = Test(EffectColumn(e));
   }
   return out;
 }
@@ -127,18 +131,21 @@ GraphScore GraphProjector::TestForce(const std::vector<double>& h) const {
   return Test(ForceColumn(h));
 }
 
-ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<double>>& shapes) const {
+ProjectedBasis GraphProjector::Project(const Eigen::MatrixXd& T) const {
   ProjectedBasis out;
-  const Eigen::Index m = static_cast<Eigen::Index>(shapes.size());
-  out.score = Eigen::VectorXd::Zero(m);
-  out.gram = Eigen::MatrixXd::Zero(m, m);
-  if (!ok_ || m == 0) return out;
-  Eigen::MatrixXd T(J_.rows(), m);
-  for (Eigen::Index j = 0; j < m; ++j) T.col(j) = ForceColumn(shapes[j]);
+  out.score = Eigen::VectorXd::Zero(T.cols());
+  out.gram = Eigen::MatrixXd::Zero(T.cols(), T.cols());
+  if (!ok_ || T.cols() == 0) return out;
   const Eigen::MatrixXd W = T - N_ * solver_.solve(Eigen::MatrixXd(N_.transpose() * T));
   out.score = W.transpose() * r_perp_;
   out.gram = W.transpose() * W;
   return out;
+}
+
+ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<double>>& shapes) const {
+  Eigen::MatrixXd T(J_.rows(), static_cast<Eigen::Index>(shapes.size()));
+  for (Eigen::Index j = 0; j < T.cols(); ++j) T.col(j) = ForceColumn(shapes[j]);
+  return Project(T);
 }
 
 std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,

@@ -70,10 +70,15 @@ class GraphProjector {
   GraphScore TestForce(const std::vector<double>& h) const;
   // A basis of external force shapes (each one value per state), projected.
   ProjectedBasis ProjectForces(const std::vector<std::vector<double>>& shapes) const;
+  // Any raw columns (one per tested term, over the graph's residual rows), projected.
+  ProjectedBasis Project(const Eigen::MatrixXd& columns) const;
+  // Raw columns: a model effect's (its weak prior's rows zeroed: not data) and an external
+  // force shape's.
+  Eigen::VectorXd EffectColumn(int effect) const;
+  Eigen::VectorXd ForceColumn(const std::vector<double>& h) const;
 
  private:
   using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  Eigen::VectorXd ForceColumn(const std::vector<double>& h) const;
   GraphScore Test(const Eigen::VectorXd& t) const;
 
   bool ok_ = false;
