@@ -11,6 +11,10 @@
 //   turn_slip           a = -theta g |yaw rate| sgn~(v)            (s/rad)
 //   slope_slip          traction x (1 - theta |phi|)               (1/rad)
 //   wheel_radius_error  effective radius r (1 + theta)             (fraction)
+//   sinkage_resistance  a = -theta g w sgn~(v)                     (fraction of weight)
+//
+// where w is 1 on soft ground and 0 elsewhere: the model's effect windows
+// (ModelConfig::effect_windows, times where the robot is on a patch the workbench found).
 //
 // sgn~ is the Jet-safe saturated sign the simulator uses. Templated on the state's and the
 // magnitudes' scalar, so the Ceres factor and any other caller share one copy. The other
@@ -31,12 +35,13 @@ enum ModelEffect {
   kTurnSlip,
   kSlopeSlip,
   kWheelRadiusError,
+  kSinkageResistance,
   kModelEffectCount
 };
 
 inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
   static const std::array<const char*, kModelEffectCount> kNames = {
-      "quadratic_drag", "turn_slip", "slope_slip", "wheel_radius_error"};
+      "quadratic_drag", "turn_slip", "slope_slip", "wheel_radius_error", "sinkage_resistance"};
   return kNames;
 }
 
@@ -50,16 +55,17 @@ inline int ModelEffectIndex(const std::string& name) {
 
 // Standard deviations of the weak prior on each magnitude (around 0) when the effect is switched
 // on: several times the catalogue's typical value, so the data decide.
-constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0, 0.3};
+constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0, 0.3, 0.3};
 
 // Rate of the saturated sign of v (1/(m/s)), as the simulator's effects use it.
 constexpr double kModelEffectSignRate = 20.0;
 
 // The accelerometer's model prediction without offsets, biases and a_dist: f_tire with the
-// effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0).
+// effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0); soft_ground: w of
+// sinkage_resistance at this sample (0 or 1).
 template <typename T>
 inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitude,
-                                const ward::Params& p, const T* theta) {
+                                const ward::Params& p, const T* theta, double soft_ground = 0.0) {
   using R = T;
   using std::abs;
   R state[ward::kStateSize];
@@ -74,6 +80,8 @@ inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitu
   return forces.f_tire_mps2 - theta[kSlopeSlip] * phi * traction_n / p.mass_kg -
          theta[kQuadraticDrag] * v * abs(v) / p.mass_kg -
          theta[kTurnSlip] * p.gravity_mps2 * abs(state[ward::kYawRate]) *
+             SignedSaturation(v, kModelEffectSignRate) -
+         theta[kSinkageResistance] * p.gravity_mps2 * soft_ground *
              SignedSaturation(v, kModelEffectSignRate);
 }
 

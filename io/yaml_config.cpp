@@ -208,6 +208,34 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
       m.gravity_mps2 = ReadNumber(path, entry.second, key);
       continue;
     }
+    if (key == "effect_windows") {
+      if (!entry.second.IsSequence()) {
+        Fail(path, entry.second, key, "", "expected a list of {effect, from, to}");
+      }
+      m.effect_windows.clear();
+      for (const auto& window : entry.second) {
+        if (!window.IsMap()) Fail(path, window, key, "", "expected {effect, from, to}");
+        ModelConfig::EffectWindow w;
+        bool have_effect = false, have_from = false, have_to = false;
+        for (const auto& field : window) {
+          const std::string name = field.first.as<std::string>();
+          if (name == "effect") {
+            w.effect = field.second.as<std::string>(), have_effect = true;
+          } else if (name == "from") {
+            w.t_start_s = ReadNumber(path, field.second, key + ".from"), have_from = true;
+          } else if (name == "to") {
+            w.t_end_s = ReadNumber(path, field.second, key + ".to"), have_to = true;
+          } else {
+            Fail(path, field.first, key + "." + name, "", "unknown key");
+          }
+        }
+        if (!have_effect || !have_from || !have_to) {
+          Fail(path, window, key, "", "each window needs effect, from and to");
+        }
+        m.effect_windows.push_back(w);
+      }
+      continue;
+    }
     if (key == "effects") {
       if (!entry.second.IsSequence()) Fail(path, entry.second, key, "", "expected a list of names");
       m.effects.clear();
@@ -328,6 +356,15 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                                {"floor", m.tire_uncertainty.floor_mps2},
                                {"correlation_time", m.tire_uncertainty.correlation_time_s}});
   e << YAML::Key << "effects" << YAML::Value << YAML::Flow << m.effects;
+  if (!m.effect_windows.empty()) {
+    e << YAML::Key << "effect_windows" << YAML::Value << YAML::BeginSeq;
+    for (const ModelConfig::EffectWindow& w : m.effect_windows) {
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "effect" << YAML::Value << w.effect
+        << YAML::Key << "from" << YAML::Value << w.t_start_s << YAML::Key << "to" << YAML::Value
+        << w.t_end_s << YAML::EndMap;
+    }
+    e << YAML::EndSeq;
+  }
   e << YAML::EndMap;
   out << e.c_str() << "\n";
 }

@@ -1,5 +1,8 @@
 #include "model/model_config.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <cmath>
 #include <sstream>
 
@@ -84,6 +87,26 @@ bool ModelConfig::IsValid(std::string* error) const {
       *error = "effects: unknown effect '" + effect + "'";
       return false;
     }
+  }
+  for (const EffectWindow& w : effect_windows) {
+    if (w.effect != "sinkage_resistance") {
+      *error = "effect_windows: '" + w.effect + "' does not act on windows (only sinkage_resistance)";
+      return false;
+    }
+    if (!(std::isfinite(w.t_start_s) && std::isfinite(w.t_end_s) && w.t_end_s > w.t_start_s)) {
+      *error = "effect_windows: a window must have finite from < to";
+      return false;
+    }
+  }
+  const bool sinkage_on =
+      std::find(effects.begin(), effects.end(), "sinkage_resistance") != effects.end();
+  const bool sinkage_windows =
+      std::any_of(effect_windows.begin(), effect_windows.end(),
+                  [](const EffectWindow& w) { return w.effect == "sinkage_resistance"; });
+  if (sinkage_on && !sinkage_windows) {
+    *error = "effects: sinkage_resistance needs effect_windows (the times on soft ground; "
+             "`slipgraph diagnose --with sinkage_resistance` takes them from the patch it finds)";
+    return false;
   }
   if (offset_init_samples < 1) {
     *error = "offset_init_samples must be at least 1";

@@ -95,6 +95,13 @@ struct ModelConfig {
   int offset_init_samples = 100;      // n: IMU samples averaged for the constant offsets
   double offset_ema_samples = 200.0;  // p of eq. (12) for the offsets at rest
   std::vector<std::string> effects;   // optional physical effects switched on, by name
+  // Where an effect that acts on part of a drive acts: for sinkage_resistance, the time spans
+  // (log time, s) on soft ground, as `diagnose` found them. Required when that effect is on.
+  struct EffectWindow {
+    std::string effect;
+    double t_start_s = 0.0, t_end_s = 0.0;
+  };
+  std::vector<EffectWindow> effect_windows;
 
   // Ceres-style validity check: false with a message naming the first bad field.
   bool IsValid(std::string* error) const;

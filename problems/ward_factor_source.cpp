@@ -197,7 +197,14 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     }
     if (std::isfinite(imu.ax)) {
       if (effects != nullptr) {
-        Add("accelerometer", EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
+        double soft_ground = 0.0;
+        for (const ModelConfig::EffectWindow& w : model_.effect_windows) {
+          if (w.effect == "sinkage_resistance" && imu.t >= w.t_start_s && imu.t < w.t_end_s) {
+            soft_ground = 1.0;
+          }
+        }
+        Add("accelerometer",
+            EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a, soft_ground),
             nullptr, x, offsets, effects);
       } else {
         Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,

@@ -41,7 +41,7 @@ TEST(EffectAccelerometerFactor, WithNoEffectIsThePlainAccelerometerFactor) {
       AccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
   const std::unique_ptr<ceres::CostFunction> with(
       EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
-  const double none[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0};
+  const double none[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.0};
   EXPECT_DOUBLE_EQ(Residual(*with, {kSlipping, kOffsets, none}),
                    Residual(*plain, {kSlipping, kOffsets}));
 }
@@ -49,15 +49,15 @@ TEST(EffectAccelerometerFactor, WithNoEffectIsThePlainAccelerometerFactor) {
 TEST(EffectAccelerometerFactor, EachTermByHand) {
   const std::unique_ptr<ceres::CostFunction> f(
       EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
-  const double none[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0};
+  const double none[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.0};
   const double base = Residual(*f, {kSlipping, kOffsets, none});
   const double v = kSlipping[kVbx], yaw_rate = kSlipping[kYawRate];
   // Drag 40 N s^2/m^2 lowers the predicted acceleration by 40 v|v| / m: the residual rises.
-  const double drag[kModelEffectCount] = {40.0, 0.0, 0.0, 0.0};
+  const double drag[kModelEffectCount] = {40.0, 0.0, 0.0, 0.0, 0.0};
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, drag}) - base,
               40.0 * v * std::abs(v) / kParams.mass_kg / 0.25, 1e-9);
   // Turn slip 0.15 s/rad: 0.15 g |yaw rate| times the saturated sign of v, 1 - exp(-20 v).
-  const double turn[kModelEffectCount] = {0.0, 0.15, 0.0, 0.0};
+  const double turn[kModelEffectCount] = {0.0, 0.15, 0.0, 0.0, 0.0};
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, turn}) - base,
               0.15 * kParams.gravity_mps2 * std::abs(yaw_rate) *
                   (1.0 - std::exp(-kModelEffectSignRate * v)) / 0.25,
@@ -65,22 +65,30 @@ TEST(EffectAccelerometerFactor, EachTermByHand) {
   // Slope slip 4/rad on a 0.1 rad slope: the traction shrinks by 40 %.
   const TireForces<double> forces = ComputeTireForces(kSlipping, kOnASlope, kParams);
   const double traction = (forces.traction_left_n + forces.traction_right_n) / kParams.mass_kg;
-  const double slope[kModelEffectCount] = {0.0, 0.0, 4.0, 0.0};
+  const double slope[kModelEffectCount] = {0.0, 0.0, 4.0, 0.0, 0.0};
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, slope}) - base, 4.0 * 0.1 * traction / 0.25, 1e-9);
   // Wheel radius 5 % larger: the same as wheel speeds 5 % higher.
-  const double radius[kModelEffectCount] = {0.0, 0.0, 0.0, 0.05};
+  const double radius[kModelEffectCount] = {0.0, 0.0, 0.0, 0.05, 0.0};
   double faster[kStateSize];
   std::copy(kSlipping, kSlipping + kStateSize, faster);
   faster[kOmegaLeft] *= 1.05;
   faster[kOmegaRight] *= 1.05;
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, radius}), Residual(*f, {faster, kOffsets, none}),
               1e-12);
+  // Sinkage 0.08 of the weight, only on soft ground (the sample inside an effect window).
+  const double sinkage[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.08};
+  EXPECT_DOUBLE_EQ(Residual(*f, {kSlipping, kOffsets, sinkage}), base);
+  const std::unique_ptr<ceres::CostFunction> soft(
+      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, 1.0));
+  EXPECT_NEAR(Residual(*soft, {kSlipping, kOffsets, sinkage}) - base,
+              0.08 * kParams.gravity_mps2 * (1.0 - std::exp(-kModelEffectSignRate * v)) / 0.25,
+              1e-9);
 }
 
 TEST(EffectAccelerometerFactor, Jacobians) {
   const std::unique_ptr<ceres::CostFunction> f(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
-  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05};
+      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, 1.0));
+  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05, 0.08};
   // As for the plain factor, the smoothed laws' kinks bound the finite differences (1e-5).
   testing::ExpectJacobiansMatchNumeric(*f, {kSlipping, kOffsets, theta}, 1e-5);
 }

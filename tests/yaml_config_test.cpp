@@ -59,6 +59,24 @@ TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
   }
   // corrugation exists only in the simulator: outside the model catalogue on purpose.
   EXPECT_THROW(ReadModelYaml(WriteModel("effects: [corrugation]\n"), LagrVehicle()), InputError);
+  // Sinkage acts on windows of the drive, which the model must give.
+  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [sinkage_resistance]\n"), LagrVehicle()),
+               InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("effect_windows: [{effect: quadratic_drag, from: 1, to: 2}]\n"),
+                             LagrVehicle()),
+               InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [sinkage_resistance]\n"
+                                        "effect_windows: [{effect: sinkage_resistance, from: 5}]\n"),
+                             LagrVehicle()),
+               InputError);
+  const ModelConfig sinkage = ReadModelYaml(
+      WriteModel("effects: [sinkage_resistance]\n"
+                 "effect_windows: [{effect: sinkage_resistance, from: 21.5, to: 38.25}]\n"),
+      LagrVehicle());
+  ASSERT_EQ(sinkage.effect_windows.size(), 1u);
+  EXPECT_EQ(sinkage.effect_windows[0].effect, "sinkage_resistance");
+  EXPECT_DOUBLE_EQ(sinkage.effect_windows[0].t_start_s, 21.5);
+  EXPECT_DOUBLE_EQ(sinkage.effect_windows[0].t_end_s, 38.25);
 }
 
 TEST(YamlConfig, InvalidModelValueIsRejected) {

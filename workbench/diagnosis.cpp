@@ -116,6 +116,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
     ++c.dof;
     searched = std::max(searched, s.searched);
     if (!s.where.empty()) c.where = s.where;
+    if (!s.windows.empty()) c.windows = s.windows;
     precision += 1.0 / (fit.sd * fit.sd);
     weighted += fit.slope / (fit.sd * fit.sd);
   }
@@ -251,6 +252,19 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
   for (const std::string& name : effects) {
     const EffectSignature* signature = FindSignature(name);
     if (ModelEffectIndex(name) >= 0) {
+      if (name == "sinkage_resistance") {
+        // A term on windows: where the diagnosis found the patch.
+        const auto it = std::find_if(before.candidates.begin(), before.candidates.end(),
+                                     [&](const CandidateScore& c) { return c.effect == name; });
+        if (it == before.candidates.end() || it->windows.empty()) {
+          throw std::invalid_argument(
+              "effect 'sinkage_resistance' acts on a patch, and the diagnosis found none to add "
+              "it on");
+        }
+        for (const auto& [t0, t1] : it->windows) {
+          out.model.effect_windows.push_back({name, t0, t1});
+        }
+      }
       if (std::find(out.model.effects.begin(), out.model.effects.end(), name) ==
           out.model.effects.end())
         out.model.effects.push_back(name);

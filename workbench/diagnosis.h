@@ -68,6 +68,7 @@ struct CandidateScore {
   std::string effect;
   std::string test;
   std::string where;  // the chosen patch or change point, when the test searched
+  std::vector<std::pair<double, double>> windows;  // its time spans (effect_signatures.h)
   // ((|magnitude| - negligible) / magnitude_sd)^2: chi-square, 1 dof, under the null
   // |theta| <= negligible (workbench/effect_signatures.h).
   double statistic = 0.0;

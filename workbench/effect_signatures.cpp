@@ -281,6 +281,17 @@ std::vector<EffectSignature> MakeSignatures() {
          char where[64];
          std::snprintf(where, sizeof(where), "patch %zu-%zu m", best_a, best_b);
          s.where = where;
+         // The patch's time spans (it may be driven more than once).
+         for (size_t k = 0; k < n; ++k) {
+           if (!(s_path[k] >= best_a && s_path[k] < best_b)) continue;
+           const double t = m.states[k].t;
+           const double step = k + 1 < n ? m.states[k + 1].t - t : 0.01;
+           if (!s.windows.empty() && t - s.windows.back().second <= 2.0 * step) {
+             s.windows.back().second = t + step;
+           } else {
+             s.windows.push_back({t, t + step});
+           }
+         }
          return std::vector{s};
        },
        nullptr});

@@ -38,6 +38,9 @@ struct SignatureSeries {
   // the p-value is multiplied by it (Bonferroni). 1 for a fixed shape.
   double searched = 1.0;
   std::string where;  // the chosen alternative, for the report ("patch 18-36 m")
+  // Its time spans in the log (for an effect that acts on windows: what `--with` gives the
+  // model's effect_windows).
+  std::vector<std::pair<double, double>> windows;
   // Set when the signature has already tested theta = 0 by other means (the score test on the
   // whole graph, workbench/graph_score_test.h): used as is; y and g are then empty.
   std::optional<SlopeFit> fit;
