@@ -60,6 +60,20 @@ constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.
 // Rate of the saturated sign of v (1/(m/s)), as the simulator's effects use it.
 constexpr double kModelEffectSignRate = 20.0;
 
+// The effects that are external forces (drag, turn slip, sinkage resistance), as an
+// acceleration (m/s^2): what a disturbance estimate no longer carries once they are in the
+// model. soft_ground: w of sinkage_resistance at this sample (0 or 1).
+template <typename T>
+inline T ExternalEffectsMps2(const T* x, const ward::Params& p, const T* theta,
+                             double soft_ground = 0.0) {
+  using std::abs;
+  const T v = x[ward::kVbx];
+  const T sign = SignedSaturation(v, kModelEffectSignRate);
+  return -theta[kQuadraticDrag] * v * abs(v) / p.mass_kg -
+         theta[kTurnSlip] * p.gravity_mps2 * abs(x[ward::kYawRate]) * sign -
+         theta[kSinkageResistance] * p.gravity_mps2 * soft_ground * sign;
+}
+
 // The accelerometer's model prediction without offsets, biases and a_dist: f_tire with the
 // effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0); soft_ground: w of
 // sinkage_resistance at this sample (0 or 1).
@@ -67,7 +81,6 @@ template <typename T>
 inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitude,
                                 const ward::Params& p, const T* theta, double soft_ground = 0.0) {
   using R = T;
-  using std::abs;
   R state[ward::kStateSize];
   for (int i = 0; i < ward::kStateSize; ++i) state[i] = x[i];
   const R radius_scale = R(1.0) + theta[kWheelRadiusError];
@@ -76,13 +89,8 @@ inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitu
   const ward::TireForces<R> forces = ward::ComputeTireForces(state, attitude, p);
   const double phi = std::abs(WardPitchUphillRad(attitude.pitch_rad));
   const R traction_n = forces.traction_left_n + forces.traction_right_n;
-  const R v = state[ward::kVbx];
-  return forces.f_tire_mps2 - theta[kSlopeSlip] * phi * traction_n / p.mass_kg -
-         theta[kQuadraticDrag] * v * abs(v) / p.mass_kg -
-         theta[kTurnSlip] * p.gravity_mps2 * abs(state[ward::kYawRate]) *
-             SignedSaturation(v, kModelEffectSignRate) -
-         theta[kSinkageResistance] * p.gravity_mps2 * soft_ground *
-             SignedSaturation(v, kModelEffectSignRate);
+  return forces.f_tire_mps2 - theta[kSlopeSlip] * phi * traction_n / p.mass_kg +
+         ExternalEffectsMps2(state, p, theta, soft_ground);
 }
 
 }  // namespace slipgraph

@@ -115,6 +115,12 @@ bool ModelConfig::IsValid(std::string* error) const {
   return true;
 }
 
+bool ModelConfig::InEffectWindow(const std::string& effect, double t) const {
+  return std::any_of(effect_windows.begin(), effect_windows.end(), [&](const EffectWindow& w) {
+    return w.effect == effect && t >= w.t_start_s && t < w.t_end_s;
+  });
+}
+
 ModelConfig DefaultModelConfig(const Vehicle& vehicle) {
   ModelConfig config;
   config.tire = vehicle.tire;

@@ -102,6 +102,8 @@ struct ModelConfig {
     double t_start_s = 0.0, t_end_s = 0.0;
   };
   std::vector<EffectWindow> effect_windows;
+  // Whether t (log time, s) lies in one of `effect`'s windows.
+  bool InEffectWindow(const std::string& effect, double t) const;
 
   // Ceres-style validity check: false with a message naming the first bad field.
   bool IsValid(std::string* error) const;

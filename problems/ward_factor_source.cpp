@@ -197,12 +197,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     }
     if (std::isfinite(imu.ax)) {
       if (effects != nullptr) {
-        double soft_ground = 0.0;
-        for (const ModelConfig::EffectWindow& w : model_.effect_windows) {
-          if (w.effect == "sinkage_resistance" && imu.t >= w.t_start_s && imu.t < w.t_end_s) {
-            soft_ground = 1.0;
-          }
-        }
+        const double soft_ground = model_.InEffectWindow("sinkage_resistance", imu.t) ? 1.0 : 0.0;
         Add("accelerometer",
             EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a, soft_ground),
             nullptr, x, offsets, effects);
