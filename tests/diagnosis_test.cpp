@@ -35,7 +35,7 @@ TEST(Diagnosis, NothingHiddenNothingSignificant) {
   const DriveLog log = Hidden("none");
   const Diagnosis d = Diagnose(log, NominalModel(log));
   ASSERT_FALSE(d.used_fallback);
-  ASSERT_EQ(d.candidates.size(), 8u);
+  ASSERT_EQ(d.candidates.size(), 10u);  // every model-catalogue effect
   for (const CandidateScore& c : d.candidates) {
     EXPECT_FALSE(c.significant) << c.effect << " p " << c.p_value << " magnitude " << c.magnitude;
   }

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 #include <random>
 
+#include "factors/normal_forces.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/measurement_stream.h"
@@ -103,6 +104,82 @@ double DerivativeAround(const ModelResiduals& m, size_t k,
   return (MeanOver(m, i + 3, i + 9, f) - MeanOver(m, i - 8, i - 2, f)) / dt;
 }
 
+// The best interval [a, b) of basis cells (metres of path, seconds of log) for a force on it,
+// against the same force on all cells (projected out: the interval must stand out from the
+// whole), with min_cells and, for a change point, b fixed at the end. statistic: S^2 / I of the
+// contrast with the factors' sd; p: the scan's own p-value from 4000 draws of the cell scores
+// under the null, N(0, Gram) (a fixed seed: the same log gives the same answer; Bonferroni over
+// thousands of overlapping intervals would be far too strict). share: the interval's Gram with
+// the whole over the whole's, the weight of the whole in the contrast shape.
+struct IntervalScan {
+  double statistic = -1.0, p = 1.0, share = 0.0;
+  size_t a = 0, b = 0;
+};
+
+IntervalScan ScanIntervals(const ProjectedBasis& projected, size_t min_cells, bool tails_only) {
+  IntervalScan out;
+  const size_t cells = static_cast<size_t>(projected.score.size());
+  if (cells < min_cells + 1) return out;
+  // Prefix sums of the Gram matrix: any interval's Gram with any other in O(1).
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(cells + 1, cells + 1);
+  for (size_t i = 0; i < cells; ++i) {
+    for (size_t j = 0; j < cells; ++j) {
+      gram(i + 1, j + 1) = projected.gram(i, j) + gram(i, j + 1) + gram(i + 1, j) - gram(i, j);
+    }
+  }
+  const double g_all = gram(cells, cells);
+  if (!(g_all > 0.0)) return out;
+  const auto WithAll = [&](size_t a, size_t b) { return gram(b, cells) - gram(a, cells); };
+  const auto Scan = [&](const Eigen::VectorXd& prefix) {
+    IntervalScan best;
+    const double total = prefix[cells];
+    for (size_t a = 0; a + min_cells <= cells; ++a) {
+      for (size_t b = tails_only ? cells : a + min_cells; b <= cells; ++b) {
+        const double g_pa = WithAll(a, b);
+        const double information =
+            gram(b, b) - gram(a, b) - gram(b, a) + gram(a, a) - g_pa * g_pa / g_all;
+        if (!(information > 1e-12 * g_all)) continue;
+        const double sab = prefix[b] - prefix[a] - g_pa / g_all * total;
+        if (sab * sab / information > best.statistic) {
+          best.statistic = sab * sab / information, best.a = a, best.b = b;
+        }
+      }
+    }
+    return best;
+  };
+  Eigen::VectorXd prefix(cells + 1);
+  prefix[0] = 0.0;
+  for (size_t j = 0; j < cells; ++j) prefix[j + 1] = prefix[j] + projected.score[j];
+  out = Scan(prefix);
+  if (out.statistic <= 0.0) return out;
+  out.share = WithAll(out.a, out.b) / g_all;
+  const Eigen::LLT<Eigen::MatrixXd> root(projected.gram + 1e-12 * projected.gram.diagonal().maxCoeff() *
+                                                              Eigen::MatrixXd::Identity(cells, cells));
+  std::mt19937_64 rng(20261123);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const int draws = 4000;
+  int exceed = 0;
+  Eigen::VectorXd z(cells);
+  for (int d = 0; d < draws; ++d) {
+    for (size_t j = 0; j < cells; ++j) z[j] = normal(rng);
+    const Eigen::VectorXd sample = root.matrixL() * z;
+    for (size_t j = 0; j < cells; ++j) prefix[j + 1] = prefix[j] + sample[j];
+    exceed += Scan(prefix).statistic >= out.statistic;
+  }
+  out.p = (exceed + 1.0) / (draws + 1.0);
+  return out;
+}
+
+// A scanned force shape h as a signature series: its graph score, and the scan's p-value as
+// the effective number of intervals searched (a multiplier on the chosen one's own p-value).
+void SetScanFit(const ModelResiduals& m, const std::vector<double>& h, const IntervalScan& scan,
+                SignatureSeries* s) {
+  s->fit = FitOf(m.graph->TestForce(h));
+  s->graph_column = [h](const GraphProjector& g) { return g.ForceColumn(h); };
+  s->searched =
+      std::max(1.0, scan.p / std::max(1e-300, NormalTwoSided(std::sqrt(scan.statistic))));
+}
+
 std::vector<EffectSignature> MakeSignatures() {
   std::vector<EffectSignature> list;
   list.push_back(
@@ -198,86 +275,15 @@ std::vector<EffectSignature> MakeSignatures() {
          const size_t metres = static_cast<size_t>(std::floor(s_path.back())) + 1;
          std::vector<std::vector<double>> basis(metres, std::vector<double>(n, 0.0));
          for (size_t k = 0; k < n; ++k) basis[static_cast<size_t>(s_path[k])][k] = Resistance(k);
-         const ProjectedBasis projected = m.graph->ProjectForces(basis);
-         // Patch [a, b): score and information are sums over its metres (prefix sums).
-         std::vector<double> score(metres + 1, 0.0);
-         Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(metres + 1, metres + 1);
-         for (size_t j = 0; j < metres; ++j) score[j + 1] = score[j] + projected.score[j];
-         for (size_t i = 0; i < metres; ++i) {
-           for (size_t j = 0; j < metres; ++j) {
-             gram(i + 1, j + 1) = projected.gram(i, j) + gram(i, j + 1) + gram(i + 1, j) - gram(i, j);
-           }
-         }
-         // Against the whole path's resistance (a rolling-resistance error, or the disturbance's
-         // own priors, would show there): the patch must stand out from it, so the whole-path
-         // shape is projected out too. G_pa: the patch's Gram with the whole path.
-         const double g_all = gram(metres, metres);
-         if (!(g_all > 0.0)) return std::vector{s};
-         const auto WithPath = [&](size_t a, size_t b) {
-           return gram(b, metres) - gram(a, metres);
-         };
-         // The best patch by the contrast's chi-square statistic, for a vector of metre scores
-         // (the observed one, and draws from its null distribution below).
-         const size_t min_patch = 3;
-         struct Patch {
-           double statistic = -1.0;
-           size_t a = 0, b = 0;
-         };
-         const auto Scan = [&](const Eigen::VectorXd& prefix) {
-           Patch best;
-           const double total = prefix[metres];
-           for (size_t a = 0; a + min_patch <= metres; ++a) {
-             for (size_t b = a + min_patch; b <= metres; ++b) {
-               const double g_pa = WithPath(a, b);
-               const double information =
-                   gram(b, b) - gram(a, b) - gram(b, a) + gram(a, a) - g_pa * g_pa / g_all;
-               if (!(information > 1e-12 * g_all)) continue;
-               const double sab = prefix[b] - prefix[a] - g_pa / g_all * total;
-               if (sab * sab / information > best.statistic) {
-                 best = {sab * sab / information, a, b};
-               }
-             }
-           }
-           return best;
-         };
-         const Patch found = Scan(Eigen::Map<const Eigen::VectorXd>(score.data(), metres + 1));
-         const double best = found.statistic;
+         const IntervalScan found = ScanIntervals(m.graph->ProjectForces(basis), 3, false);
+         if (found.statistic < 0.0) return std::vector{s};
          const size_t best_a = found.a, best_b = found.b;
-         // The scan's own p-value: the metre scores are N(0, Gram) under the null, so the
-         // distribution of the best patch's statistic comes from draws of them (a fixed seed:
-         // the same log gives the same answer). Bonferroni over ~2300 overlapping patches would
-         // be far too strict.
-         double scan_p = 1.0;
-         if (best > 0.0) {
-           const Eigen::LLT<Eigen::MatrixXd> root(
-               projected.gram + 1e-12 * projected.gram.diagonal().maxCoeff() *
-                                    Eigen::MatrixXd::Identity(metres, metres));
-           std::mt19937_64 rng(20261123);
-           std::normal_distribution<double> normal(0.0, 1.0);
-           const int draws = 4000;
-           int exceed = 0;
-           Eigen::VectorXd z(metres), prefix(metres + 1);
-           for (int d = 0; d < draws; ++d) {
-             for (size_t j = 0; j < metres; ++j) z[j] = normal(rng);
-             const Eigen::VectorXd sample = root.matrixL() * z;
-             prefix[0] = 0.0;
-             for (size_t j = 0; j < metres; ++j) prefix[j + 1] = prefix[j] + sample[j];
-             exceed += Scan(prefix).statistic >= best;
-           }
-           scan_p = (exceed + 1.0) / (draws + 1.0);
-         }
-         if (best < 0.0) return std::vector{s};
-         const double share = WithPath(best_a, best_b) / g_all;
          std::vector<double> h(n, 0.0);
          for (size_t k = 0; k < n; ++k) {
            const bool in = s_path[k] >= best_a && s_path[k] < best_b;
-           h[k] = ((in ? 1.0 : 0.0) - share) * Resistance(k);
+           h[k] = ((in ? 1.0 : 0.0) - found.share) * Resistance(k);
          }
-         s.fit = FitOf(m.graph->TestForce(h));
-         s.graph_column = [h](const GraphProjector& g) { return g.ForceColumn(h); };
-         // As a multiplier on the chosen patch's own p-value (the factors' sd): the effective
-         // number of patches searched.
-         s.searched = std::max(1.0, scan_p / std::max(1e-300, NormalTwoSided(std::sqrt(best))));
+         SetScanFit(m, h, found, &s);
          char where[64];
          std::snprintf(where, sizeof(where), "patch %zu-%zu m", best_a, best_b);
          s.where = where;
@@ -292,6 +298,81 @@ std::vector<EffectSignature> MakeSignatures() {
              s.windows.push_back({t, t + step});
            }
          }
+         return std::vector{s};
+       },
+       nullptr});
+  list.push_back(
+      {"load_transfer",
+       "score test on the graph of the traction change when acceleration unloads the driven "
+       "front wheels (the simulator's transfer m a h_cg / (2 L) per wheel, per unit scale)",
+       nullptr,
+       [](const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
+         SignatureSeries s;
+         s.stream = "graph";
+         const size_t n = m.states.size();
+         if (m.graph == nullptr || !m.graph->ok() || n < 3 ||
+             log.vehicle.type != VehicleType::kDiffDriveCastor) {
+           return std::vector{s};
+         }
+         const ward::Params p = ward::MakeParams(log.vehicle, model);
+         std::vector<double> h(n, 0.0);
+         for (size_t k = 1; k + 1 < n; ++k) {
+           const StateContext& c = m.states[k];
+           const double a = (m.states[k + 1].x[ward::kVbx] - m.states[k - 1].x[ward::kVbx]) /
+                            (m.states[k + 1].t - m.states[k - 1].t);
+           const ward::Attitude<double> attitude{c.roll_rad, c.pitch_rad};
+           const ward::TireForces<double> f = ward::ComputeTireForces(c.x.data(), attitude, p);
+           const DiffDriveNormalForces<double> normal = DiffDriveCastorNormalForcesN(
+               p.mass_kg * p.gravity_mps2, WardRollRad(c.roll_rad),
+               WardPitchUphillRad(c.pitch_rad), p.cg_to_front_m, p.cg_to_rear_m,
+               p.track_width_m, p.cg_height_m);
+           // Traction is proportional to the driven wheel's load; the rolling resistance moves
+           // between front and rear on the same side and cancels.
+           const double transfer =
+               p.mass_kg * a * p.cg_height_m / (p.cg_to_front_m + p.cg_to_rear_m) / 2.0;
+           h[k] = -transfer * (f.traction_left_n / normal.front_left_n +
+                               f.traction_right_n / normal.front_right_n) /
+                  p.mass_kg;
+         }
+         s.fit = FitOf(m.graph->TestForce(h));
+         s.graph_column = [h](const GraphProjector& g) { return g.ForceColumn(h); };
+         return std::vector{s};
+       },
+       nullptr});
+  list.push_back(
+      {"terrain_change",
+       "score test on the graph of a traction scale that changes at one moment (scanned on a 1 s "
+       "grid, at least 5 s before the end), against the same scale over the whole log; magnitude: "
+       "the relative change (a scale of 0.6 is -0.4)",
+       nullptr,
+       [](const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
+         SignatureSeries s;
+         s.stream = "graph";
+         const size_t n = m.states.size();
+         if (m.graph == nullptr || !m.graph->ok() || n < 2) return std::vector{s};
+         const ward::Params p = ward::MakeParams(log.vehicle, model);
+         const double t0 = m.states.front().t;
+         const size_t seconds = static_cast<size_t>(std::floor(m.states.back().t - t0)) + 1;
+         std::vector<double> traction(n, 0.0);
+         std::vector<std::vector<double>> basis(seconds, std::vector<double>(n, 0.0));
+         for (size_t k = 0; k < n; ++k) {
+           const StateContext& c = m.states[k];
+           const ward::TireForces<double> f =
+               ward::ComputeTireForces(c.x.data(), ward::Attitude<double>{c.roll_rad, c.pitch_rad}, p);
+           traction[k] = (f.traction_left_n + f.traction_right_n) / p.mass_kg;
+           basis[static_cast<size_t>(c.t - t0)][k] = traction[k];
+         }
+         const IntervalScan found = ScanIntervals(m.graph->ProjectForces(basis), 5, true);
+         if (found.statistic < 0.0) return std::vector{s};
+         std::vector<double> h(n, 0.0);
+         for (size_t k = 0; k < n; ++k) {
+           const bool after = static_cast<size_t>(m.states[k].t - t0) >= found.a;
+           h[k] = ((after ? 1.0 : 0.0) - found.share) * traction[k];
+         }
+         SetScanFit(m, h, found, &s);
+         char where[64];
+         std::snprintf(where, sizeof(where), "from t = %.0f s", t0 + found.a);
+         s.where = where;
          return std::vector{s};
        },
        nullptr});
