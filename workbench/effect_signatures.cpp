@@ -16,9 +16,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The unexplained force balance against a shape h(state index) in m/s^2 per unit magnitude, over
-// the states where the model says a_dist ~ 0; `states` (optional) receives each entry's state.
-SignatureSeries ForceSeriesWith(const ModelResiduals& m, const std::function<double(size_t)>& h,
-                                std::vector<size_t>* states = nullptr) {
+// the states where the model says a_dist ~ 0.
+SignatureSeries ForceSeriesWith(const ModelResiduals& m, const std::function<double(size_t)>& h) {
   SignatureSeries s;
   s.stream = "accelerometer";
   for (size_t k = 0; k < m.states.size(); ++k) {
@@ -35,7 +34,6 @@ SignatureSeries ForceSeriesWith(const ModelResiduals& m, const std::function<dou
     s.g.push_back(h(k) / c.force_sd);
     s.y_common_sd.push_back(c.force_state_sd / c.force_sd);
     s.y_common_next_corr.push_back(c.force_state_next_correlation);
-    if (states != nullptr) states->push_back(k);
   }
   return s;
 }

@@ -81,7 +81,6 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
     s.wheel_speeds = problem->wheel_speeds[k];
     s.unexplained_force = std::nan("");
     s.force_sd = std::nan("");
-    s.force_per_effect.fill(std::nan(""));
     if (k < solution.velocity_next_correlation.size()) {
       s.force_state_next_correlation = solution.velocity_next_correlation[k];
     }
@@ -137,9 +136,6 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
             sd * std::sqrt(std::pow(j[ward::kVbx] * state_sd[ward::kVbx], 2) +
                            std::pow(j[ward::kOmegaLeft] * state_sd[ward::kOmegaLeft], 2) +
                            std::pow(j[ward::kOmegaRight] * state_sd[ward::kOmegaRight], 2));
-        for (int j = 0; j < kModelEffectCount; ++j) {
-          s.force_per_effect[j] = -sd * e.jacobians[2][j];
-        }
       }
     }
   }

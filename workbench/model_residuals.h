@@ -33,7 +33,7 @@ struct StateContext {
   // The accelerometer sample's unexplained force balance
   //   u = a_x - (f_tire(x) + c_ax + b_ax)   (m/s^2, a_dist not subtracted)
   // where the model says a_dist ~ 0 (weak constraint 2 on), NaN elsewhere or without a sample;
-  // its sd, and the model prediction's derivative with respect to each effect magnitude.
+  // and its sd.
   double unexplained_force = 0.0;
   double force_sd = 0.0;
   // The part of u's uncertainty that comes from the solution's own uncertainty: the
@@ -43,7 +43,6 @@ struct StateContext {
   // Correlation of that error with the next state's (the velocity error's, from the chain
   // covariance; 1 when unknown, i.e. fully correlated).
   double force_state_next_correlation = 1.0;
-  std::array<double, kModelEffectCount> force_per_effect{};
   double accel_x = 0.0, accel_z = 0.0;  // the IMU sample nearest the state (NaN if none)
   double gyro_z = 0.0;
   std::array<double, 2> wheel_speeds{};  // measured driven-side [left, right]
