@@ -45,7 +45,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
           }
           const SmootherResult result = SmoothBatch(log, model, smoother_options);
           report << DescribeSmootherRun(result);
-          return EstimatorOutput{result.estimates, {}};
+          // a_dist: every external force, the model's effect terms included.
+          return EstimatorOutput{DisturbanceWithEffects(result, log, model), {}};
         });
     *status = 0;
   });

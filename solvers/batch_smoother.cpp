@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "factors/model_effects.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/smoothed_detection.h"
 
@@ -101,6 +102,24 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
                                        &result.estimates);
   result.notes.insert(result.notes.begin(), problem->counts.Describe());
   return result;
+}
+
+std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
+                                                const ModelConfig& model) {
+  std::vector<EkfEstimate> estimates = result.estimates;
+  double theta[kModelEffectCount] = {};
+  bool any = false;
+  for (const EffectEstimate& e : result.effects) {
+    const int index = ModelEffectIndex(e.name);
+    if (index >= 0) theta[index] = e.value, any = true;
+  }
+  if (!any) return estimates;
+  const ward::Params params = ward::MakeParams(log.vehicle, model);
+  for (EkfEstimate& e : estimates) {
+    const double soft = model.InEffectWindow("sinkage_resistance", e.t) ? 1.0 : 0.0;
+    e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta, soft);
+  }
+  return estimates;
 }
 
 std::string DescribeSmootherRun(const SmootherResult& result) {

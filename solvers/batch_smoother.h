@@ -53,4 +53,11 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
 
 std::string DescribeSmootherRun(const SmootherResult& result);
 
+// The estimates with the model's fitted external-force effects (drag, turn slip, sinkage
+// resistance; factors/model_effects.h) added to a_dist: the disturbance as every external force
+// the tires and gravity do not explain, as a simulator's truth and a reader of `a_dist` count
+// it. The solution's own a_dist leaves the modelled ones out (they are terms of their own).
+std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
+                                                const ModelConfig& model);
+
 }  // namespace slipgraph

@@ -101,9 +101,9 @@ TEST(ModelEffectsInTheSmoother, ASwitchedOnEffectGetsAMagnitudeAndAnSd) {
   ASSERT_FALSE(result.used_fallback);
   ASSERT_EQ(result.effects.size(), 1u);  // clock_offset has no term: noted, not estimated
   EXPECT_EQ(result.effects[0].name, "quadratic_drag");
-  // The drag hidden in this log is 40 N s^2/m^2; the fit is biased high (docs/smoother.md), so
-  // only its sign and a finite, positive sd are asserted.
-  EXPECT_GT(result.effects[0].value, 0.0);
+  // The drag hidden in this log is 40 N s^2/m^2 (fitted 39.6 +- 7.0 with the drag term alone,
+  // docs/workbench.md; here the model also names clock_offset, which has no term).
+  EXPECT_NEAR(result.effects[0].value, 40.0, 3.0 * result.effects[0].sd);
   EXPECT_TRUE(std::isfinite(result.effects[0].sd));
   EXPECT_GT(result.effects[0].sd, 0.0);
   bool noted = false;
@@ -111,6 +111,14 @@ TEST(ModelEffectsInTheSmoother, ASwitchedOnEffectGetsAMagnitudeAndAnSd) {
     noted = noted || note.find("clock_offset") != std::string::npos;
   }
   EXPECT_TRUE(noted);
+  // The disturbance as every external force: the fitted drag added back, -theta v|v| / m.
+  const std::vector<EkfEstimate> total = DisturbanceWithEffects(result, log, model);
+  ASSERT_EQ(total.size(), result.estimates.size());
+  const size_t k = total.size() / 2;
+  const double v = result.estimates[k].x[kVbx];
+  EXPECT_NEAR(total[k].x[kAdist] - result.estimates[k].x[kAdist],
+              -result.effects[0].value * v * std::abs(v) / log.vehicle.mass_kg, 1e-12);
+  EXPECT_GT(std::abs(v), 0.1);  // the check is not vacuous
 }
 
 }  // namespace

@@ -235,16 +235,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   if (!log.truth.empty()) {
     // The simulator's disturbance is every external force; with drag, turn slip or sinkage in
     // the model the estimate's a_dist no longer carries them, so they are added back.
-    std::vector<EkfEstimate> estimates = d.solution.estimates;
-    double theta[kModelEffectCount] = {};
-    for (const EffectEstimate& e : d.solution.effects) {
-      if (ModelEffectIndex(e.name) >= 0) theta[ModelEffectIndex(e.name)] = e.value;
-    }
-    const ward::Params params = ward::MakeParams(log.vehicle, model);
-    for (EkfEstimate& e : estimates) {
-      const double soft = model.InEffectWindow("sinkage_resistance", e.t) ? 1.0 : 0.0;
-      e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta, soft);
-    }
+    const std::vector<EkfEstimate> estimates = DisturbanceWithEffects(d.solution, log, model);
     const Evaluation e = Evaluate(log, EstimateTable(estimates));
     d.truth.available = true;
     d.truth.velocity_rmse = e.velocity_rmse;
