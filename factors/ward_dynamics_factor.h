@@ -8,7 +8,7 @@
 // reading that covers [t_k, t_{k+1}] (the sample stamped t_{k+1}, a mean over the interval;
 // m/s^2): v' = a_x - c_ax - b_ax - g sin(phi). S: the inverse
 // process-noise standard deviations per step. a_dist has its own random-walk factor
-// (disturbance_walk_factor.h) so that a robust loss can let it jump.
+// (state_walk_factor.h) so that a robust loss can let it jump.
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>

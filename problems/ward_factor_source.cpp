@@ -11,7 +11,7 @@
 #include "factors/bound_prior.h"
 #include "factors/diagonal_prior.h"
 #include "factors/disturbance_decay_prior.h"
-#include "factors/disturbance_walk_factor.h"
+#include "factors/state_walk_factor.h"
 #include "factors/effect_accelerometer_factor.h"
 #include "factors/encoder_factor.h"
 #include "factors/gnss_velocity_factor.h"
@@ -20,7 +20,6 @@
 #include "factors/rate_bound_prior.h"
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
-#include "factors/wheel_speed_walk_factor.h"
 #include "io/measurement_stream.h"
 #include "solvers/weak_constraints.h"
 

@@ -8,9 +8,8 @@
 #include "factors/bound_prior.h"
 #include "factors/diagonal_prior.h"
 #include "factors/disturbance_decay_prior.h"
-#include "factors/disturbance_walk_factor.h"
 #include "factors/oppose_motion_prior.h"
-#include "factors/wheel_speed_walk_factor.h"
+#include "factors/state_walk_factor.h"
 #include "tests/factor_check.h"
 
 namespace slipgraph {

@@ -262,11 +262,7 @@ std::vector<EffectSignature> MakeSignatures() {
          if (m.graph == nullptr || !m.graph->ok() || m.states.empty()) return std::vector{s};
          // Distance along the path at each state, and one basis shape per metre of it.
          const size_t n = m.states.size();
-         std::vector<double> s_path(n, 0.0);
-         for (size_t k = 1; k < n; ++k) {
-           s_path[k] = s_path[k - 1] + std::abs(m.states[k - 1].x[ward::kVbx]) *
-                                           (m.states[k].t - m.states[k - 1].t);
-         }
+         const std::vector<double> s_path = PathDistances(m);
          const auto Resistance = [&](size_t k) {
            return -9.80665 * std::tanh(20.0 * m.states[k].x[ward::kVbx]);
          };

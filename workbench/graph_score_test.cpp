@@ -71,10 +71,14 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   ok_ = true;
 }
 
+Eigen::MatrixXd GraphProjector::ProjectOut(const Eigen::MatrixXd& T) const {
+  return T - N_ * solver_.solve(Eigen::MatrixXd(N_.transpose() * T));
+}
+
 GraphScore GraphProjector::Test(const Eigen::VectorXd& t) const {
   GraphScore g;
   if (!ok_) return g;
-  const Eigen::VectorXd w = t - N_ * solver_.solve(Eigen::VectorXd(N_.transpose() * t));
+  const Eigen::VectorXd w = ProjectOut(t);
   const double information = w.squaredNorm();
   if (!(information > 0.0)) return g;
   const double score = w.dot(r_perp_);
@@ -136,7 +140,7 @@ ProjectedBasis GraphProjector::Project(const Eigen::MatrixXd& T) const {
   out.score = Eigen::VectorXd::Zero(T.cols());
   out.gram = Eigen::MatrixXd::Zero(T.cols(), T.cols());
   if (!ok_ || T.cols() == 0) return out;
-  const Eigen::MatrixXd W = T - N_ * solver_.solve(Eigen::MatrixXd(N_.transpose() * T));
+  const Eigen::MatrixXd W = ProjectOut(T);
   out.score = W.transpose() * r_perp_;
   out.gram = W.transpose() * W;
   return out;

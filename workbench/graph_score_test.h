@@ -63,6 +63,7 @@ class GraphProjector {
 
   bool ok() const { return ok_; }
   size_t states() const { return states_; }
+  Eigen::Index rows() const { return J_.rows(); }  // the graph's residual rows (column length)
 
   // Each model effect not in the model, tested alone (the other candidates held at 0).
   std::array<GraphScore, kModelEffectCount> EffectScores() const;
@@ -80,6 +81,8 @@ class GraphProjector {
  private:
   using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   GraphScore Test(const Eigen::VectorXd& t) const;
+  // (I - N (N'N)^-1 N') T: the columns' part the nuisance cannot mimic.
+  Eigen::MatrixXd ProjectOut(const Eigen::MatrixXd& T) const;
 
   bool ok_ = false;
   size_t states_ = 0;

@@ -44,6 +44,14 @@ Evaluated Evaluate(const ceres::Problem& problem, ceres::ResidualBlockId id) {
 
 }  // namespace
 
+std::vector<double> PathDistances(const ModelResiduals& m) {
+  std::vector<double> s(m.states.size(), 0.0);
+  for (size_t k = 1; k < s.size(); ++k) {
+    s[k] = s[k - 1] + std::abs(m.states[k - 1].x[ward::kVbx]) * (m.states[k].t - m.states[k - 1].t);
+  }
+  return s;
+}
+
 ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& model,
                                       const SmootherResult& solution,
                                       const BatchSmootherOptions& options) {

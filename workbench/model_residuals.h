@@ -62,6 +62,9 @@ struct ModelResiduals {
   const StreamResiduals* Find(const std::string& name) const;
 };
 
+// Distance driven along the path (m) at each state: the integral of |v_bx| over the states.
+std::vector<double> PathDistances(const ModelResiduals& m);
+
 // Evaluates the factors of the log's batch problem at `solution` (a SmoothBatch result on the same
 // log and model). Throws std::invalid_argument when the solution does not match the log.
 ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& model,

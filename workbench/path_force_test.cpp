@@ -34,12 +34,9 @@ PathForceTest TestForceAlongPath(const ModelResiduals& m, const Eigen::VectorXd*
   out.metre = metre;
   const size_t n = m.states.size();
   if (m.graph == nullptr || !m.graph->ok() || n < 2) return out;
-  // Path distance per state; the basis covers the states that move (a force on a robot at rest
-  // is the disturbance's business, weak constraint 4).
-  std::vector<double> s(n, 0.0);
-  for (size_t k = 1; k < n; ++k) {
-    s[k] = s[k - 1] + std::abs(m.states[k - 1].x[ward::kVbx]) * (m.states[k].t - m.states[k - 1].t);
-  }
+  // The basis covers the states that move (a force on a robot at rest is the disturbance's
+  // business, weak constraint 4).
+  const std::vector<double> s = PathDistances(m);
   const size_t cells = static_cast<size_t>(std::floor(s.back() / metre)) + 1;
   std::vector<std::vector<double>> basis(cells, std::vector<double>(n, 0.0));
   std::vector<double> t_first(cells, NAN), t_last(cells, NAN);
@@ -50,7 +47,15 @@ PathForceTest TestForceAlongPath(const ModelResiduals& m, const Eigen::VectorXd*
     if (std::isnan(t_first[j])) t_first[j] = m.states[k].t;
     t_last[j] = m.states[k].t;
   }
-  const ProjectedBasis projected = m.graph->ProjectForces(basis);
+  // One projection serves the basis alone (its leading block) and, with the candidate's column
+  // appended, the joint test.
+  const bool with_candidate = candidate_column != nullptr;
+  Eigen::MatrixXd T(m.graph->rows(), static_cast<Eigen::Index>(cells) + (with_candidate ? 1 : 0));
+  for (size_t j = 0; j < cells; ++j) T.col(j) = m.graph->ForceColumn(basis[j]);
+  if (with_candidate) T.col(cells) = *candidate_column;
+  const ProjectedBasis joint = m.graph->Project(T);
+  const Eigen::Index nc = static_cast<Eigen::Index>(cells);
+  const ProjectedBasis projected{joint.score.head(nc), joint.gram.topLeftCorner(nc, nc)};
   const auto [x2, rank] = ChiSquareOfScores(projected.score, projected.gram);
   if (rank == 0) return out;
   out.tested = true;
@@ -58,17 +63,12 @@ PathForceTest TestForceAlongPath(const ModelResiduals& m, const Eigen::VectorXd*
   out.dof = rank;
   out.p_value = ChiSquareUpperTail(x2, rank);
 
-  if (candidate_column != nullptr) {
+  if (with_candidate) {
     // Joint with the candidate, minus the candidate alone: what is left after it.
-    Eigen::MatrixXd T(candidate_column->size(), static_cast<Eigen::Index>(cells) + 1);
-    for (size_t j = 0; j < cells; ++j) T.col(j) = m.graph->ForceColumn(basis[j]);
-    T.col(cells) = *candidate_column;
-    const ProjectedBasis joint = m.graph->Project(T);
     const auto [x2_joint, rank_joint] = ChiSquareOfScores(joint.score, joint.gram);
-    const double own_information = joint.gram(cells, cells);
-    const double own = own_information > 0.0
-                           ? joint.score[cells] * joint.score[cells] / own_information
-                           : 0.0;
+    const double own_information = joint.gram(nc, nc);
+    const double own =
+        own_information > 0.0 ? joint.score[nc] * joint.score[nc] / own_information : 0.0;
     out.after_effect = candidate;
     out.after_statistic = std::max(0.0, x2_joint - own);
     out.after_dof = std::max(0, rank_joint - (own_information > 0.0 ? 1 : 0));
