@@ -25,8 +25,8 @@ struct EffectAccelerometerFactor {
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, const T* theta, T* residual) const {
-    const T predicted = TireBalanceWithEffects(x, attitude_, params_, theta, soft_ground_) + offsets[0] +
-                        x[ward::kAccelBias] + x[ward::kAdist];
+    const T predicted = TireBalanceWithEffects(x, attitude_, params_, theta, soft_ground_) +
+                        offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
     residual[0] = sqrt_information_ * (measured_ - predicted);
     return true;
   }

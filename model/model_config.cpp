@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include <cmath>
 #include <sstream>
 
 #include "model/effect_catalogue.h"

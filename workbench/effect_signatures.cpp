@@ -203,7 +203,7 @@ std::vector<EffectSignature> MakeSignatures() {
          }
        }});
   list.push_back({"wheel_radius_error",
-                  "force balance against d f_tire / d radius; GNSS velocity residual against v",
+                  "score test on the graph of its term's column (factors/model_effects.h)",
                   nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kWheelRadiusError)};
@@ -240,12 +240,12 @@ std::vector<EffectSignature> MakeSignatures() {
          }
        }});
   list.push_back({"slope_slip",
-                  "force balance against d f_tire / d slope_slip (|grade| x traction)", nullptr,
+                  "score test on the graph of its term's column (traction x |grade|)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kSlopeSlip)};
                   },
                   nullptr});
-  list.push_back({"turn_slip", "force balance against -g |yaw rate| sgn(v)", nullptr,
+  list.push_back({"turn_slip", "score test on the graph of its term's column (-g |yaw rate| sgn(v))", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kTurnSlip)};
                   },
@@ -370,7 +370,7 @@ std::vector<EffectSignature> MakeSignatures() {
          return std::vector{s};
        },
        nullptr});
-  list.push_back({"quadratic_drag", "force balance against -v |v| / m", nullptr,
+  list.push_back({"quadratic_drag", "score test on the graph of its term's column (-v |v| / m)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kQuadraticDrag)};
                   },

@@ -3,7 +3,9 @@
 // into pairs (y, g) with y ~ c + theta g, theta the effect's magnitude in the catalogue's unit;
 // the workbench fits theta with a HAC standard error (workbench/robust_statistics.h) on each
 // pair. That is a score (Lagrange-multiplier) test of theta = 0 at the current solution, made
-// robust to the colored residuals a smoother leaves.
+// robust to the colored residuals a smoother leaves. An effect in the physics is tested on the
+// whole graph instead (workbench/graph_score_test.h: its term's column, or an external force
+// shape through ModelResiduals::graph): its series carries the ready fit and no (y, g).
 //
 // The built-in signatures are the table in effect_signatures.cpp. A new effect is one file: a
 // signature (and, for a sensor effect, its correction) registered with a static
