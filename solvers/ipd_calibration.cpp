@@ -223,7 +223,8 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
   double last_update_t = segments.empty() ? 0.0 : segments.front().t_start;
   const std::array<double, kAlphaSize> zero{};
   size_t next_update = 0;
-  long rejected = 0;
+  long rejected = 0, readmitted = 0;
+  int gated_in_a_row = 0;
 
   // Segment j's update, applied once its end pose is measured.
   const auto update = [&](const IpdSegment& seg) {
@@ -237,14 +238,23 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
         seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
     const Eigen::Matrix3d R = terms.Total(q);
-    const Eigen::Matrix3d HPH = H * P * H.transpose();  // the prior's share of the residual
-    const Eigen::Matrix3d S = HPH + R;
-    const Eigen::LDLT<Eigen::Matrix3d> S_ldlt(S);
+    Eigen::Matrix3d HPH = H * P * H.transpose();  // the prior's share of the residual
+    Eigen::LDLT<Eigen::Matrix3d> S_ldlt(HPH + R);
     // A 3-dof chi-square gate at 99.99 %: a pose glitch must not wreck the model.
-    if (residual.dot(S_ldlt.solve(residual)) > 21.1) {
+    double nis = residual.dot(S_ldlt.solve(residual));
+    if (nis > 21.1) {
       ++rejected;
-      return;
+      if (options.readmit_after <= 0 || ++gated_in_a_row <= options.readmit_after) return;
+      // Persistent: scale alpha's covariance until the residual is plausible.
+      ++readmitted;
+      for (int iteration = 0; iteration < 30 && nis > 21.1; ++iteration) {
+        P *= 2.0;
+        HPH *= 2.0;
+        S_ldlt.compute(HPH + R);
+        nis = residual.dot(S_ldlt.solve(residual));
+      }
     }
+    gated_in_a_row = 0;
     const Eigen::Matrix<double, kAlphaSize, 3> K =
         P * H.transpose() * S_ldlt.solve(Eigen::Matrix3d::Identity());
     alpha += K * residual;  // (33)
@@ -267,7 +277,8 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     }
     result.no_slip.push_back(EvaluatePrediction(segments[i], zero.data(), options, q));
     PredictionError e = EvaluatePrediction(segments[i], alpha.data(), options, q);
-    e.predicted_covariance += ParameterCovariance(segments[i], alpha.data(), P, options);
+    e.parameter_covariance = ParameterCovariance(segments[i], alpha.data(), P, options);
+    e.predicted_covariance += e.parameter_covariance;
     result.calibrated.push_back(e);
   }
   while (next_update < segments.size()) update(segments[next_update++]);
@@ -278,7 +289,10 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
   result.final_q = q;
   if (rejected > 0) {
     result.notes.push_back(std::to_string(rejected) +
-                           " segment(s) rejected by the 99.99 % innovation gate");
+                           " segment(s) failed the 99.99 % innovation gate, " +
+                           std::to_string(readmitted) +
+                           " of them taken with alpha's covariance inflated (a persistent "
+                           "misfit: the terrain changed)");
   }
   return result;
 }

@@ -31,12 +31,16 @@ struct IpdOptions {
   double spacing_s = 0.5;  // a new segment starts this often (segments overlap)
   double gravity_mps2 = 9.80665;
   double alpha_prior_sd = 0.5;   // initial sd of each alpha (alpha starts at 0, as the paper)
-  double alpha_walk_sd = 0.005;  // random walk of each alpha per sqrt(s): terrain changes
+  double alpha_walk_sd = 0.001;  // random walk of each alpha per sqrt(s): slow drift
   Eigen::Vector3d q_initial{1e-3, 1e-3, 1e-3};  // initial Q diagonal ((m/s)^2 s, ..., (rad/s)^2 s)
   double q_prior_sd = 1e-3;                     // initial sd of each q
   double q_walk_sd = 1e-5;                      // random walk of each q per sqrt(s)
   bool calibrate_q = true;
   double min_pose_sd_m = 0.005;  // floor for the measured poses' stated sd
+  // After this many gated segments in a row the next one is taken, alpha's covariance doubled
+  // until it passes the gate (fading memory: the model, not a pose, is wrong — a terrain
+  // change). 0: never.
+  int readmit_after = 1;
 };
 
 // One path segment: odometry steps between two pose measurements, and their relative pose.
@@ -56,6 +60,8 @@ struct PredictionError {
   double t_start = 0.0;
   double along_m = 0.0, cross_m = 0.0, heading_rad = 0.0;
   Eigen::Matrix3d predicted_covariance = Eigen::Matrix3d::Zero();  // R_sys with the current Q
+  // The share of predicted_covariance from alpha's own uncertainty (H P H'; 0 for a fixed alpha).
+  Eigen::Matrix3d parameter_covariance = Eigen::Matrix3d::Zero();
 };
 
 PredictionError EvaluatePrediction(const IpdSegment& segment, const double* alpha,

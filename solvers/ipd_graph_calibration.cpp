@@ -1,6 +1,7 @@
 #include "solvers/ipd_graph_calibration.h"
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
@@ -28,6 +29,16 @@ struct AlphaWalk {
     return true;
   }
 };
+
+ceres::ResidualBlockId AddWalk(ceres::Problem* problem, double inverse_sd,
+                               const IpdGraphOptions& graph, double* a, double* b) {
+  ceres::LossFunction* loss =
+      graph.walk_huber_sd > 0.0 ? new ceres::HuberLoss(graph.walk_huber_sd) : nullptr;
+  return problem->AddResidualBlock(
+      new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
+                                      ipd::kAlphaSize>(new AlphaWalk{inverse_sd}),
+      loss, a, b);
+}
 
 ceres::Solver::Options SolverOptions(int max_iterations) {
   ceres::Solver::Options o;
@@ -88,7 +99,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       const IpdSegment& seg = segments[next_prediction++];
       result.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, stochastic.q()));
       PredictionError e = EvaluatePrediction(seg, latest.data(), options, stochastic.q());
-      e.predicted_covariance += ParameterCovariance(seg, latest.data(), latest_covariance, options);
+      e.parameter_covariance = ParameterCovariance(seg, latest.data(), latest_covariance, options);
+      e.predicted_covariance += e.parameter_covariance;
       result.calibrated.push_back(e);
     }
     // Add alpha blocks up to j, each tied to the previous by the walk.
@@ -100,10 +112,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
         problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
                                  nullptr, alpha);
       } else if (blocks.size() > 1) {
-        problem.AddResidualBlock(
-            new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
-                                            ipd::kAlphaSize>(new AlphaWalk{walk_inverse_sd}),
-            nullptr, blocks[blocks.size() - 2].data(), alpha);
+        AddWalk(&problem, walk_inverse_sd, graph, blocks[blocks.size() - 2].data(), alpha);
       }
     }
     // Segments that have ended by the block's end, on the block of their midpoint.
@@ -190,10 +199,7 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
                            nullptr, blocks[0].data());
   for (int j = 1; j < n_blocks; ++j) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
-                                        ipd::kAlphaSize>(new AlphaWalk{walk_inverse_sd}),
-        nullptr, blocks[j - 1].data(), blocks[j].data());
+    AddWalk(&problem, walk_inverse_sd, graph, blocks[j - 1].data(), blocks[j].data());
   }
   for (const IpdSegment& seg : segments) {
     const int b =

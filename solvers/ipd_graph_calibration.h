@@ -17,6 +17,10 @@ struct IpdGraphOptions {
   double block_s = 5.0;
   double window_s = 60.0;
   int max_iterations = 10;
+  // The walk between alpha blocks is Gaussian up to this norm of the whitened 13-vector and
+  // Huber beyond: a terrain change is a jump, not a drift. 5.26 = sqrt of the 99 % point of
+  // chi-square with 13 dof (1 % of ordinary steps are down-weighted). 0: Gaussian throughout.
+  double walk_huber_sd = 5.26;
 };
 IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options = {},
                                         const IpdGraphOptions& graph = {});
