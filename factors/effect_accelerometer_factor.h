@@ -4,8 +4,8 @@
 //
 // Parameter blocks: x_k (7), IMU offsets [c_ax, c_gz] (2), effect magnitudes theta
 // (kModelEffectCount; the problem holds the inactive ones constant at 0). With theta = 0 it is
-// AccelerometerFactor exactly (tests/model_effects_test.cpp). soft_ground: whether the sample
-// lies in one of the model's sinkage windows.
+// AccelerometerFactor exactly (tests/model_effects_test.cpp). windows: the windowed effects'
+// weights at the sample (EffectWindowWeightsAt).
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
@@ -16,16 +16,16 @@ namespace slipgraph {
 
 struct EffectAccelerometerFactor {
   EffectAccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
-                            double accel_x_mps2, double sd_mps2, double soft_ground = 0.0)
+                            double accel_x_mps2, double sd_mps2, const EffectWindowWeights& windows = {})
       : params_(params),
         attitude_(attitude),
         measured_(accel_x_mps2),
         sqrt_information_(1.0 / sd_mps2),
-        soft_ground_(soft_ground) {}
+        windows_(windows) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, const T* theta, T* residual) const {
-    const T predicted = TireBalanceWithEffects(x, attitude_, params_, theta, soft_ground_) +
+    const T predicted = TireBalanceWithEffects(x, attitude_, params_, theta, windows_) +
                         offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
     residual[0] = sqrt_information_ * (measured_ - predicted);
     return true;
@@ -33,10 +33,10 @@ struct EffectAccelerometerFactor {
 
   static ceres::CostFunction* Create(const ward::Params& params,
                                      const ward::Attitude<double>& attitude, double accel_x_mps2,
-                                     double sd_mps2, double soft_ground = 0.0) {
+                                     double sd_mps2, const EffectWindowWeights& windows = {}) {
     return new ceres::AutoDiffCostFunction<EffectAccelerometerFactor, 1, ward::kStateSize, 2,
                                            kModelEffectCount>(
-        new EffectAccelerometerFactor(params, attitude, accel_x_mps2, sd_mps2, soft_ground));
+        new EffectAccelerometerFactor(params, attitude, accel_x_mps2, sd_mps2, windows));
   }
 
  private:
@@ -44,7 +44,7 @@ struct EffectAccelerometerFactor {
   ward::Attitude<double> attitude_;
   double measured_;
   double sqrt_information_;
-  double soft_ground_;  // sinkage_resistance's w at this sample (model_effects.h)
+  EffectWindowWeights windows_;
 };
 
 }  // namespace slipgraph

@@ -11,10 +11,11 @@
 //   turn_slip           a = -theta g |yaw rate| sgn~(v)            (s/rad)
 //   slope_slip          traction x (1 - theta |phi|)               (1/rad)
 //   wheel_radius_error  effective radius r (1 + theta)             (fraction)
-//   sinkage_resistance  a = -theta g w sgn~(v)                     (fraction of weight)
+//   sinkage_resistance  a = -theta g w_soft sgn~(v)                (fraction of weight)
+//   terrain_change      traction x (1 + theta w_changed)           (relative change)
 //
-// where w is 1 on soft ground and 0 elsewhere: the model's effect windows
-// (ModelConfig::effect_windows, times where the robot is on a patch the workbench found).
+// where w_soft is 1 on soft ground and w_changed 1 on the changed terrain, 0 elsewhere: the
+// model's effect windows (ModelConfig::effect_windows, times the workbench found).
 //
 // sgn~ is the Jet-safe saturated sign the simulator uses. Templated on the state's and the
 // magnitudes' scalar, so the Ceres factor and any other caller share one copy. The other
@@ -27,6 +28,7 @@
 
 #include "factors/smooth_math.h"
 #include "factors/ward_dynamics.h"
+#include "model/model_config.h"
 
 namespace slipgraph {
 
@@ -36,12 +38,14 @@ enum ModelEffect {
   kSlopeSlip,
   kWheelRadiusError,
   kSinkageResistance,
+  kTerrainChange,
   kModelEffectCount
 };
 
 inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
   static const std::array<const char*, kModelEffectCount> kNames = {
-      "quadratic_drag", "turn_slip", "slope_slip", "wheel_radius_error", "sinkage_resistance"};
+      "quadratic_drag",     "turn_slip",         "slope_slip", "wheel_radius_error",
+      "sinkage_resistance", "terrain_change"};
   return kNames;
 }
 
@@ -55,7 +59,21 @@ inline int ModelEffectIndex(const std::string& name) {
 
 // Standard deviations of the weak prior on each magnitude (around 0) when the effect is switched
 // on: several times the catalogue's typical value, so the data decide.
-constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0, 0.3, 0.3};
+constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0,
+                                                                        0.3,   0.3, 1.0};
+
+// The weights of the effects that act on windows of the drive (ActsOnWindows in
+// model/model_config.h) at one sample: 1 inside one of the effect's windows, 0 outside.
+struct EffectWindowWeights {
+  double soft_ground = 0.0;      // sinkage_resistance
+  double changed_terrain = 0.0;  // terrain_change
+};
+inline EffectWindowWeights EffectWindowWeightsAt(const ModelConfig& model, double t) {
+  EffectWindowWeights w;
+  w.soft_ground = model.InEffectWindow("sinkage_resistance", t) ? 1.0 : 0.0;
+  w.changed_terrain = model.InEffectWindow("terrain_change", t) ? 1.0 : 0.0;
+  return w;
+}
 
 // Rate of the saturated sign of v (1/(m/s)), as the simulator's effects use it.
 constexpr double kModelEffectSignRate = 20.0;
@@ -75,11 +93,12 @@ inline T ExternalEffectsMps2(const T* x, const ward::Params& p, const T* theta,
 }
 
 // The accelerometer's model prediction without offsets, biases and a_dist: f_tire with the
-// effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0); soft_ground: w of
-// sinkage_resistance at this sample (0 or 1).
+// effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0); w: the windowed
+// effects' weights at this sample.
 template <typename T>
 inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitude,
-                                const ward::Params& p, const T* theta, double soft_ground = 0.0) {
+                                const ward::Params& p, const T* theta,
+                                const EffectWindowWeights& w = {}) {
   using R = T;
   R state[ward::kStateSize];
   for (int i = 0; i < ward::kStateSize; ++i) state[i] = x[i];
@@ -89,8 +108,10 @@ inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitu
   const ward::TireForces<R> forces = ward::ComputeTireForces(state, attitude, p);
   const double phi = std::abs(WardPitchUphillRad(attitude.pitch_rad));
   const R traction_n = forces.traction_left_n + forces.traction_right_n;
-  return forces.f_tire_mps2 - theta[kSlopeSlip] * phi * traction_n / p.mass_kg +
-         ExternalEffectsMps2(state, p, theta, soft_ground);
+  return forces.f_tire_mps2 +
+         (theta[kTerrainChange] * w.changed_terrain - theta[kSlopeSlip] * phi) * traction_n /
+             p.mass_kg +
+         ExternalEffectsMps2(state, p, theta, w.soft_ground);
 }
 
 }  // namespace slipgraph

@@ -87,8 +87,9 @@ bool ModelConfig::IsValid(std::string* error) const {
     }
   }
   for (const EffectWindow& w : effect_windows) {
-    if (w.effect != "sinkage_resistance") {
-      *error = "effect_windows: '" + w.effect + "' does not act on windows (only sinkage_resistance)";
+    if (!ActsOnWindows(w.effect)) {
+      *error = "effect_windows: '" + w.effect +
+               "' does not act on windows (only sinkage_resistance and terrain_change)";
       return false;
     }
     if (!(std::isfinite(w.t_start_s) && std::isfinite(w.t_end_s) && w.t_end_s > w.t_start_s)) {
@@ -96,21 +97,25 @@ bool ModelConfig::IsValid(std::string* error) const {
       return false;
     }
   }
-  const bool sinkage_on =
-      std::find(effects.begin(), effects.end(), "sinkage_resistance") != effects.end();
-  const bool sinkage_windows =
-      std::any_of(effect_windows.begin(), effect_windows.end(),
-                  [](const EffectWindow& w) { return w.effect == "sinkage_resistance"; });
-  if (sinkage_on && !sinkage_windows) {
-    *error = "effects: sinkage_resistance needs effect_windows (the times on soft ground; "
-             "`slipgraph diagnose --with sinkage_resistance` takes them from the patch it finds)";
-    return false;
+  for (const std::string& name : effects) {
+    if (!ActsOnWindows(name)) continue;
+    if (std::none_of(effect_windows.begin(), effect_windows.end(),
+                     [&](const EffectWindow& w) { return w.effect == name; })) {
+      *error = "effects: " + name +
+               " needs effect_windows (the times it acts; `slipgraph diagnose --with " + name +
+               "` takes them from what it finds)";
+      return false;
+    }
   }
   if (offset_init_samples < 1) {
     *error = "offset_init_samples must be at least 1";
     return false;
   }
   return true;
+}
+
+bool ActsOnWindows(const std::string& effect) {
+  return effect == "sinkage_resistance" || effect == "terrain_change";
 }
 
 bool ModelConfig::InEffectWindow(const std::string& effect, double t) const {

@@ -95,8 +95,9 @@ struct ModelConfig {
   int offset_init_samples = 100;      // n: IMU samples averaged for the constant offsets
   double offset_ema_samples = 200.0;  // p of eq. (12) for the offsets at rest
   std::vector<std::string> effects;   // optional physical effects switched on, by name
-  // Where an effect that acts on part of a drive acts: for sinkage_resistance, the time spans
-  // (log time, s) on soft ground, as `diagnose` found them. Required when that effect is on.
+  // Where an effect that acts on part of a drive acts (ActsOnWindows): for sinkage_resistance
+  // the time spans (log time, s) on soft ground, for terrain_change those on the changed
+  // terrain, as `diagnose` found them. Required when such an effect is on.
   struct EffectWindow {
     std::string effect;
     double t_start_s = 0.0, t_end_s = 0.0;
@@ -108,6 +109,9 @@ struct ModelConfig {
   // Ceres-style validity check: false with a message naming the first bad field.
   bool IsValid(std::string* error) const;
 };
+
+// The effects that act on windows of a drive (ModelConfig::effect_windows).
+bool ActsOnWindows(const std::string& effect);
 
 // In-class defaults with the vehicle's nominal tire, rolling and sensor values merged in.
 ModelConfig DefaultModelConfig(const Vehicle& vehicle);

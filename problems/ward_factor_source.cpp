@@ -196,9 +196,9 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     }
     if (std::isfinite(imu.ax)) {
       if (effects != nullptr) {
-        const double soft_ground = model_.InEffectWindow("sinkage_resistance", imu.t) ? 1.0 : 0.0;
         Add("accelerometer",
-            EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a, soft_ground),
+            EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a,
+                                              EffectWindowWeightsAt(model_, imu.t)),
             nullptr, x, offsets, effects);
       } else {
         Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,

@@ -116,8 +116,8 @@ std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, co
   if (!any) return estimates;
   const ward::Params params = ward::MakeParams(log.vehicle, model);
   for (EkfEstimate& e : estimates) {
-    const double soft = model.InEffectWindow("sinkage_resistance", e.t) ? 1.0 : 0.0;
-    e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta, soft);
+    e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta,
+                                             EffectWindowWeightsAt(model, e.t).soft_ground);
   }
   return estimates;
 }

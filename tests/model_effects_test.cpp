@@ -78,17 +78,29 @@ TEST(EffectAccelerometerFactor, EachTermByHand) {
   // Sinkage 0.08 of the weight, only on soft ground (the sample inside an effect window).
   const double sinkage[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.08};
   EXPECT_DOUBLE_EQ(Residual(*f, {kSlipping, kOffsets, sinkage}), base);
+  EffectWindowWeights on_soft_ground;
+  on_soft_ground.soft_ground = 1.0;
   const std::unique_ptr<ceres::CostFunction> soft(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, 1.0));
+      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, on_soft_ground));
   EXPECT_NEAR(Residual(*soft, {kSlipping, kOffsets, sinkage}) - base,
               0.08 * kParams.gravity_mps2 * (1.0 - std::exp(-kModelEffectSignRate * v)) / 0.25,
+              1e-9);
+  // Terrain change -0.4 (a traction scale of 0.6), only on the changed terrain: the traction
+  // shrinks by 40 %, and not on soft ground alone.
+  const double change[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.0, -0.4};
+  EXPECT_DOUBLE_EQ(Residual(*soft, {kSlipping, kOffsets, change}), base);
+  EffectWindowWeights on_changed_terrain;
+  on_changed_terrain.changed_terrain = 1.0;
+  const std::unique_ptr<ceres::CostFunction> changed(
+      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, on_changed_terrain));
+  EXPECT_NEAR(Residual(*changed, {kSlipping, kOffsets, change}) - base, 0.4 * traction / 0.25,
               1e-9);
 }
 
 TEST(EffectAccelerometerFactor, Jacobians) {
   const std::unique_ptr<ceres::CostFunction> f(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, 1.0));
-  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05, 0.08};
+      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, {1.0, 1.0}));
+  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4};
   // As for the plain factor, the smoothed laws' kinks bound the finite differences (1e-5).
   testing::ExpectJacobiansMatchNumeric(*f, {kSlipping, kOffsets, theta}, 1e-5);
 }

@@ -77,6 +77,15 @@ TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
   EXPECT_EQ(sinkage.effect_windows[0].effect, "sinkage_resistance");
   EXPECT_DOUBLE_EQ(sinkage.effect_windows[0].t_start_s, 21.5);
   EXPECT_DOUBLE_EQ(sinkage.effect_windows[0].t_end_s, 38.25);
+  // So does a terrain change (the changed terrain's times).
+  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [terrain_change]\n"), LagrVehicle()),
+               InputError);
+  const ModelConfig change = ReadModelYaml(
+      WriteModel("effects: [terrain_change]\n"
+                 "effect_windows: [{effect: terrain_change, from: 31, to: 87}]\n"),
+      LagrVehicle());
+  EXPECT_TRUE(change.InEffectWindow("terrain_change", 40.0));
+  EXPECT_FALSE(change.InEffectWindow("terrain_change", 20.0));
 }
 
 TEST(YamlConfig, InvalidModelValueIsRejected) {

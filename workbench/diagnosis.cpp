@@ -106,7 +106,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   c.added_as = ModelEffectIndex(signature.effect) >= 0 ? "smoother term"
                : signature.correct                     ? "measurement correction"
                                                        : "";
-  double searched = 1.0, precision = 0.0, weighted = 0.0;
+  double searched = 1.0, precision = 0.0, weighted = 0.0, model_precision = 0.0;
   for (const SignatureSeries& s : signature.series(m, log, model)) {
     const SlopeFit fit =
         s.fit ? *s.fit : FitSlopeHac(s.y, s.g, s.y_common_sd, s.y_common_next_corr);
@@ -119,6 +119,8 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
     if (!s.windows.empty()) c.windows = s.windows;
     precision += 1.0 / (fit.sd * fit.sd);
     weighted += fit.slope / (fit.sd * fit.sd);
+    const double naive = fit.naive_sd > 0.0 ? fit.naive_sd : fit.sd;
+    model_precision += 1.0 / (naive * naive);
   }
   if (c.dof == 0) return c;
   // One magnitude seen through every series: their precision-weighted mean, tested against
@@ -129,8 +131,48 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   const double z = std::max(0.0, std::abs(c.magnitude) - negligible) / c.magnitude_sd;
   c.statistic = z * z;
   c.dof = 1;
+  c.searched = searched;
+  c.dispersion = std::max(1.0, model_precision / precision);
   c.p_value = std::min(1.0, NormalTwoSided(z) * searched);
   return c;
+}
+
+// The best `options.fit_candidates` candidates with a smoother term, each fitted: its statistic
+// becomes the quasi-likelihood ratio and its p-value that statistic's (CandidateScore).
+// candidate_count: the Bonferroni multiplier the score tests had.
+void FitAndCompare(const DriveLog& log, const ModelConfig& model, double cost_without,
+                   const DiagnosisOptions& options, size_t candidate_count,
+                   std::vector<CandidateScore>* candidates) {
+  for (size_t i = 0; i < candidates->size() && i < static_cast<size_t>(options.fit_candidates);
+       ++i) {
+    CandidateScore& c = (*candidates)[i];
+    if (ModelEffectIndex(c.effect) < 0 || c.dof == 0) continue;
+    if (ActsOnWindows(c.effect) && c.windows.empty()) continue;
+    ModelConfig with = model;
+    with.effects.push_back(c.effect);
+    if (ActsOnWindows(c.effect)) {
+      for (const auto& [t0, t1] : c.windows) with.effect_windows.push_back({c.effect, t0, t1});
+    }
+    BatchSmootherOptions smoother = options.smoother;
+    smoother.filter.ekf.record_innovations = false;
+    const SmootherResult fit = SmoothBatch(log, with, smoother);
+    if (fit.used_fallback) continue;
+    for (const EffectEstimate& e : fit.effects) {
+      if (e.name != c.effect) continue;
+      c.fitted = true;
+      c.likelihood_ratio = std::max(0.0, 2.0 * (cost_without - fit.final_cost));
+      c.score_statistic = c.statistic;
+      c.score_p_value = c.p_value;
+      c.score_magnitude = c.magnitude;
+      c.score_magnitude_sd = c.magnitude_sd;
+      c.magnitude = e.value;
+      c.magnitude_sd = e.sd;
+      c.statistic = c.likelihood_ratio / c.dispersion;
+      c.p_value =
+          std::min(1.0, NormalTwoSided(std::sqrt(c.statistic)) * c.searched * candidate_count);
+      c.significant = c.p_value < options.alpha;
+    }
+  }
 }
 
 }  // namespace
@@ -184,17 +226,19 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
       candidates.push_back(&s);
     }
   }
+  const auto most_evident = [](const CandidateScore& a, const CandidateScore& b) {
+    if (a.p_value != b.p_value) return a.p_value < b.p_value;
+    return a.statistic / std::max(1, a.dof) > b.statistic / std::max(1, b.dof);
+  };
   for (const EffectSignature* s : candidates) {
     CandidateScore c = Score(*s, m, log, model);
     c.p_value = std::min(1.0, c.p_value * candidates.size());
     c.significant = c.dof > 0 && c.p_value < options.alpha;
     d.candidates.push_back(c);
   }
-  std::stable_sort(d.candidates.begin(), d.candidates.end(),
-                   [](const CandidateScore& a, const CandidateScore& b) {
-                     if (a.p_value != b.p_value) return a.p_value < b.p_value;
-                     return a.statistic / std::max(1, a.dof) > b.statistic / std::max(1, b.dof);
-                   });
+  std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
+  FitAndCompare(log, model, d.solution.final_cost, options, candidates.size(), &d.candidates);
+  std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
   // The model's own effects through their signatures: what is left of each once it is in.
   for (const EffectSignature& s : EffectSignatures()) {
     const bool in_model =
@@ -255,14 +299,14 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
   for (const std::string& name : effects) {
     const EffectSignature* signature = FindSignature(name);
     if (ModelEffectIndex(name) >= 0) {
-      if (name == "sinkage_resistance") {
-        // A term on windows: where the diagnosis found the patch.
+      if (ActsOnWindows(name)) {
+        // A term on windows: where the diagnosis found the effect (a patch, a change).
         const auto it = std::find_if(before.candidates.begin(), before.candidates.end(),
                                      [&](const CandidateScore& c) { return c.effect == name; });
         if (it == before.candidates.end() || it->windows.empty()) {
-          throw std::invalid_argument(
-              "effect 'sinkage_resistance' acts on a patch, and the diagnosis found none to add "
-              "it on");
+          throw std::invalid_argument("effect '" + name +
+                                      "' acts on part of the drive, and the diagnosis found "
+                                      "none to add it on");
         }
         for (const auto& [t0, t1] : it->windows) {
           out.model.effect_windows.push_back({name, t0, t1});
@@ -332,7 +376,8 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     for (size_t i = 0; i < f.streams.size(); ++i) out << (i ? ", " : "") << f.streams[i];
     out << "\n";
   }
-  out << "  candidate effects (robust score tests, Bonferroni-adjusted p):\n";
+  out << "  candidate effects (robust score tests, Bonferroni-adjusted p; the best with a smoother "
+         "term fitted: quasi-likelihood ratio):\n";
   for (const CandidateScore& c : d.candidates) {
     char line[240];
     std::snprintf(line, sizeof(line),
@@ -342,6 +387,14 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     out << line;
     if (!c.where.empty()) out << "  (" << c.where << ")";
     out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as) << "]";
+    if (c.fitted) {
+      std::snprintf(line, sizeof(line),
+                    "\n      fitted (likelihood ratio %.1f, dispersion %.2f); score test: stat %.1f, "
+                    "p %.2g, magnitude %.4g +- %.2g",
+                    c.likelihood_ratio, c.dispersion, c.score_statistic, c.score_p_value,
+                    c.score_magnitude, c.score_magnitude_sd);
+      out << line;
+    }
     out << "\n";
   }
   if (d.path_force.tested) {

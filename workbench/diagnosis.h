@@ -29,6 +29,13 @@ struct DiagnosisOptions {
   int whiteness_lags = 20;  // Ljung-Box lags
   // Sensor effects already corrected in the log's measurements (AddEffects): not candidates.
   std::vector<EffectEstimate> corrected;
+  // Fit and compare: the best this many candidates (by the score tests) that have a smoother
+  // term are each fitted (the smoother re-solved with the term on) and tested by the likelihood
+  // ratio 2 (C_0 - C_1) instead (CandidateScore). Score tests are local, at the solution without
+  // the effect; where two candidates explain the same misfit in part (a terrain change and slope
+  // slip on a drive whose hill comes after the change) the fit tells them apart. 0: score tests
+  // only.
+  int fit_candidates = 4;
 };
 
 struct StreamReport {
@@ -81,6 +88,16 @@ struct CandidateScore {
   std::vector<SeriesScore> series;
   // The tested term's raw column on the graph, when the test was on the graph.
   std::function<Eigen::VectorXd(const GraphProjector&)> graph_column;
+  double searched = 1.0;    // the search's multiplier on a single test's p-value (scans)
+  double dispersion = 1.0;  // robust over model-based variance of the score (>= 1)
+  // Fit and compare (DiagnosisOptions::fit_candidates): the smoother re-solved with the term
+  // on, 2 (C_0 - C_1) of the solutions' costs, and the fitted magnitude (which then is the
+  // candidate's magnitude). A fitted candidate's statistic is the likelihood ratio over the dispersion (a quasi-likelihood ratio,
+  // chi-square with 1 dof under the null) and its p-value that statistic's, with the same
+  // search and Bonferroni multipliers; the score test's are kept beside them.
+  bool fitted = false;
+  double likelihood_ratio = 0.0;
+  double score_statistic = 0.0, score_p_value = 1.0, score_magnitude = 0.0, score_magnitude_sd = 0.0;
 };
 
 struct TruthErrors {

@@ -337,7 +337,7 @@ std::vector<EffectSignature> MakeSignatures() {
       {"terrain_change",
        "score test on the graph of a traction scale that changes at one moment (scanned on a 1 s "
        "grid, at least 5 s before the end), against the same scale over the whole log; magnitude: "
-       "the relative change (a scale of 0.6 is -0.4)",
+       "the relative change (a scale of 0.6 is -0.4); added as its term from the change on",
        nullptr,
        [](const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
          SignatureSeries s;
@@ -367,6 +367,8 @@ std::vector<EffectSignature> MakeSignatures() {
          char where[64];
          std::snprintf(where, sizeof(where), "from t = %.0f s", t0 + found.a);
          s.where = where;
+         // The changed terrain: from the change to the end of the log (a model term there).
+         s.windows.push_back({t0 + found.a, m.states.back().t + 1.0});
          return std::vector{s};
        },
        nullptr});
