@@ -36,13 +36,21 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   solver_options.max_num_iterations = options.max_iterations;
   solver_options.num_threads = options.threads;
   solver_options.logging_type = ceres::SILENT;
-  solver_options.function_tolerance = 1e-12;
+  solver_options.function_tolerance = options.function_tolerance;
   solver_options.gradient_tolerance = 1e-12;
   solver_options.parameter_tolerance = 1e-12;
+  if (options.start != nullptr && options.start->size() == problem->states.size()) {
+    for (size_t k = 0; k < problem->states.size(); ++k) {
+      for (int i = 0; i < kStateSize; ++i) problem->states[k][i] = (*options.start)[k].x[i];
+    }
+    problem->offsets = {options.start->back().accel_offset_mps2,
+                        options.start->back().gyro_offset_radps};
+  }
   const std::map<std::string, double> initial_costs = CostByKind(*problem);
   ceres::Solve(solver_options, problem->problem.get(), &result.summary);
   std::ostringstream breakdown;
-  breakdown << "cost by factor (EKF start -> solution):";
+  breakdown << "cost by factor (" << (options.start != nullptr ? "given start" : "EKF start")
+            << " -> solution):";
   for (const auto& [kind, cost] : CostByKind(*problem)) {
     breakdown << " " << kind << " " << initial_costs.at(kind) << " -> " << cost << ";";
   }

@@ -18,6 +18,9 @@ namespace slipgraph {
 
 struct BatchSmootherOptions {
   int max_iterations = 200;
+  // Ceres's relative cost change at convergence. 1e-12 for post-processing; a likelihood-ratio
+  // fit needs the cost to a few thousandths only.
+  double function_tolerance = 1e-12;
   int threads = 1;
   bool covariance = true;   // marginal sd per state (else the EKF's sd is reported)
   FilterRunOptions filter;  // the EKF run that initialises the smoother
@@ -25,6 +28,10 @@ struct BatchSmootherOptions {
   // Post-processing detection: the smoothed slip (no EMA lag) above the threshold for at least
   // this long while the wheels turn and the robot is not braking.
   double min_immobilized_s = 0.1;
+  // Start the solve from these states and offsets instead of the EKF's (one per wheel sample, as
+  // a SmootherResult's estimates on the same log): a model refitted with one more term converges
+  // from the previous solution in a few iterations. Ignored when the sizes differ.
+  const std::vector<EkfEstimate>* start = nullptr;
 };
 
 // A model effect's estimated magnitude (factors/model_effects.h), in the catalogue's unit.

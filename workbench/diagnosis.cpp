@@ -137,41 +137,63 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   return c;
 }
 
-// The best `options.fit_candidates` candidates with a smoother term, each fitted: its statistic
+// One fit: the smoother with `effect` switched on (on `windows` when it acts on windows), from
+// the solution without it. false when the solve failed.
+struct Fit {
+  bool ok = false;
+  double likelihood_ratio = 0.0, value = 0.0, sd = 0.0;
+};
+Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResult& without,
+              const DiagnosisOptions& options, const std::string& effect,
+              const std::vector<std::pair<double, double>>& windows) {
+  ModelConfig with = model;
+  with.effects.push_back(effect);
+  for (const auto& [t0, t1] : windows) with.effect_windows.push_back({effect, t0, t1});
+  BatchSmootherOptions smoother = options.smoother;
+  smoother.filter.ekf.record_innovations = false;
+  if (!without.used_fallback) smoother.start = &without.estimates;  // a few iterations from there
+  // The cost to 1e-7 of itself (about 0.001 on these logs) is enough for a likelihood ratio.
+  smoother.function_tolerance = 1e-7;
+  const SmootherResult fit = SmoothBatch(log, with, smoother);
+  Fit out;
+  if (fit.used_fallback) return out;
+  for (const EffectEstimate& e : fit.effects) {
+    if (e.name != effect) continue;
+    out.ok = true;
+    out.likelihood_ratio = std::max(0.0, 2.0 * (without.final_cost - fit.final_cost));
+    out.value = e.value;
+    out.sd = e.sd;
+  }
+  return out;
+}
+
+// The candidates with a smoother term (the best `options.fit_candidates` of them), each
+// fitted: its statistic
 // becomes the quasi-likelihood ratio and its p-value that statistic's (CandidateScore).
 // candidate_count: the Bonferroni multiplier the score tests had.
-void FitAndCompare(const DriveLog& log, const ModelConfig& model, double cost_without,
+void FitAndCompare(const DriveLog& log, const ModelConfig& model, const SmootherResult& without,
                    const DiagnosisOptions& options, size_t candidate_count,
                    std::vector<CandidateScore>* candidates) {
-  for (size_t i = 0; i < candidates->size() && i < static_cast<size_t>(options.fit_candidates);
-       ++i) {
+  const size_t to_fit = options.fit_candidates < 0 ? candidates->size()
+                                                   : static_cast<size_t>(options.fit_candidates);
+  for (size_t i = 0; i < candidates->size() && i < to_fit; ++i) {
     CandidateScore& c = (*candidates)[i];
     if (ModelEffectIndex(c.effect) < 0 || c.dof == 0) continue;
     if (ActsOnWindows(c.effect) && c.windows.empty()) continue;
-    ModelConfig with = model;
-    with.effects.push_back(c.effect);
-    if (ActsOnWindows(c.effect)) {
-      for (const auto& [t0, t1] : c.windows) with.effect_windows.push_back({c.effect, t0, t1});
-    }
-    BatchSmootherOptions smoother = options.smoother;
-    smoother.filter.ekf.record_innovations = false;
-    const SmootherResult fit = SmoothBatch(log, with, smoother);
-    if (fit.used_fallback) continue;
-    for (const EffectEstimate& e : fit.effects) {
-      if (e.name != c.effect) continue;
-      c.fitted = true;
-      c.likelihood_ratio = std::max(0.0, 2.0 * (cost_without - fit.final_cost));
-      c.score_statistic = c.statistic;
-      c.score_p_value = c.p_value;
-      c.score_magnitude = c.magnitude;
-      c.score_magnitude_sd = c.magnitude_sd;
-      c.magnitude = e.value;
-      c.magnitude_sd = e.sd;
-      c.statistic = c.likelihood_ratio / c.dispersion;
-      c.p_value =
-          std::min(1.0, NormalTwoSided(std::sqrt(c.statistic)) * c.searched * candidate_count);
-      c.significant = c.p_value < options.alpha;
-    }
+    const Fit fit = FitEffect(log, model, without, options, c.effect, c.windows);
+    if (!fit.ok) continue;
+    c.fitted = true;
+    c.likelihood_ratio = fit.likelihood_ratio;
+    c.score_statistic = c.statistic;
+    c.score_p_value = c.p_value;
+    c.score_magnitude = c.magnitude;
+    c.score_magnitude_sd = c.magnitude_sd;
+    c.magnitude = fit.value;
+    c.magnitude_sd = fit.sd;
+    c.statistic = c.likelihood_ratio / c.dispersion;
+    c.p_value =
+        std::min(1.0, NormalTwoSided(std::sqrt(c.statistic)) * c.searched * candidate_count);
+    c.significant = c.p_value < options.alpha;
   }
 }
 
@@ -237,7 +259,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
     d.candidates.push_back(c);
   }
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
-  FitAndCompare(log, model, d.solution.final_cost, options, candidates.size(), &d.candidates);
+  FitAndCompare(log, model, d.solution, options, candidates.size(), &d.candidates);
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
   // The model's own effects through their signatures: what is left of each once it is in.
   for (const EffectSignature& s : EffectSignatures()) {
@@ -531,6 +553,14 @@ nlohmann::json ToJson(const Diagnosis& d) {
                          {"test", c.test},
                          {"added_as", c.added_as}};
     if (!c.where.empty()) cj["where"] = c.where;
+    if (c.fitted) {
+      cj["fit"] = {{"likelihood_ratio", c.likelihood_ratio},
+                   {"dispersion", c.dispersion},
+                   {"score_statistic", c.score_statistic},
+                   {"score_p_value", c.score_p_value},
+                   {"score_magnitude", c.score_magnitude},
+                   {"score_magnitude_sd", c.score_magnitude_sd}};
+    }
     j["candidates"].push_back(cj);
   }
   j["explained"] = d.explained;

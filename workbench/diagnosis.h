@@ -29,13 +29,13 @@ struct DiagnosisOptions {
   int whiteness_lags = 20;  // Ljung-Box lags
   // Sensor effects already corrected in the log's measurements (AddEffects): not candidates.
   std::vector<EffectEstimate> corrected;
-  // Fit and compare: the best this many candidates (by the score tests) that have a smoother
-  // term are each fitted (the smoother re-solved with the term on) and tested by the likelihood
-  // ratio 2 (C_0 - C_1) instead (CandidateScore). Score tests are local, at the solution without
-  // the effect; where two candidates explain the same misfit in part (a terrain change and slope
-  // slip on a drive whose hill comes after the change) the fit tells them apart. 0: score tests
-  // only.
-  int fit_candidates = 4;
+  // Fit and compare: every candidate that has a smoother term (or the best this many of them
+  // by the score tests; 0: none) is fitted, the smoother re-solved with the term on, and tested
+  // by the likelihood ratio 2 (C_0 - C_1) instead (CandidateScore). Score tests are local, at
+  // the solution without the effect; where two candidates explain the same misfit in part (a
+  // terrain change and slope slip on a drive whose hill comes after the change) the fit tells
+  // them apart.
+  int fit_candidates = -1;
 };
 
 struct StreamReport {
