@@ -9,6 +9,7 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <set>
 
 #include "factors/diagonal_prior.h"
 #include "factors/ipd_segment_factor.h"
@@ -92,6 +93,9 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
   size_t next_segment_to_add = 0;
   size_t next_prediction = 0;
   const int last_block = BlockOf(segments.back().t_end, t0, graph.block_s);
+  std::map<int, ceres::ResidualBlockId> walk_into;  // block index -> the walk from the previous
+  std::set<int> jumped;
+  int gated_in_a_row = 0, jumps = 0;
   for (int j = 0; j <= last_block + 1; ++j) {
     const double block_end = t0 + (j + 1) * graph.block_s;
     // Predictions of segments starting before this block's solve use the newest solved alpha.
@@ -112,7 +116,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
         problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
                                  nullptr, alpha);
       } else if (blocks.size() > 1) {
-        AddWalk(&problem, walk_inverse_sd, graph, blocks[blocks.size() - 2].data(), alpha);
+        walk_into[first_block + static_cast<int>(blocks.size()) - 1] =
+            AddWalk(&problem, walk_inverse_sd, graph, blocks[blocks.size() - 2].data(), alpha);
       }
     }
     // Segments that have ended by the block's end, on the block of their midpoint.
@@ -122,14 +127,29 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       const IpdSegment& seg = segments[next_segment_to_add++];
       const int b = BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s);
       const int index = std::clamp(b - first_block, 0, static_cast<int>(blocks.size()) - 1);
-      // Q from the residual the segment leaves with the alpha known before it (as the EKF does).
-      if (options.calibrate_q) {
-        const SegmentLinearization l = LinearizeSegment(seg, latest.data(), options);
-        const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
-            seg.steps, latest.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
-        stochastic.Update(l.residual, terms, l.H * latest_covariance * l.H.transpose(),
-                          options.spacing_s);
+      const SegmentLinearization l = LinearizeSegment(seg, latest.data(), options);
+      const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
+          seg.steps, latest.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
+      const Eigen::Matrix3d HPH = l.H * latest_covariance * l.H.transpose();
+      // A jump: segments failing the gate in a row at the newest alpha free the walk into
+      // their block (once per block).
+      const Eigen::Matrix3d S = HPH + terms.Total(stochastic.q());
+      const bool gated = l.residual.dot(S.ldlt().solve(l.residual)) > 21.1;
+      gated_in_a_row = gated ? gated_in_a_row + 1 : 0;
+      const int block = first_block + index;
+      if (graph.jump_sd > 0.0 && options.readmit_after > 0 &&
+          gated_in_a_row > options.readmit_after && index > 0 && walk_into.count(block) &&
+          !jumped.count(block)) {
+        IpdGraphOptions gaussian;
+        gaussian.walk_huber_sd = 0.0;
+        problem.RemoveResidualBlock(walk_into[block]);
+        walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, gaussian,
+                                   blocks[index - 1].data(), blocks[index].data());
+        jumped.insert(block);
+        ++jumps;
       }
+      // Q from the residual the segment leaves with the alpha known before it (as the EKF does).
+      if (options.calibrate_q) stochastic.Update(l.residual, terms, HPH, options.spacing_s);
       problem.AddResidualBlock(SegmentFactor(seg, blocks[index], options, stochastic.q()), nullptr,
                                blocks[index].data());
       added = true;
@@ -159,6 +179,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       problem.RemoveParameterBlock(blocks.front().data());
       blocks.pop_front();
       ++first_block;
+      walk_into.erase(first_block);  // its walk went with the block before it
       if (m.prior && !m.kept.empty()) {
         problem.AddResidualBlock(m.prior.release(), nullptr, m.kept);
       } else {
@@ -169,6 +190,11 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
             blocks.front().data());
       }
     }
+  }
+  if (jumps > 0) {
+    result.notes.push_back(std::to_string(jumps) +
+                           " block(s) where segments failed the gate in a row: the walk into "
+                           "them freed (a jump)");
   }
   result.final_alpha = latest;
   std::vector<double*> chain;

@@ -21,6 +21,10 @@ struct IpdGraphOptions {
   // Huber beyond: a terrain change is a jump, not a drift. 5.26 = sqrt of the 99 % point of
   // chi-square with 13 dof (1 % of ordinary steps are down-weighted). 0: Gaussian throughout.
   double walk_huber_sd = 5.26;
+  // As the EKF re-admits a second failing segment in a row (IpdOptions::readmit_after): when
+  // that many segments in a row fail the 99.99 % gate at the newest alpha, the walk into their
+  // block is replaced by one of this sd (a jump: the terrain changed). 0: never.
+  double jump_sd = 0.05;
 };
 IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options = {},
                                         const IpdGraphOptions& graph = {});

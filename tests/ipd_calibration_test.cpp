@@ -79,6 +79,15 @@ TEST(IpdCalibration, FollowsAJumpInTheSlipModel) {
   EXPECT_LT(error_with, 0.8 * error_without) << error_with << " vs " << error_without;
   ASSERT_FALSE(with.notes.empty());
   EXPECT_NE(with.notes.front().find("inflated"), std::string::npos) << with.notes.front();
+  // The Ceres window's counterpart: the walk into the block where segments fail the gate in a
+  // row is freed (a jump). It helps less than the EKF's (measured 0.203 against 0.223 m here;
+  // on ipd35 the window's mean error 0.076 -> 0.072 m).
+  IpdGraphOptions no_jump;
+  no_jump.jump_sd = 0.0;
+  const IpdCalibrationResult window = CalibrateIpdWindow(log);
+  const IpdCalibrationResult window_without = CalibrateIpdWindow(log, IpdOptions{}, no_jump);
+  EXPECT_LT(error_after(window), 0.95 * error_after(window_without))
+      << error_after(window) << " vs " << error_after(window_without);
 }
 
 TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
@@ -108,7 +117,7 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
     EXPECT_GT(batch.predicted_over_sample[i], 0.8);
     EXPECT_LT(batch.predicted_over_sample[i], 1.35);  // 1.09, 1.28
   }
-  // The window is not as good as the EKF (0.076 vs 0.071 m; docs/ipd.md).
+  // The window is not quite as good as the EKF (ipd35 seed 1: 0.072 vs 0.071 m; docs/ipd.md).
   EXPECT_LT(window.mean_position_error_m, 1.1 * calibrated.mean_position_error_m);
   EXPECT_LT(window.mean_heading_error_rad, 1.25 * calibrated.mean_heading_error_rad);
   EXPECT_LT(batch.mean_position_error_m, calibrated.mean_position_error_m);
