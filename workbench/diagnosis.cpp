@@ -630,7 +630,10 @@ std::string Section(const Diagnosis& d, const std::string& heading) {
     html << "<tr><td>" << HtmlEscape(c.effect) << "</td><td>" << c.statistic << "</td><td>" << c.dof
          << "</td><td>" << c.p_value << "</td><td>" << (c.significant ? "yes" : "no") << "</td><td>"
          << c.magnitude << "</td><td>" << c.magnitude_sd << "</td><td>"
-         << HtmlEscape(c.test + (c.where.empty() ? "" : " (" + c.where + ")")) << "</td></tr>\n";
+         << HtmlEscape(c.test + (c.where.empty() ? "" : " (" + c.where + ")") +
+                       (c.fitted ? "; fitted: likelihood ratio " + std::to_string(c.likelihood_ratio)
+                                 : ""))
+         << "</td></tr>\n";
   }
   html << "</table>\n";
   std::ostringstream text;
