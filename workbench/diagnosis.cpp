@@ -138,7 +138,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
 }
 
 // One fit: the smoother with `effect` switched on (on `windows` when it acts on windows), from
-// the solution without it. false when the solve failed.
+// the solution without it; ok is false when the solve failed.
 struct Fit {
   bool ok = false;
   double likelihood_ratio = 0.0, value = 0.0, sd = 0.0;
@@ -167,19 +167,20 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
   return out;
 }
 
-// The candidates with a smoother term (the best `options.fit_candidates` of them), each
-// fitted: its statistic
-// becomes the quasi-likelihood ratio and its p-value that statistic's (CandidateScore).
-// candidate_count: the Bonferroni multiplier the score tests had.
+// The candidates with a smoother term (the best `options.fit_candidates` of them), each fitted:
+// its statistic becomes the quasi-likelihood ratio and its p-value that statistic's
+// (CandidateScore). candidate_count: the Bonferroni multiplier the score tests had.
 void FitAndCompare(const DriveLog& log, const ModelConfig& model, const SmootherResult& without,
                    const DiagnosisOptions& options, size_t candidate_count,
                    std::vector<CandidateScore>* candidates) {
   const size_t to_fit = options.fit_candidates < 0 ? candidates->size()
                                                    : static_cast<size_t>(options.fit_candidates);
-  for (size_t i = 0; i < candidates->size() && i < to_fit; ++i) {
-    CandidateScore& c = (*candidates)[i];
+  size_t tried = 0;
+  for (CandidateScore& c : *candidates) {
+    if (tried >= to_fit) break;
     if (ModelEffectIndex(c.effect) < 0 || c.dof == 0) continue;
     if (ActsOnWindows(c.effect) && c.windows.empty()) continue;
+    ++tried;
     const Fit fit = FitEffect(log, model, without, options, c.effect, c.windows);
     if (!fit.ok) continue;
     c.fitted = true;
