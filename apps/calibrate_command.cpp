@@ -35,8 +35,7 @@ nlohmann::json StatsJson(const PredictionStats& s) {
 PlotSeries Ellipse(const std::string& label, const Eigen::Matrix2d& covariance,
                    const std::string& color, bool dashed) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance);
-  PlotSeries s;
-  s.label = label, s.color = color, s.dashed = dashed;
+  PlotSeries s = NewSeries(label, color, dashed);
   for (int i = 0; i <= 100; ++i) {
     const double a = 2.0 * M_PI * i / 100.0;
     const Eigen::Vector2d unit(std::cos(a), std::sin(a));
@@ -52,8 +51,8 @@ PlotSeries Ellipse(const std::string& label, const Eigen::Matrix2d& covariance,
 Plot Scatter(const std::string& title, const std::vector<PredictionError>& errors,
              const std::string& color) {
   Plot plot{title, "cross-track error (m)", {}, {}, "along-track error (m)", true};
-  PlotSeries dots;
-  dots.label = "2 s predictions", dots.color = color, dots.points = true;
+  PlotSeries dots = NewSeries("2 s predictions", color);
+  dots.points = true;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   Eigen::Matrix2d predicted = Eigen::Matrix2d::Zero();
   for (const PredictionError& e : errors) {
@@ -170,8 +169,8 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
                                     "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf",
                                     "#000000", "#aec7e8", "#ffbb78"};
     for (int i = 0; i < ipd::kAlphaSize; ++i) {
-      PlotSeries s;
-      s.label = "alpha_" + std::to_string(i), s.t = result.update_t, s.color = kColors[i];
+      PlotSeries s = NewSeries("alpha_" + std::to_string(i), kColors[i]);
+      s.t = result.update_t;
       for (const auto& a : result.alpha) s.y.push_back(a[i]);
       alpha_plot.series.push_back(s);
     }

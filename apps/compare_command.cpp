@@ -75,8 +75,7 @@ void AddPlots(const DriveLog& log, const std::vector<EstimatorRun>& runs, HtmlRe
   Plot slip{
       "mean driven slip (EKF: its EMA; clipped to [-1, 2]) and immobilized flags", "-", {}, shaded};
   if (!log.truth.empty()) {
-    PlotSeries tv{"truth", {}, {}, "#000000"}, ta{"truth", {}, {}, "#000000"},
-        ts{"truth", {}, {}, "#000000"};
+    PlotSeries tv = NewSeries("truth", "#000000"), ta = tv, ts = tv;
     for (const TruthSample& s : log.truth) {
       tv.t.push_back(s.t);
       tv.y.push_back(s.vx);
@@ -96,8 +95,9 @@ void AddPlots(const DriveLog& log, const std::vector<EstimatorRun>& runs, HtmlRe
   }
   for (size_t r = 0; r < runs.size(); ++r) {
     const bool last = r + 1 == runs.size();
-    PlotSeries sv{runs[r].name, {}, {}, kColors[r % 3], !last};
-    PlotSeries sa = sv, ss = sv, flag{runs[r].name + " immobilized", {}, {}, kColors[r % 3], true};
+    PlotSeries sv = NewSeries(runs[r].name, kColors[r % 3], !last);
+    PlotSeries sa = sv, ss = sv,
+               flag = NewSeries(runs[r].name + " immobilized", kColors[r % 3], true);
     for (const EkfEstimate& e : runs[r].estimates) {
       sv.t.push_back(e.t);
       sv.y.push_back(e.x[ward::kVbx]);

@@ -1,7 +1,7 @@
 // The workbench's ranking over noise seeds (issue 6's Monte Carlo): for each catalogue effect
 // hidden in the `hidden` scenario, and for nothing hidden, over N seeds, how often the hidden
-// effect ranks first (and first and significant), how often anything at all is significant, and the mean
-// and sd of the top candidate's fitted magnitude, and how often the verdict is "no candidate
+// effect ranks first (and first and significant), how often anything at all is significant, and the
+// mean and sd of the top candidate's fitted magnitude, and how often the verdict is "no candidate
 // explains it". Prints a table (docs/workbench.md).
 // Run: build/bench/diagnose_monte_carlo [SEEDS=20] [EFFECT...]
 #include <algorithm>
@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "| hidden | seeds | top-1 | top-1 and significant | any significant | top candidate (most "
-      "often) | its magnitude mean +- sd | true magnitude | unexplained |\n|---|---|---|---|---|---|---|---|---|\n");
+      "often) | its magnitude mean +- sd | true magnitude | unexplained "
+      "|\n|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& effect : effects) {
     int ranked_first = 0, top1 = 0, any = 0, unexplained = 0;
     std::vector<double> magnitudes;
@@ -67,8 +68,7 @@ int main(int argc, char** argv) {
     const EffectInfo* info = FindEffect(effect);
     std::printf(
         "| %s | %d | %d/%d | %d/%d | %d/%d | %s | %s | %s | %d/%d |\n", effect.c_str(), seeds,
-        ranked_first, seeds, top1, seeds, any,
-        seeds, most.empty() ? "-" : most.c_str(),
+        ranked_first, seeds, top1, seeds, any, seeds, most.empty() ? "-" : most.c_str(),
         magnitudes.empty() ? "-" : (std::to_string(mean) + " +- " + std::to_string(sd)).c_str(),
         info ? std::to_string(info->default_value).c_str() : "0", unexplained, seeds);
     std::fflush(stdout);

@@ -62,8 +62,8 @@ IpdCalibrationResult TrueAlphaPredictions(const sim::Scenario& sc, const DriveLo
   r.segments = BuildIpdSegments(log, options);
   const std::array<double, ipd::kAlphaSize> zero{};
   for (const IpdSegment& seg : r.segments) {
-    const size_t k = std::min<size_t>(
-        std::lower_bound(t.begin(), t.end(), seg.t_start) - t.begin(), t.size() - 1);
+    const size_t k = std::min<size_t>(std::lower_bound(t.begin(), t.end(), seg.t_start) - t.begin(),
+                                      t.size() - 1);
     const sim::IpdSlip& slip = sc.course.PatchAt(s[k]).terrain.ipd;
     const Eigen::Vector3d q(slip.q_density[0], slip.q_density[1], slip.q_density[2]);
     r.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, q));

@@ -19,6 +19,14 @@ struct PlotSeries {
   bool points = false;     // a scatter of dots instead of a line (at most ~2000 drawn)
 };
 
+// An empty series with its label and style, to fill with t and y.
+inline PlotSeries NewSeries(const std::string& label, const std::string& color,
+                            bool dashed = false) {
+  PlotSeries s;
+  s.label = label, s.color = color, s.dashed = dashed;
+  return s;
+}
+
 struct Plot {
   std::string title;
   std::string y_label;

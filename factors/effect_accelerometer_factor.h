@@ -16,7 +16,8 @@ namespace slipgraph {
 
 struct EffectAccelerometerFactor {
   EffectAccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
-                            double accel_x_mps2, double sd_mps2, const EffectWindowWeights& windows = {})
+                            double accel_x_mps2, double sd_mps2,
+                            const EffectWindowWeights& windows = {})
       : params_(params),
         attitude_(attitude),
         measured_(accel_x_mps2),

@@ -44,8 +44,8 @@ enum ModelEffect {
 
 inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
   static const std::array<const char*, kModelEffectCount> kNames = {
-      "quadratic_drag",     "turn_slip",         "slope_slip", "wheel_radius_error",
-      "sinkage_resistance", "terrain_change"};
+      "quadratic_drag",     "turn_slip",          "slope_slip",
+      "wheel_radius_error", "sinkage_resistance", "terrain_change"};
   return kNames;
 }
 
@@ -60,7 +60,7 @@ inline int ModelEffectIndex(const std::string& name) {
 // Standard deviations of the weak prior on each magnitude (around 0) when the effect is switched
 // on: several times the catalogue's typical value, so the data decide.
 constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0,
-                                                                        0.3,   0.3, 1.0};
+                                                                       0.3,   0.3, 1.0};
 
 // The weights of the effects that act on windows of the drive (ActsOnWindows in
 // model/model_config.h) at one sample: 1 inside one of the effect's windows, 0 outside.

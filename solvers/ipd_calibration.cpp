@@ -240,14 +240,13 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     const Eigen::Matrix3d R = terms.Total(q);
     Eigen::Matrix3d HPH = H * P * H.transpose();  // the prior's share of the residual
     Eigen::LDLT<Eigen::Matrix3d> S_ldlt(HPH + R);
-    // A 3-dof chi-square gate at 99.99 %: a pose glitch must not wreck the model.
     double nis = residual.dot(S_ldlt.solve(residual));
-    if (nis > 21.1) {
+    if (nis > kSegmentGateChi2) {
       ++rejected;
       if (options.readmit_after <= 0 || ++gated_in_a_row <= options.readmit_after) return;
       // Persistent: scale alpha's covariance until the residual is plausible.
       ++readmitted;
-      for (int iteration = 0; iteration < 30 && nis > 21.1; ++iteration) {
+      for (int iteration = 0; iteration < 30 && nis > kSegmentGateChi2; ++iteration) {
         P *= 2.0;
         HPH *= 2.0;
         S_ldlt.compute(HPH + R);

@@ -43,6 +43,10 @@ struct IpdOptions {
   int readmit_after = 1;
 };
 
+// The segments' innovation gate: chi-square with 3 dof at 99.99 % (a pose glitch must not wreck
+// the model). The EKF and the Ceres window both test against it.
+constexpr double kSegmentGateChi2 = 21.1;
+
 // One path segment: odometry steps between two pose measurements, and their relative pose.
 struct IpdSegment {
   double t_start = 0.0, t_end = 0.0;

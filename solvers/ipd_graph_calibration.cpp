@@ -31,13 +31,13 @@ struct AlphaWalk {
   }
 };
 
-ceres::ResidualBlockId AddWalk(ceres::Problem* problem, double inverse_sd,
-                               const IpdGraphOptions& graph, double* a, double* b) {
-  ceres::LossFunction* loss =
-      graph.walk_huber_sd > 0.0 ? new ceres::HuberLoss(graph.walk_huber_sd) : nullptr;
+// The walk from alpha block a to b; huber_sd > 0: Huber beyond that norm (IpdGraphOptions).
+ceres::ResidualBlockId AddWalk(ceres::Problem* problem, double inverse_sd, double huber_sd,
+                               double* a, double* b) {
+  ceres::LossFunction* loss = huber_sd > 0.0 ? new ceres::HuberLoss(huber_sd) : nullptr;
   return problem->AddResidualBlock(
-      new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize,
-                                      ipd::kAlphaSize>(new AlphaWalk{inverse_sd}),
+      new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize, ipd::kAlphaSize>(
+          new AlphaWalk{inverse_sd}),
       loss, a, b);
 }
 
@@ -117,7 +117,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
                                  nullptr, alpha);
       } else if (blocks.size() > 1) {
         walk_into[first_block + static_cast<int>(blocks.size()) - 1] =
-            AddWalk(&problem, walk_inverse_sd, graph, blocks[blocks.size() - 2].data(), alpha);
+            AddWalk(&problem, walk_inverse_sd, graph.walk_huber_sd,
+                    blocks[blocks.size() - 2].data(), alpha);
       }
     }
     // Segments that have ended by the block's end, on the block of their midpoint.
@@ -134,17 +135,15 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       // A jump: segments failing the gate in a row at the newest alpha free the walk into
       // their block (once per block).
       const Eigen::Matrix3d S = HPH + terms.Total(stochastic.q());
-      const bool gated = l.residual.dot(S.ldlt().solve(l.residual)) > 21.1;
+      const bool gated = l.residual.dot(S.ldlt().solve(l.residual)) > kSegmentGateChi2;
       gated_in_a_row = gated ? gated_in_a_row + 1 : 0;
       const int block = first_block + index;
       if (graph.jump_sd > 0.0 && options.readmit_after > 0 &&
           gated_in_a_row > options.readmit_after && index > 0 && walk_into.count(block) &&
           !jumped.count(block)) {
-        IpdGraphOptions gaussian;
-        gaussian.walk_huber_sd = 0.0;
         problem.RemoveResidualBlock(walk_into[block]);
-        walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, gaussian,
-                                   blocks[index - 1].data(), blocks[index].data());
+        walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(),
+                                   blocks[index].data());
         jumped.insert(block);
         ++jumps;
       }
@@ -225,7 +224,7 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
                            nullptr, blocks[0].data());
   for (int j = 1; j < n_blocks; ++j) {
-    AddWalk(&problem, walk_inverse_sd, graph, blocks[j - 1].data(), blocks[j].data());
+    AddWalk(&problem, walk_inverse_sd, graph.walk_huber_sd, blocks[j - 1].data(), blocks[j].data());
   }
   for (const IpdSegment& seg : segments) {
     const int b =

@@ -284,8 +284,9 @@ TEST(Diagnosis, SinkageAddedOnItsPatchAndTheErrorFalls) {
 TEST(Diagnosis, SinkageScanFindsTheSoftPatch) {
   const DriveLog log = Hidden("sinkage_resistance");
   const Diagnosis d = Diagnose(log, NominalModel(log));
-  const auto it = std::find_if(d.candidates.begin(), d.candidates.end(),
-                               [](const CandidateScore& c) { return c.effect == "sinkage_resistance"; });
+  const auto it =
+      std::find_if(d.candidates.begin(), d.candidates.end(),
+                   [](const CandidateScore& c) { return c.effect == "sinkage_resistance"; });
   ASSERT_NE(it, d.candidates.end());
   EXPECT_EQ(it->where, "patch 20-36 m");  // the soft patch is 20-35 m
   EXPECT_GT(it->magnitude, 3.0 * it->magnitude_sd);

@@ -160,8 +160,8 @@ TEST(DiffDriveSim, StatedEncoderNoiseIsTheSimulatedOne) {
   for (size_t i = 1; i < r.log.wheels.size(); ++i) {
     if (std::abs(r.log.truth[i].vx) < 0.1) continue;
     for (int side = 0; side < 2; ++side) {
-      const double error = r.log.wheels[i].omega_radps[side] -
-                           0.5 * (TrueOmega(i, side) + TrueOmega(i - 1, side));
+      const double error =
+          r.log.wheels[i].omega_radps[side] - 0.5 * (TrueOmega(i, side) + TrueOmega(i - 1, side));
       sum_sq += error * error, ++n;
     }
   }

@@ -11,9 +11,9 @@
 
 #include <Eigen/Dense>
 
+#include "factors/ward_state.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
-#include "factors/ward_state.h"
 #include "solvers/batch_smoother.h"
 
 namespace slipgraph {
@@ -122,7 +122,8 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
 // column does, and a basis that splits it in two must add up to it.
 TEST(GraphScoreTest, AForceShapeScoresLikeTheEffectItIs) {
   const ShortLog s = MakeShortLog();
-  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
+  std::unique_ptr<WardProblem> problem =
+      BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
   const GraphProjector graph(*problem, {});
   ASSERT_TRUE(graph.ok());
   const double mass = s.log.vehicle.mass_kg;
@@ -147,10 +148,10 @@ TEST(GraphScoreTest, AForceShapeScoresLikeTheEffectItIs) {
 
 TEST(GraphScoreTest, NothingToTestWithEveryEffectInTheModel) {
   const ShortLog s = MakeShortLog();
-  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
-  const auto scores =
-      GraphScoreTests(*problem, {kQuadraticDrag, kTurnSlip, kSlopeSlip, kWheelRadiusError,
-                                 kSinkageResistance});
+  std::unique_ptr<WardProblem> problem =
+      BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
+  const auto scores = GraphScoreTests(
+      *problem, {kQuadraticDrag, kTurnSlip, kSlopeSlip, kWheelRadiusError, kSinkageResistance});
   for (const GraphScore& g : scores) EXPECT_FALSE(g.tested);
 }
 

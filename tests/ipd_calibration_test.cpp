@@ -102,8 +102,8 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   // Measured (docs/ipd.md): 0.295 -> 0.071 m, heading 0.311 -> 0.044 rad, sd along 0.112 ->
   // 0.054 (the simulator's own slip model gets 0.045), cross 0.263 -> 0.073 m; predicted /
   // sample variance after the first minute 0.88, 0.83 (heading 0.54).
-  EXPECT_LT(calibrated.mean_position_error_m, 0.32 * no_slip.mean_position_error_m);  // 68 %
-  EXPECT_LT(calibrated.sd_cross_m, 0.4 * no_slip.sd_cross_m);                         // 60 %
+  EXPECT_LT(calibrated.mean_position_error_m, 0.32 * no_slip.mean_position_error_m);    // 68 %
+  EXPECT_LT(calibrated.sd_cross_m, 0.4 * no_slip.sd_cross_m);                           // 60 %
   EXPECT_LT(calibrated.mean_heading_error_rad, 0.17 * no_slip.mean_heading_error_rad);  // 83 %
   EXPECT_LT(calibrated.sd_along_m, 0.55 * no_slip.sd_along_m);  // the paper's 60 % is not reached
   std::vector<PredictionError> after_first_minute;

@@ -62,13 +62,15 @@ TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
   // Sinkage acts on windows of the drive, which the model must give.
   EXPECT_THROW(ReadModelYaml(WriteModel("effects: [sinkage_resistance]\n"), LagrVehicle()),
                InputError);
-  EXPECT_THROW(ReadModelYaml(WriteModel("effect_windows: [{effect: quadratic_drag, from: 1, to: 2}]\n"),
-                             LagrVehicle()),
-               InputError);
-  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [sinkage_resistance]\n"
-                                        "effect_windows: [{effect: sinkage_resistance, from: 5}]\n"),
-                             LagrVehicle()),
-               InputError);
+  EXPECT_THROW(
+      ReadModelYaml(WriteModel("effect_windows: [{effect: quadratic_drag, from: 1, to: 2}]\n"),
+                    LagrVehicle()),
+      InputError);
+  EXPECT_THROW(
+      ReadModelYaml(WriteModel("effects: [sinkage_resistance]\n"
+                               "effect_windows: [{effect: sinkage_resistance, from: 5}]\n"),
+                    LagrVehicle()),
+      InputError);
   const ModelConfig sinkage = ReadModelYaml(
       WriteModel("effects: [sinkage_resistance]\n"
                  "effect_windows: [{effect: sinkage_resistance, from: 21.5, to: 38.25}]\n"),
@@ -78,12 +80,11 @@ TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
   EXPECT_DOUBLE_EQ(sinkage.effect_windows[0].t_start_s, 21.5);
   EXPECT_DOUBLE_EQ(sinkage.effect_windows[0].t_end_s, 38.25);
   // So does a terrain change (the changed terrain's times).
-  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [terrain_change]\n"), LagrVehicle()),
-               InputError);
-  const ModelConfig change = ReadModelYaml(
-      WriteModel("effects: [terrain_change]\n"
-                 "effect_windows: [{effect: terrain_change, from: 31, to: 87}]\n"),
-      LagrVehicle());
+  EXPECT_THROW(ReadModelYaml(WriteModel("effects: [terrain_change]\n"), LagrVehicle()), InputError);
+  const ModelConfig change =
+      ReadModelYaml(WriteModel("effects: [terrain_change]\n"
+                               "effect_windows: [{effect: terrain_change, from: 31, to: 87}]\n"),
+                    LagrVehicle());
   EXPECT_TRUE(change.InEffectWindow("terrain_change", 40.0));
   EXPECT_FALSE(change.InEffectWindow("terrain_change", 20.0));
 }

@@ -52,7 +52,8 @@ void SetConditions(const ModelResiduals& m, FailureSegment* f) {
     speed += std::abs(c.x[ward::kVbx]), pitch += std::abs(c.pitch_rad);
     yaw += std::abs(c.x[ward::kYawRate]), ++n;
   }
-  if (n > 0) f->speed_mps = speed / n, f->abs_pitch_rad = pitch / n, f->abs_yaw_rate_radps = yaw / n;
+  if (n > 0)
+    f->speed_mps = speed / n, f->abs_pitch_rad = pitch / n, f->abs_yaw_rate_radps = yaw / n;
 }
 
 struct Series {
@@ -173,8 +174,8 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
 void FitAndCompare(const DriveLog& log, const ModelConfig& model, const SmootherResult& without,
                    const DiagnosisOptions& options, size_t candidate_count,
                    std::vector<CandidateScore>* candidates) {
-  const size_t to_fit = options.fit_candidates < 0 ? candidates->size()
-                                                   : static_cast<size_t>(options.fit_candidates);
+  const size_t to_fit =
+      options.fit_candidates < 0 ? candidates->size() : static_cast<size_t>(options.fit_candidates);
   size_t tried = 0;
   for (CandidateScore& c : *candidates) {
     if (tried >= to_fit) break;
@@ -411,11 +412,12 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     if (!c.where.empty()) out << "  (" << c.where << ")";
     out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as) << "]";
     if (c.fitted) {
-      std::snprintf(line, sizeof(line),
-                    "\n      fitted (likelihood ratio %.1f, dispersion %.2f); score test: stat %.1f, "
-                    "p %.2g, magnitude %.4g +- %.2g",
-                    c.likelihood_ratio, c.dispersion, c.score_statistic, c.score_p_value,
-                    c.score_magnitude, c.score_magnitude_sd);
+      std::snprintf(
+          line, sizeof(line),
+          "\n      fitted (likelihood ratio %.1f, dispersion %.2f); score test: stat %.1f, "
+          "p %.2g, magnitude %.4g +- %.2g",
+          c.likelihood_ratio, c.dispersion, c.score_statistic, c.score_p_value, c.score_magnitude,
+          c.score_magnitude_sd);
       out << line;
     }
     out << "\n";
@@ -555,12 +557,10 @@ nlohmann::json ToJson(const Diagnosis& d) {
                          {"added_as", c.added_as}};
     if (!c.where.empty()) cj["where"] = c.where;
     if (c.fitted) {
-      cj["fit"] = {{"likelihood_ratio", c.likelihood_ratio},
-                   {"dispersion", c.dispersion},
-                   {"score_statistic", c.score_statistic},
-                   {"score_p_value", c.score_p_value},
-                   {"score_magnitude", c.score_magnitude},
-                   {"score_magnitude_sd", c.score_magnitude_sd}};
+      cj["fit"] = {
+          {"likelihood_ratio", c.likelihood_ratio}, {"dispersion", c.dispersion},
+          {"score_statistic", c.score_statistic},   {"score_p_value", c.score_p_value},
+          {"score_magnitude", c.score_magnitude},   {"score_magnitude_sd", c.score_magnitude_sd}};
     }
     j["candidates"].push_back(cj);
   }
@@ -632,8 +632,9 @@ std::string Section(const Diagnosis& d, const std::string& heading) {
          << "</td><td>" << c.p_value << "</td><td>" << (c.significant ? "yes" : "no") << "</td><td>"
          << c.magnitude << "</td><td>" << c.magnitude_sd << "</td><td>"
          << HtmlEscape(c.test + (c.where.empty() ? "" : " (" + c.where + ")") +
-                       (c.fitted ? "; fitted: likelihood ratio " + std::to_string(c.likelihood_ratio)
-                                 : ""))
+                       (c.fitted
+                            ? "; fitted: likelihood ratio " + std::to_string(c.likelihood_ratio)
+                            : ""))
          << "</td></tr>\n";
   }
   html << "</table>\n";

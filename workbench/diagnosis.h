@@ -92,12 +92,14 @@ struct CandidateScore {
   double dispersion = 1.0;  // robust over model-based variance of the score (>= 1)
   // Fit and compare (DiagnosisOptions::fit_candidates): the smoother re-solved with the term
   // on, 2 (C_0 - C_1) of the solutions' costs, and the fitted magnitude (which then is the
-  // candidate's magnitude). A fitted candidate's statistic is the likelihood ratio over the dispersion (a quasi-likelihood ratio,
-  // chi-square with 1 dof under the null) and its p-value that statistic's, with the same
-  // search and Bonferroni multipliers; the score test's are kept beside them.
+  // candidate's magnitude). A fitted candidate's statistic is the likelihood ratio over the
+  // dispersion (a quasi-likelihood ratio, chi-square with 1 dof under the null) and its p-value
+  // that statistic's, with the same search and Bonferroni multipliers; the score test's are kept
+  // beside them.
   bool fitted = false;
   double likelihood_ratio = 0.0;
-  double score_statistic = 0.0, score_p_value = 1.0, score_magnitude = 0.0, score_magnitude_sd = 0.0;
+  double score_statistic = 0.0, score_p_value = 1.0, score_magnitude = 0.0,
+         score_magnitude_sd = 0.0;
 };
 
 struct TruthErrors {

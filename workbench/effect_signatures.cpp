@@ -1,8 +1,8 @@
 #include "workbench/effect_signatures.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <Eigen/Cholesky>
 #include <random>
 
 #include "factors/normal_forces.h"
@@ -151,8 +151,9 @@ IntervalScan ScanIntervals(const ProjectedBasis& projected, size_t min_cells, bo
   out = Scan(prefix);
   if (out.statistic <= 0.0) return out;
   out.share = WithAll(out.a, out.b) / g_all;
-  const Eigen::LLT<Eigen::MatrixXd> root(projected.gram + 1e-12 * projected.gram.diagonal().maxCoeff() *
-                                                              Eigen::MatrixXd::Identity(cells, cells));
+  const Eigen::LLT<Eigen::MatrixXd> root(projected.gram +
+                                         1e-12 * projected.gram.diagonal().maxCoeff() *
+                                             Eigen::MatrixXd::Identity(cells, cells));
   std::mt19937_64 rng(20261123);
   std::normal_distribution<double> normal(0.0, 1.0);
   const int draws = 4000;
@@ -168,14 +169,19 @@ IntervalScan ScanIntervals(const ProjectedBasis& projected, size_t min_cells, bo
   return out;
 }
 
-// A scanned force shape h as a signature series: its graph score, and the scan's p-value as
-// the effective number of intervals searched (a multiplier on the chosen one's own p-value).
-void SetScanFit(const ModelResiduals& m, const std::vector<double>& h, const IntervalScan& scan,
-                SignatureSeries* s) {
+// An external force shape h (m/s^2 per unit magnitude, per state) as a signature series: its
+// score test on the graph, and its column for the omnibus test's "after the best candidate".
+void SetForceFit(const ModelResiduals& m, const std::vector<double>& h, SignatureSeries* s) {
   s->fit = FitOf(m.graph->TestForce(h));
   s->graph_column = [h](const GraphProjector& g) { return g.ForceColumn(h); };
-  s->searched =
-      std::max(1.0, scan.p / std::max(1e-300, NormalTwoSided(std::sqrt(scan.statistic))));
+}
+
+// A scanned force shape h: as SetForceFit, and the scan's p-value as the effective number of
+// intervals searched (a multiplier on the chosen one's own p-value).
+void SetScanFit(const ModelResiduals& m, const std::vector<double>& h, const IntervalScan& scan,
+                SignatureSeries* s) {
+  SetForceFit(m, h, s);
+  s->searched = std::max(1.0, scan.p / std::max(1e-300, NormalTwoSided(std::sqrt(scan.statistic))));
 }
 
 std::vector<EffectSignature> MakeSignatures() {
@@ -203,8 +209,7 @@ std::vector<EffectSignature> MakeSignatures() {
          }
        }});
   list.push_back({"wheel_radius_error",
-                  "score test on the graph of its term's column (factors/model_effects.h)",
-                  nullptr,
+                  "score test on the graph of its term's column (factors/model_effects.h)", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kWheelRadiusError)};
                   },
@@ -239,13 +244,14 @@ std::vector<EffectSignature> MakeSignatures() {
            imu.ax = fx, imu.az = fz, imu.gx = wx, imu.gz = wz;
          }
        }});
-  list.push_back({"slope_slip",
-                  "score test on the graph of its term's column (traction x |grade|)", nullptr,
+  list.push_back({"slope_slip", "score test on the graph of its term's column (traction x |grade|)",
+                  nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kSlopeSlip)};
                   },
                   nullptr});
-  list.push_back({"turn_slip", "score test on the graph of its term's column (-g |yaw rate| sgn(v))", nullptr,
+  list.push_back({"turn_slip",
+                  "score test on the graph of its term's column (-g |yaw rate| sgn(v))", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kTurnSlip)};
                   },
@@ -317,19 +323,18 @@ std::vector<EffectSignature> MakeSignatures() {
            const ward::Attitude<double> attitude{c.roll_rad, c.pitch_rad};
            const ward::TireForces<double> f = ward::ComputeTireForces(c.x.data(), attitude, p);
            const DiffDriveNormalForces<double> normal = DiffDriveCastorNormalForcesN(
-               p.mass_kg * p.gravity_mps2, WardRollRad(c.roll_rad),
-               WardPitchUphillRad(c.pitch_rad), p.cg_to_front_m, p.cg_to_rear_m,
-               p.track_width_m, p.cg_height_m);
+               p.mass_kg * p.gravity_mps2, WardRollRad(c.roll_rad), WardPitchUphillRad(c.pitch_rad),
+               p.cg_to_front_m, p.cg_to_rear_m, p.track_width_m, p.cg_height_m);
            // Traction is proportional to the driven wheel's load; the rolling resistance moves
            // between front and rear on the same side and cancels.
            const double transfer =
                p.mass_kg * a * p.cg_height_m / (p.cg_to_front_m + p.cg_to_rear_m) / 2.0;
-           h[k] = -transfer * (f.traction_left_n / normal.front_left_n +
-                               f.traction_right_n / normal.front_right_n) /
+           h[k] = -transfer *
+                  (f.traction_left_n / normal.front_left_n +
+                   f.traction_right_n / normal.front_right_n) /
                   p.mass_kg;
          }
-         s.fit = FitOf(m.graph->TestForce(h));
-         s.graph_column = [h](const GraphProjector& g) { return g.ForceColumn(h); };
+         SetForceFit(m, h, &s);
          return std::vector{s};
        },
        nullptr});
@@ -351,8 +356,8 @@ std::vector<EffectSignature> MakeSignatures() {
          std::vector<std::vector<double>> basis(seconds, std::vector<double>(n, 0.0));
          for (size_t k = 0; k < n; ++k) {
            const StateContext& c = m.states[k];
-           const ward::TireForces<double> f =
-               ward::ComputeTireForces(c.x.data(), ward::Attitude<double>{c.roll_rad, c.pitch_rad}, p);
+           const ward::TireForces<double> f = ward::ComputeTireForces(
+               c.x.data(), ward::Attitude<double>{c.roll_rad, c.pitch_rad}, p);
            traction[k] = (f.traction_left_n + f.traction_right_n) / p.mass_kg;
            basis[static_cast<size_t>(c.t - t0)][k] = traction[k];
          }
@@ -372,7 +377,8 @@ std::vector<EffectSignature> MakeSignatures() {
          return std::vector{s};
        },
        nullptr});
-  list.push_back({"quadratic_drag", "score test on the graph of its term's column (-v |v| / m)", nullptr,
+  list.push_back({"quadratic_drag", "score test on the graph of its term's column (-v |v| / m)",
+                  nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
                     return std::vector<SignatureSeries>{GraphSeries(m, kQuadraticDrag)};
                   },

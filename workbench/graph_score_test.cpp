@@ -62,7 +62,8 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   // N'N, with a relative ridge of 1e-10 on its diagonal (and 1e-12 where a column is empty) for
   // directions no factor constrains: they carry no information about any term either.
   Sparse A = Sparse(N_.transpose() * N_);
-  for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) = A.coeff(i, i) * (1.0 + 1e-10) + 1e-12;
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    A.coeffRef(i, i) = A.coeff(i, i) * (1.0 + 1e-10) + 1e-12;
   solver_.compute(A);
   if (solver_.info() != Eigen::Success) return;
   const Eigen::VectorXd y = solver_.solve(Eigen::VectorXd(N_.transpose() * residuals));

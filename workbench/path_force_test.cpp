@@ -72,8 +72,8 @@ PathForceTest TestForceAlongPath(const ModelResiduals& m, const Eigen::VectorXd*
     out.after_effect = candidate;
     out.after_statistic = std::max(0.0, x2_joint - own);
     out.after_dof = std::max(0, rank_joint - (own_information > 0.0 ? 1 : 0));
-    out.after_p_value = out.after_dof > 0 ? ChiSquareUpperTail(out.after_statistic, out.after_dof)
-                                          : 1.0;
+    out.after_p_value =
+        out.after_dof > 0 ? ChiSquareUpperTail(out.after_statistic, out.after_dof) : 1.0;
   }
 
   // Windows of window_m, 2 and 4 times that, and the whole path, stepping one cell; Bonferroni

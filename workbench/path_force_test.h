@@ -31,8 +31,8 @@ struct PathForceTest {
   double after_dof = 0.0;
   double after_p_value = std::numeric_limits<double>::quiet_NaN();
   struct Stretch {
-    double s_start = 0.0, s_end = 0.0;  // path distance (m)
-    double t_start = 0.0, t_end = 0.0;  // the states' times there
+    double s_start = 0.0, s_end = 0.0;                 // path distance (m)
+    double t_start = 0.0, t_end = 0.0;                 // the states' times there
     double statistic = 0.0, dof = 0.0, p_value = 1.0;  // p Bonferroni-adjusted over windows
   };
   std::vector<Stretch> stretches;  // significant windows, overlapping ones merged
@@ -45,7 +45,7 @@ std::pair<double, int> ChiSquareOfScores(const Eigen::VectorXd& score, const Eig
 // candidate_column: the best candidate's raw column on the graph (GraphProjector::EffectColumn,
 // ForceColumn), or null. window_m: the smallest windows' length for the stretches.
 PathForceTest TestForceAlongPath(const ModelResiduals& m, const Eigen::VectorXd* candidate_column,
-                                 const std::string& candidate, double alpha,
-                                 double metre = 1.0, double window_m = 5.0);
+                                 const std::string& candidate, double alpha, double metre = 1.0,
+                                 double window_m = 5.0);
 
 }  // namespace slipgraph
