@@ -33,8 +33,12 @@ inline double SignedSaturation(double v, double rate) {
 // The Jet version: value as above, derivative rate exp(-rate |v|) times v's derivative.
 template <typename S, int N>
 inline ceres::Jet<S, N> SignedSaturation(const ceres::Jet<S, N>& v, double rate) {
+  using std::expm1;
   const S x = rate * std::abs(v.a);
-  return ceres::Jet<S, N>(rate * v.a * OneMinusExpOverX(x), v.v * (rate * std::exp(-x)));
+  // One expm1 serves both parts: exp(-x) = 1 + expm1(-x) is exact to rounding in absolute terms.
+  const S expm1_minus_x = expm1(-x);
+  const S value = x < 1e-3 ? OneMinusExpOverX(x) : -expm1_minus_x / x;
+  return ceres::Jet<S, N>(rate * v.a * value, v.v * (rate * (1.0 + expm1_minus_x)));
 }
 
 // The value part of a scalar, for the few places that branch or round on it (a grid index, a

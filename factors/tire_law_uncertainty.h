@@ -18,7 +18,7 @@
 
 namespace slipgraph {
 
-inline double TireLawVariance(const double* x, const ward::Attitude<double>& attitude,
+inline double TireLawVariance(const double* x, const ward::AttitudeLoads<double>& loads,
                               const ward::Params& params, const TireLawUncertainty& u) {
   // Differentiate the traction with respect to the two wheel speeds: r d/d v_rel = d/d w.
   using Jet2 = ceres::Jet<double, 2>;
@@ -26,7 +26,7 @@ inline double TireLawVariance(const double* x, const ward::Attitude<double>& att
   for (int i = 0; i < ward::kStateSize; ++i) state[i] = Jet2(x[i]);
   state[ward::kOmegaLeft] = Jet2(x[ward::kOmegaLeft], 0);
   state[ward::kOmegaRight] = Jet2(x[ward::kOmegaRight], 1);
-  const ward::TireForces<Jet2> f = ward::ComputeTireForces(state, attitude, params);
+  const ward::TireForces<Jet2> f = ward::ComputeTireForces(state, loads, params);
   const double traction = std::abs(f.traction_left_n.a + f.traction_right_n.a) / params.mass_kg;
   const double slope_left =
       std::abs(f.traction_left_n.v[0]) / params.mass_kg / params.wheel_radius_m;
@@ -40,13 +40,18 @@ inline double TireLawVariance(const double* x, const ward::Attitude<double>& att
          slip_right * slip_right + u.floor_mps2 * u.floor_mps2;
 }
 
+inline double TireLawVariance(const double* x, const ward::Attitude<double>& attitude,
+                              const ward::Params& params, const TireLawUncertainty& u) {
+  return TireLawVariance(x, ward::ComputeAttitudeLoads(attitude, params), params, u);
+}
+
 // The law's variance as the noise of one accelerometer sample of interval sample_interval_s: its
 // error persists over correlation_time, so the per-sample variance grows by correlation_time /
 // interval (never below the plain variance).
-inline double TireLawSampleVariance(const double* x, const ward::Attitude<double>& attitude,
+inline double TireLawSampleVariance(const double* x, const ward::AttitudeLoads<double>& loads,
                                     const ward::Params& params, const TireLawUncertainty& u,
                                     double sample_interval_s) {
-  return TireLawVariance(x, attitude, params, u) *
+  return TireLawVariance(x, loads, params, u) *
          std::max(1.0, u.correlation_time_s / sample_interval_s);
 }
 

@@ -34,32 +34,54 @@ struct TireForces {
   T v_rel_right_mps;   // r w_r - v_fwd_r
 };
 
-// T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
-// keeps the trigonometry of the normal forces out of the automatic differentiation).
-template <typename T, typename A>
-inline TireForces<T> ComputeTireForces(const T* x, const Attitude<A>& attitude, const Params& p) {
+// What the attitude contributes to eqs. (1)-(2): the tires' normal forces (eqs. 3-5) and gravity
+// along body x. It depends on the attitude alone, so a filter computes it once per attitude sample
+// instead of at every evaluation of the tire forces (the trigonometry was a tenth of an EKF step).
+template <typename A>
+struct AttitudeLoads {
+  A driven_left_n;         // driven wheels of each side (traction, yaw moment)
+  A driven_right_n;
+  A roll_left_n;           // all wheels of each side (rolling resistance)
+  A roll_right_n;
+  A gravity_along_x_mps2;  // g sin(phi), phi uphill positive
+};
+
+template <typename A>
+inline AttitudeLoads<A> ComputeAttitudeLoads(const Attitude<A>& attitude, const Params& p) {
+  using std::sin;
   const A roll = WardRollRad(attitude.roll_rad);
   const A phi = WardPitchUphillRad(attitude.pitch_rad);
   const double weight_n = p.mass_kg * p.gravity_mps2;
-  const T half_track_yaw = 0.5 * p.track_width_m * x[kYawRate];
-  const T v_fwd_left = x[kVbx] - half_track_yaw;
-  const T v_fwd_right = x[kVbx] + half_track_yaw;
-
-  A driven_left_n, driven_right_n;
-  A roll_left_n, roll_right_n;  // rolling resistance of all wheels on each side
+  AttitudeLoads<A> loads;
   if (p.type == VehicleType::kDiffDriveCastor) {
     const DiffDriveNormalForces<A> n = DiffDriveCastorNormalForcesN(
         weight_n, roll, phi, p.cg_to_front_m, p.cg_to_rear_m, p.track_width_m, p.cg_height_m);
-    driven_left_n = n.front_left_n;
-    driven_right_n = n.front_right_n;
-    roll_left_n = n.front_left_n + n.rear_each_n;
-    roll_right_n = n.front_right_n + n.rear_each_n;
+    loads.driven_left_n = n.front_left_n;
+    loads.driven_right_n = n.front_right_n;
+    loads.roll_left_n = n.front_left_n + n.rear_each_n;
+    loads.roll_right_n = n.front_right_n + n.rear_each_n;
   } else {
     const SideNormalForces<A> n =
         SideTotalNormalForcesN(weight_n, roll, phi, p.track_width_m, p.cg_height_m);
-    driven_left_n = roll_left_n = n.left_n;
-    driven_right_n = roll_right_n = n.right_n;
+    loads.driven_left_n = loads.roll_left_n = n.left_n;
+    loads.driven_right_n = loads.roll_right_n = n.right_n;
   }
+  loads.gravity_along_x_mps2 = p.gravity_mps2 * sin(phi);
+  return loads;
+}
+
+// T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
+// keeps the trigonometry of the normal forces out of the automatic differentiation).
+template <typename T, typename A>
+inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads,
+                                       const Params& p) {
+  const T half_track_yaw = 0.5 * p.track_width_m * x[kYawRate];
+  const T v_fwd_left = x[kVbx] - half_track_yaw;
+  const T v_fwd_right = x[kVbx] + half_track_yaw;
+  const A& driven_left_n = loads.driven_left_n;
+  const A& driven_right_n = loads.driven_right_n;
+  const A& roll_left_n = loads.roll_left_n;
+  const A& roll_right_n = loads.roll_right_n;
 
   TireForces<T> out;
   out.v_rel_left_mps = TireRelativeVelocityMps(x[kOmegaLeft], p.wheel_radius_m, v_fwd_left);
@@ -84,19 +106,27 @@ inline TireForces<T> ComputeTireForces(const T* x, const Attitude<A>& attitude, 
   return out;
 }
 
+template <typename T, typename A>
+inline TireForces<T> ComputeTireForces(const T* x, const Attitude<A>& attitude, const Params& p) {
+  return ComputeTireForces(x, ComputeAttitudeLoads(attitude, p), p);
+}
+
 // Continuous state derivative, eq. (10), noise-free.
 template <typename T, typename A>
-inline void StateDerivative(const T* x, const Attitude<A>& attitude, const Params& p, T* x_dot) {
-  using std::sin;
-  const TireForces<T> forces = ComputeTireForces(x, attitude, p);
-  const A phi = WardPitchUphillRad(attitude.pitch_rad);
-  x_dot[kVbx] = forces.f_tire_mps2 + x[kAdist] - p.gravity_mps2 * sin(phi);
+inline void StateDerivative(const T* x, const AttitudeLoads<A>& loads, const Params& p, T* x_dot) {
+  const TireForces<T> forces = ComputeTireForces(x, loads, p);
+  x_dot[kVbx] = forces.f_tire_mps2 + x[kAdist] - loads.gravity_along_x_mps2;
   x_dot[kAccelBias] = -x[kAccelBias] / p.accel_bias_tau_s;
   x_dot[kAdist] = T(0.0);
   x_dot[kOmegaLeft] = T(0.0);
   x_dot[kOmegaRight] = T(0.0);
   x_dot[kYawRate] = forces.g_tire_radps2;
   x_dot[kGyroBias] = -x[kGyroBias] / p.gyro_bias_tau_s;
+}
+
+template <typename T, typename A>
+inline void StateDerivative(const T* x, const Attitude<A>& attitude, const Params& p, T* x_dot) {
+  StateDerivative(x, ComputeAttitudeLoads(attitude, p), p, x_dot);
 }
 
 // Discrete propagation over dt with classical RK4 on sub-steps no longer than max_substep_s,
@@ -138,11 +168,17 @@ inline double AccelInputDensitySq(double sd_accel_mps2, double sd_pitch_rad, dou
 // The EKF and the dynamics factor both call this, so filter and smoother share one
 // discretization.
 template <typename T, typename A>
-inline void Propagate(const T* x, const Attitude<A>& attitude, const Params& p, double dt_s,
+inline void Propagate(const T* x, const AttitudeLoads<A>& loads, const Params& p, double dt_s,
                       T* x_next, double max_substep_s = 0.01) {
   PropagateWith(
-      x, [&](const T* state, T* x_dot) { StateDerivative(state, attitude, p, x_dot); }, dt_s,
-      x_next, max_substep_s);
+      x, [&](const T* state, T* x_dot) { StateDerivative(state, loads, p, x_dot); }, dt_s, x_next,
+      max_substep_s);
+}
+
+template <typename T, typename A>
+inline void Propagate(const T* x, const Attitude<A>& attitude, const Params& p, double dt_s,
+                      T* x_next, double max_substep_s = 0.01) {
+  Propagate(x, ComputeAttitudeLoads(attitude, p), p, dt_s, x_next, max_substep_s);
 }
 
 }  // namespace ward

@@ -32,14 +32,20 @@ struct ImuOffsets {
 };
 
 template <typename T, typename A>
-inline void PredictMeasurements(const T* x, const Attitude<A>& attitude, const ImuOffsets<A>& c,
+inline void PredictMeasurements(const T* x, const AttitudeLoads<A>& loads, const ImuOffsets<A>& c,
                                 const Params& p, T* z) {
-  const TireForces<T> forces = ComputeTireForces(x, attitude, p);
+  const TireForces<T> forces = ComputeTireForces(x, loads, p);
   z[kZAccelX] = forces.f_tire_mps2 + c.accel_x_mps2 + x[kAccelBias] + x[kAdist];
   z[kZYawRate] = x[kYawRate] + c.gyro_z_radps + x[kGyroBias];
   z[kZGpsVx] = x[kVbx];
   z[kZOmegaLeft] = x[kOmegaLeft];
   z[kZOmegaRight] = x[kOmegaRight];
+}
+
+template <typename T, typename A>
+inline void PredictMeasurements(const T* x, const Attitude<A>& attitude, const ImuOffsets<A>& c,
+                                const Params& p, T* z) {
+  PredictMeasurements(x, ComputeAttitudeLoads(attitude, p), c, p, z);
 }
 
 }  // namespace ward

@@ -191,7 +191,8 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     double sd_a = noise.imu_sd_accel_mps2;
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       sd_a =
-          std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(), c.attitude,
+          std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(),
+                                                        ward::ComputeAttitudeLoads(c.attitude, params),
                                                         params, tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {

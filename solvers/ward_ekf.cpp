@@ -17,6 +17,36 @@ using namespace ward;  // NOLINT: state and measurement indices
 
 bool IsFinite(double value) { return std::isfinite(value); }
 
+// A P A^T for a transition matrix with few non-zeros per row: a_dist and the wheel speeds are
+// random walks (identity rows) and the biases decay on their own, so in the accelerometer-driven
+// form 12 of the 49 entries are non-zero. Symmetric by construction (the lower half is mirrored).
+template <int N>
+Eigen::Matrix<double, N, N> Sandwich(const Eigen::Matrix<double, N, N>& A,
+                                     const Eigen::Matrix<double, N, N>& P) {
+  int count[N];
+  int column[N][N];
+  for (int r = 0; r < N; ++r) {
+    count[r] = 0;
+    for (int c = 0; c < N; ++c) {
+      if (A(r, c) != 0.0) column[r][count[r]++] = c;
+    }
+  }
+  Eigen::Matrix<double, N, N> AP;
+  for (int r = 0; r < N; ++r) {
+    AP.row(r).setZero();
+    for (int k = 0; k < count[r]; ++k) AP.row(r) += A(r, column[r][k]) * P.row(column[r][k]);
+  }
+  Eigen::Matrix<double, N, N> out;
+  for (int r = 0; r < N; ++r) {
+    for (int c = 0; c <= r; ++c) {
+      double sum = 0.0;
+      for (int k = 0; k < count[c]; ++k) sum += AP(r, column[c][k]) * A(c, column[c][k]);
+      out(r, c) = out(c, r) = sum;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool EkfOptions::IsValid(std::string* error) const {
@@ -46,6 +76,7 @@ WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOpti
       offsets_(model.offset_init_samples, model.offset_ema_samples),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m) {
   for (int i = 0; i < kStateSize; ++i) P_(i, i) = options.initial_sd[i] * options.initial_sd[i];
+  loads_ = ComputeAttitudeLoads(CurrentAttitude(), params_);
 }
 
 void WardEkf::Begin(double t) {
@@ -67,7 +98,6 @@ void WardEkf::PredictTo(double t) {
   using Jet = ceres::Jet<double, kStateSize>;
   Jet x_jet[kStateSize], next[kStateSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
-  const Attitude<double> attitude = CurrentAttitude();
   const bool accel_driven =
       options_.velocity_model == VelocityModel::kAccelerometerDriven && have_accel_input_;
   if (accel_driven) {
@@ -76,12 +106,12 @@ void WardEkf::PredictTo(double t) {
     PropagateWith(
         x_jet,
         [&](const Jet* state, Jet* x_dot) {
-          StateDerivative(state, attitude, params_, x_dot);
+          StateDerivative(state, loads_, params_, x_dot);
           x_dot[kVbx] = specific_force - state[kAccelBias] - gravity_along_x;
         },
         dt, next);
   } else {
-    Propagate(x_jet, attitude, params_, dt, next);
+    Propagate(x_jet, loads_, params_, dt, next);
   }
   StateMatrix A;
   for (int r = 0; r < kStateSize; ++r) {
@@ -109,7 +139,7 @@ void WardEkf::PredictTo(double t) {
   q_diag(kYawRate) = q.yaw_rate_radps2_per_sqrt_hz * q.yaw_rate_radps2_per_sqrt_hz * dt;
   q_diag(kGyroBias) =
       q.gyro_bias_sd_radps * q.gyro_bias_sd_radps * (1.0 - std::exp(-2.0 * dt / q.gyro_bias_tau_s));
-  P_ = A * P_ * A.transpose();
+  P_ = Sandwich(A, P_);
   P_.diagonal() += q_diag;
   t_ = t;
 }
@@ -128,7 +158,18 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
       for (int j = 0; j < m; ++j) S(j, i) = H.row(j).dot(Ph);
       S(i, i) += r(i);
     }
-    const double mahalanobis = nu.dot(S.ldlt().solve(nu));
+    // One or two rows (every stream but a stacked custom one): closed form, no factorization.
+    double mahalanobis;
+    if (m == 1) {
+      mahalanobis = nu(0) * nu(0) / S(0, 0);
+    } else if (m == 2) {
+      const double det = S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0);
+      mahalanobis = (S(1, 1) * nu(0) * nu(0) - (S(0, 1) + S(1, 0)) * nu(0) * nu(1) +
+                     S(0, 0) * nu(1) * nu(1)) /
+                    det;
+    } else {
+      mahalanobis = nu.dot(S.ldlt().solve(nu));
+    }
     if (mahalanobis > gate_chi2) {
       if (consecutive_rejections == nullptr ||
           ++*consecutive_rejections <= max_consecutive_rejections) {
@@ -147,7 +188,12 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
     const StateVector h = H.row(i).transpose();
     // The stacked update's linearization at x_prior: the innovation moves with the earlier rows.
     const double innovation = nu(i) - h.dot(x_ - x_prior);
-    const StateVector Ph = P_ * h;
+    // Rows on one state (encoders, GNSS, weak constraints): P h is a column of P.
+    int unit = -1;
+    for (int j = 0; j < kStateSize && unit != -2; ++j) {
+      if (h(j) != 0.0) unit = (unit == -1 && h(j) == 1.0) ? j : -2;
+    }
+    const StateVector Ph = unit >= 0 ? StateVector(P_.col(unit)) : StateVector(P_ * h);
     const double s = h.dot(Ph) + r(i);
     const StateVector k = Ph / s;
     if (options_.record_innovations && names != nullptr && i < static_cast<int>(names->size())) {
@@ -157,7 +203,7 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
     }
     x_ += k * innovation;
     const StateMatrix AP = P_ - k * Ph.transpose();
-    const StateVector APh = AP * h;
+    const StateVector APh = unit >= 0 ? StateVector(AP.col(unit)) : StateVector(AP * h);
     P_ = AP - APh * k.transpose() + r(i) * k * k.transpose();
   }
   ++counters->used;
@@ -165,7 +211,10 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
 }
 
 void WardEkf::GuardDivergence() {
-  if (x_.allFinite() && P_.allFinite()) {
+  // No state of a ground robot (m/s, m/s^2, rad/s) comes near this: beyond it the filter has
+  // diverged even while its numbers are still finite (an unstable yaw step grows ~10x per step).
+  constexpr double kDivergedMagnitude = 1e6;
+  if (x_.allFinite() && P_.allFinite() && x_.cwiseAbs().maxCoeff() < kDivergedMagnitude) {
     last_good_x_ = x_;
     last_good_P_ = P_;
     return;
@@ -176,7 +225,7 @@ void WardEkf::GuardDivergence() {
 }
 
 double WardEkf::GravityAlongX() const {
-  return params_.gravity_mps2 * std::sin(WardPitchUphillRad(pitch_rad_));
+  return loads_.gravity_along_x_mps2;
 }
 
 void WardEkf::AddAttitude(const AttitudeSample& attitude) {
@@ -186,6 +235,7 @@ void WardEkf::AddAttitude(const AttitudeSample& attitude) {
   }
   roll_rad_ = attitude.roll;
   pitch_rad_ = attitude.pitch;
+  loads_ = ComputeAttitudeLoads(CurrentAttitude(), params_);
   pitch_sd_rad_ = std::isfinite(attitude.sd_pitch) ? attitude.sd_pitch : 0.0;
   if (IsFinite(attitude.yaw)) yaw_rad_ = attitude.yaw;
   have_attitude_ = true;
@@ -224,7 +274,7 @@ void WardEkf::AddImu(const ImuSample& imu) {
   using Jet = ceres::Jet<double, kStateSize>;
   Jet x_jet[kStateSize], z[kMeasurementSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
-  PredictMeasurements(x_jet, CurrentAttitude(),
+  PredictMeasurements(x_jet, loads_,
                       ImuOffsets<double>{offsets_.accel_x_mps2(), offsets_.gyro_z_radps()}, params_,
                       z);
   RowVector nu(0), r(0);
@@ -244,7 +294,7 @@ void WardEkf::AddImu(const ImuSample& imu) {
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's,
       // persistent over correlation_time (a per-sample variance scaled by correlation_time/dt).
-      variance += TireLawSampleVariance(x_.data(), CurrentAttitude(), params_,
+      variance += TireLawSampleVariance(x_.data(), loads_, params_,
                                         model_.tire_uncertainty, imu_period_s_);
     }
     add_row(kZAccelX, imu.ax, variance);
@@ -329,7 +379,7 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
   in.slip_ema_rate_per_s =
       dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;
   in.wheels_stopped_s = std::max(0.0, t_ - wheels_stopped_since_);
-  in.f_tire_mps2 = ComputeTireForces(x_.data(), CurrentAttitude(), params_).f_tire_mps2;
+  in.f_tire_mps2 = ComputeTireForces(x_.data(), loads_, params_).f_tire_mps2;
   in.gravity_along_x_mps2 = GravityAlongX();
   pseudo_.clear();
   const StateVector x_prior = x_;

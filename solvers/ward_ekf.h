@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
 #include "model/model_config.h"
@@ -134,11 +135,14 @@ class WardEkf {
               int max_consecutive_rejections, StreamCounters* counters, int* consecutive_rejections,
               const std::vector<const char*>* names = nullptr);
   void ApplyWeakConstraints(double dt_cycle);
-  // After every measurement: keep the last finite (x, P); on a non-finite one go back to it with
-  // the covariance inflated, and count it. Never a silent NaN.
+  // After every measurement: keep the last sane (x, P); on a diverged one (not finite, or a state
+  // beyond kDivergedMagnitude) go back to it with the covariance inflated, and count it. Never a
+  // silent NaN, nor a yaw rate of 1e46 rad/s that is still finite.
   void GuardDivergence();
   double GravityAlongX() const;  // g sin(phi) at the current attitude
   ward::Attitude<double> CurrentAttitude() const { return {roll_rad_, pitch_rad_}; }
+  // Normal forces and gravity along x at the current attitude, updated with each attitude sample.
+  ward::AttitudeLoads<double> loads_;
 
   // EMA of the accelerometer's normalized innovation squared, driving the adaptive w3.
   double accel_nis_ema_ = 1.0;
