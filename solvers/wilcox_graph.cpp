@@ -8,41 +8,18 @@
 #include <cmath>
 #include <memory>
 
+#include "factors/linear_factor.h"
 #include "factors/wilcox_factors.h"
 
 namespace slipgraph {
 namespace {
 
-struct SecondDifference {
-  double inverse_sd;
-  template <typename T>
-  bool operator()(const T* a, const T* b, const T* c, T* r) const {
-    r[0] = (a[0] - 2.0 * b[0] + c[0]) * inverse_sd;
-    return true;
-  }
-};
-struct FirstDifference {
-  double inverse_sd;
-  template <typename T>
-  bool operator()(const T* a, const T* b, T* r) const {
-    r[0] = (b[0] - a[0]) * inverse_sd;
-    return true;
-  }
-};
 // The odometry prior on an advance: (x_k - x_{k-1} - mean) / sd.
 struct AdvancePrior {
   double mean, inverse_sd;
   template <typename T>
   bool operator()(const T* a, const T* b, T* r) const {
     r[0] = (b[0] - a[0] - mean) * inverse_sd;
-    return true;
-  }
-};
-struct ScalarPrior {
-  double mean, inverse_sd;
-  template <typename T>
-  bool operator()(const T* a, T* r) const {
-    r[0] = (a[0] - mean) * inverse_sd;
     return true;
   }
 };
@@ -63,24 +40,27 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
   for (const WilcoxCycle& c : baseline.cycles) span += std::max(c.advance_m, c.rim_m);
   double far = 0.0;
   for (const WilcoxScan& z : scans) far = std::max(far, z.range.back().first);
-  const int nodes = static_cast<int>(std::ceil((span + far + g.margin_m + patch) / h)) + 2;
+  // Nodes in parameter blocks of B (factors/wilcox_factors.h says why), the grid padded to whole
+  // blocks.
+  const int B = std::max(1, g.nodes_per_block);
+  const int needed = static_cast<int>(std::ceil((span + far + g.margin_m + patch) / h)) + 2;
+  const int block_count = (needed + B - 1) / B;
+  const int nodes = block_count * B;
   std::vector<double> y(nodes, 0.0), s(nodes, 0.0);
 
   ceres::Problem problem;
   for (double& v : x) problem.AddParameterBlock(&v, 1);
-  for (int i = 0; i < nodes; ++i) {
-    problem.AddParameterBlock(&y[i], 1);
-    problem.AddParameterBlock(&s[i], 1);
+  for (int c = 0; c < block_count; ++c) {
+    problem.AddParameterBlock(&y[c * B], B);
+    problem.AddParameterBlock(&s[c * B], B);
   }
   const auto run = [&](double lo, double hi) {
     return wilcox::RunCovering(lo, hi, g.margin_m + patch, h, nodes);
   };
   const auto blocks_of = [&](const WilcoxMeasurementFactor& f, size_t k) {
     std::vector<double*> blocks = {&x[k]};
-    for (int i = 0; i < f.y_near.count; ++i) blocks.push_back(&y[f.y_near.first + i]);
-    for (int i = 0; i < f.y_far.count; ++i) blocks.push_back(&y[f.y_far.first + i]);
-    for (int i = 0; i < f.s_near.count; ++i) blocks.push_back(&s[f.s_near.first + i]);
-    for (int i = 0; i < f.s_far.count; ++i) blocks.push_back(&s[f.s_far.first + i]);
+    for (int c : f.y_blocks) blocks.push_back(&y[c * B]);
+    for (int c : f.s_blocks) blocks.push_back(&s[c * B]);
     return blocks;
   };
   // The factors of cycle k around position xk.
@@ -96,6 +76,10 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
     for (const auto& [d, dz] : z.range) {
       out.push_back({WilcoxMeasurementFactor::kRange, d, dz, o.range_sd_m, patch, near,
                      run(xk + d, xk + d), near, wilcox::GridRun{0, 0, h}});
+    }
+    for (WilcoxMeasurementFactor& f : out) {
+      f.block_size = B;
+      f.Prepare();
     }
     return out;
   };
@@ -138,23 +122,44 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
   step_options.max_num_iterations = 5;
   step_options.logging_type = ceres::SILENT;
   problem.SetParameterBlockConstant(&x[0]);
-  problem.AddResidualBlock(
-      new ceres::AutoDiffCostFunction<ScalarPrior, 1, 1>(new ScalarPrior{0.0, 1.0 / 0.01}), nullptr,
-      &y[0]);  // the elevation datum
-  for (int i = 0; i < nodes; ++i) {
-    if (i + 2 < nodes) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<SecondDifference, 1, 1, 1, 1>(
-                                   new SecondDifference{1.0 / g.y_curvature_sd_m}),
-                               nullptr, &y[i], &y[i + 1], &y[i + 2]);
+  // The elevation datum y_0 = 0 (sd 1 cm), and per block of nodes the smoothness priors that
+  // start in it (they reach into the next block): y's second differences, s's first differences,
+  // s around 0.
+  {
+    LinearFactor::Matrix datum = LinearFactor::Matrix::Zero(1, B);
+    datum(0, 0) = 1.0 / 0.01;
+    problem.AddResidualBlock(new LinearFactor({datum}, Eigen::VectorXd::Zero(1)), nullptr, &y[0]);
+  }
+  for (int c = 0; c < block_count; ++c) {
+    const bool last = c + 1 == block_count;
+    const int width = last ? B : 2 * B;  // this block and the next
+    const auto rows_of = [&](const LinearFactor::Matrix& dense) {
+      std::vector<LinearFactor::Matrix> a = {dense.leftCols(B)};
+      if (!last) a.push_back(dense.rightCols(B));
+      return a;
+    };
+    LinearFactor::Matrix curvature = LinearFactor::Matrix::Zero(B, width);
+    LinearFactor::Matrix slope = LinearFactor::Matrix::Zero(B, width);
+    for (int j = 0; j < B; ++j) {
+      if (j + 2 < width) {
+        curvature(j, j) = curvature(j, j + 2) = 1.0 / g.y_curvature_sd_m;
+        curvature(j, j + 1) = -2.0 / g.y_curvature_sd_m;
+      }
+      if (j + 1 < width) {
+        slope(j, j) = -1.0 / g.s_slope_sd_m;
+        slope(j, j + 1) = 1.0 / g.s_slope_sd_m;
+      }
     }
-    if (i + 1 < nodes) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FirstDifference, 1, 1, 1>(
-                                   new FirstDifference{1.0 / g.s_slope_sd_m}),
-                               nullptr, &s[i], &s[i + 1]);
-    }
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ScalarPrior, 1, 1>(
-                                 new ScalarPrior{0.0, 1.0 / g.s_prior_sd_m}),
-                             nullptr, &s[i]);
+    std::vector<double*> y_blocks = {&y[c * B]}, s_blocks = {&s[c * B]};
+    if (!last) y_blocks.push_back(&y[(c + 1) * B]), s_blocks.push_back(&s[(c + 1) * B]);
+    problem.AddResidualBlock(new LinearFactor(rows_of(curvature), Eigen::VectorXd::Zero(B)),
+                             nullptr, y_blocks);
+    problem.AddResidualBlock(new LinearFactor(rows_of(slope), Eigen::VectorXd::Zero(B)), nullptr,
+                             s_blocks);
+    problem.AddResidualBlock(
+        new LinearFactor({LinearFactor::Matrix::Identity(B, B) / g.s_prior_sd_m},
+                         Eigen::VectorXd::Zero(B)),
+        nullptr, &s[c * B]);
   }
   // Cycle by cycle: search the advance on the profiles so far (the measurements that fall on
   // mapped ground), map the new ground, add the cycle's factors, refine.
@@ -164,7 +169,7 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
   }
   ceres::Solver::Summary step_summary;
   ceres::Solve(step_options, &problem, &step_summary);
-  int held_nodes = 0;
+  int held_blocks = 0;
   for (size_t k = 1; k < scans.size(); ++k) {
     const double rim = baseline.cycles[k - 1].rim_m;
     const double mean = rim * (1.0 - o.prior_slip);
@@ -194,19 +199,19 @@ WilcoxSide SolveSide(const DriveLog& log, Side side, const WilcoxSide& baseline,
       const size_t old = k - g.window_cycles;
       problem.SetParameterBlockConstant(&x[old]);
       const int behind = static_cast<int>(std::floor((x[old] - g.margin_m - patch) / h));
-      for (int i = held_nodes; i < std::min(behind, nodes); ++i) {
-        problem.SetParameterBlockConstant(&y[i]);
-        problem.SetParameterBlockConstant(&s[i]);
+      for (int c = held_blocks; c < std::min(behind / B, block_count); ++c) {
+        problem.SetParameterBlockConstant(&y[c * B]);
+        problem.SetParameterBlockConstant(&s[c * B]);
       }
-      held_nodes = std::max(held_nodes, std::min(behind, nodes));
+      held_blocks = std::max(held_blocks, std::min(behind / B, block_count));
     }
     if (k % g.refine_every == 0) ceres::Solve(step_options, &problem, &step_summary);
   }
   // The final solve over everything.
   for (size_t k = 1; k < x.size(); ++k) problem.SetParameterBlockVariable(&x[k]);
-  for (int i = 0; i < held_nodes; ++i) {
-    problem.SetParameterBlockVariable(&y[i]);
-    problem.SetParameterBlockVariable(&s[i]);
+  for (int c = 0; c < held_blocks; ++c) {
+    problem.SetParameterBlockVariable(&y[c * B]);
+    problem.SetParameterBlockVariable(&s[c * B]);
   }
   ceres::Solver::Options options = step_options;
   options.max_num_iterations = g.max_iterations;

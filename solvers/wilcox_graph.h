@@ -15,6 +15,7 @@ namespace slipgraph {
 
 struct WilcoxGraphOptions {
   double node_spacing_m = 0.01;
+  int nodes_per_block = 8;          // nodes per Ceres parameter block (1: a block per node)
   double margin_m = 0.05;           // how far a position may move from its initial value
   double y_curvature_sd_m = 0.003;  // second difference of y between nodes
   double s_slope_sd_m = 0.001;      // difference of s between nodes

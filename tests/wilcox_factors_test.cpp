@@ -20,13 +20,14 @@ struct Profiles {
   }
 };
 
-std::vector<const double*> Blocks(const WilcoxMeasurementFactor& f, const double* x,
-                                  const Profiles& p) {
+// Prepares the factor for blocks of block_size nodes and lists its parameter blocks.
+std::vector<const double*> Blocks(WilcoxMeasurementFactor* f, const double* x, const Profiles& p,
+                                  int block_size = 1) {
+  f->block_size = block_size;
+  f->Prepare();
   std::vector<const double*> blocks = {x};
-  for (int i = 0; i < f.y_near.count; ++i) blocks.push_back(&p.y[f.y_near.first + i]);
-  for (int i = 0; i < f.y_far.count; ++i) blocks.push_back(&p.y[f.y_far.first + i]);
-  for (int i = 0; i < f.s_near.count; ++i) blocks.push_back(&p.s[f.s_near.first + i]);
-  for (int i = 0; i < f.s_far.count; ++i) blocks.push_back(&p.s[f.s_far.first + i]);
+  for (int c : f->y_blocks) blocks.push_back(&p.y[c * block_size]);
+  for (int c : f->s_blocks) blocks.push_back(&p.s[c * block_size]);
   return blocks;
 }
 
@@ -43,10 +44,16 @@ TEST(WilcoxFactors, RangeResidualByHandAndJacobian) {
                             wilcox::RunCovering(x + 0.5, x + 0.5, 0.03, 0.01, 120),
                             wilcox::RunCovering(x, x, 0.03, 0.01, 120),
                             wilcox::GridRun{0, 0, 0.01}};
+  const std::vector<const double*> blocks = Blocks(&f, &x, p);
   const std::unique_ptr<ceres::CostFunction> cost(WilcoxMeasurementFactor::Create(f));
-  const std::vector<const double*> blocks = Blocks(f, &x, p);
   EXPECT_NEAR(testing::Residuals(*cost, blocks)[0], 0.5, 1e-9);
   testing::ExpectJacobiansMatchNumeric(*cost, blocks);
+  // The same factor on blocks of 8 nodes (the graph's default): same residual, same derivatives.
+  const std::vector<const double*> blocks8 = Blocks(&f, &x, p, 8);
+  const std::unique_ptr<ceres::CostFunction> cost8(WilcoxMeasurementFactor::Create(f));
+  EXPECT_LT(blocks8.size(), blocks.size());
+  EXPECT_NEAR(testing::Residuals(*cost8, blocks8)[0], 0.5, 1e-9);
+  testing::ExpectJacobiansMatchNumeric(*cost8, blocks8);
 }
 
 TEST(WilcoxFactors, ArticulationOverTheBumpWithAContactPatch) {
@@ -61,8 +68,8 @@ TEST(WilcoxFactors, ArticulationOverTheBumpWithAContactPatch) {
                             wilcox::RunCovering(x + 0.24, x + 0.24, 0.05, 0.01, 120),
                             wilcox::RunCovering(x, x, 0.05, 0.01, 120),
                             wilcox::RunCovering(x + 0.24, x + 0.24, 0.05, 0.01, 120)};
+  const std::vector<const double*> blocks = Blocks(&f, &x, p, 8);
   const std::unique_ptr<ceres::CostFunction> cost(WilcoxMeasurementFactor::Create(f));
-  const std::vector<const double*> blocks = Blocks(f, &x, p);
   // The ramp alone gives 0.024 exactly; the averaged bump adds part of its 2 mm.
   const double r = testing::Residuals(*cost, blocks)[0] * 0.00004;
   EXPECT_LT(r, 0.0);
