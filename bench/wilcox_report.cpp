@@ -1,9 +1,13 @@
 // Wilcox Fig. 4 on the simulated wilcox suite (40 runs: 0.25-4 cm RMS roughness, 20 % slip):
 // odometry error of the total advance and front-sinkage RMSE per roughness, for an advance prior
-// of 1 % and 10 % of the rim motion, and the left/right check on wilcox_lr. Prints a table
-// (docs/wilcox.md). Run: build/bench/wilcox_report
+// of 1 % and 10 % of the rim motion, baseline and factor graph on the same runs, and the
+// left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
+// Run: build/bench/wilcox_report [--runs N] [--method baseline|graph|both]   (N runs per
+// roughness, default all 8; the graph takes about 8 s per run)
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,37 +15,56 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/wilcox_baseline.h"
+#include "solvers/wilcox_graph.h"
 
-int main() {
+int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
+  size_t runs_per_roughness = 1000;
+  std::vector<std::string> methods = {"baseline", "graph"};
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--runs") == 0) {
+      runs_per_roughness = static_cast<size_t>(std::atoi(argv[i + 1]));
+    } else if (std::strcmp(argv[i], "--method") == 0) {
+      methods =
+          std::strcmp(argv[i + 1], "both") == 0 ? methods : std::vector<std::string>{argv[i + 1]};
+    } else {
+      std::fprintf(stderr, "usage: wilcox_report [--runs N] [--method baseline|graph|both]\n");
+      return 2;
+    }
+  }
   std::map<std::string, std::vector<DriveLog>> by_roughness;
   for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox", 1)) {
     const std::string roughness =
         run.relative_directory.substr(1, run.relative_directory.find("cm") - 1);
-    by_roughness[roughness].push_back(sim::Simulate(run.scenario, run.seed).log);
+    std::vector<DriveLog>& logs = by_roughness[roughness];
+    if (logs.size() < runs_per_roughness) logs.push_back(sim::Simulate(run.scenario, run.seed).log);
   }
   std::printf(
-      "| RMS roughness cm | runs | prior | odometry error mean (max) | rim motion alone | "
-      "front sinkage RMSE mm | sides agree |\n|---|---|---|---|---|---|---|\n");
+      "| RMS roughness cm | runs | prior | method | odometry error mean (max) | rim motion alone | "
+      "front sinkage RMSE mm | sides agree |\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& [roughness, logs] : by_roughness) {
     for (double prior : {0.01, 0.1}) {
-      WilcoxOptions options;
-      options.prior_fraction = prior;
-      double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
-      int agree = 0;
-      for (const DriveLog& log : logs) {
-        const WilcoxResult result = EstimateWilcoxBaseline(log, options);
-        const WilcoxScore score = ScoreWilcox(log, result);
-        sum += score.odometry_error_fraction;
-        worst = std::max(worst, score.odometry_error_fraction);
-        rim += score.rim_odometry_error_fraction;
-        sinkage += score.sinkage_rmse_m;
-        agree += result.sides_agree;
+      for (const std::string& method : methods) {
+        WilcoxOptions options;
+        options.prior_fraction = prior;
+        double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
+        int agree = 0;
+        for (const DriveLog& log : logs) {
+          const WilcoxResult result = method == "graph" ? EstimateWilcoxGraph(log, options)
+                                                        : EstimateWilcoxBaseline(log, options);
+          const WilcoxScore score = ScoreWilcox(log, result);
+          sum += score.odometry_error_fraction;
+          worst = std::max(worst, score.odometry_error_fraction);
+          rim += score.rim_odometry_error_fraction;
+          sinkage += score.sinkage_rmse_m;
+          agree += result.sides_agree;
+        }
+        const double n = static_cast<double>(logs.size());
+        std::printf("| %s | %zu | %.0f %% | %s | %.2f %% (%.2f %%) | %.1f %% | %.2f | %d/%zu |\n",
+                    roughness.c_str(), logs.size(), 100.0 * prior, method.c_str(), 100.0 * sum / n,
+                    100.0 * worst, 100.0 * rim / n, 1000.0 * sinkage / n, agree, logs.size());
+        std::fflush(stdout);
       }
-      const double n = static_cast<double>(logs.size());
-      std::printf("| %s | %zu | %.0f %% | %.2f %% (%.2f %%) | %.1f %% | %.2f | %d/%zu |\n",
-                  roughness.c_str(), logs.size(), 100.0 * prior, 100.0 * sum / n, 100.0 * worst,
-                  100.0 * rim / n, 1000.0 * sinkage / n, agree, logs.size());
     }
   }
   std::printf("\nwilcox_lr (2 cm, left sinks 1 cm more in soft patches on asym runs):\n\n");
