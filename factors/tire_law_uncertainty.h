@@ -18,26 +18,34 @@
 
 namespace slipgraph {
 
-inline double TireLawVariance(const double* x, const ward::AttitudeLoads<double>& loads,
-                              const ward::Params& params, const TireLawUncertainty& u) {
-  // Differentiate the traction with respect to the two wheel speeds: r d/d v_rel = d/d w.
-  using Jet2 = ceres::Jet<double, 2>;
-  Jet2 state[ward::kStateSize];
-  for (int i = 0; i < ward::kStateSize; ++i) state[i] = Jet2(x[i]);
-  state[ward::kOmegaLeft] = Jet2(x[ward::kOmegaLeft], 0);
-  state[ward::kOmegaRight] = Jet2(x[ward::kOmegaRight], 1);
-  const ward::TireForces<Jet2> f = ward::ComputeTireForces(state, loads, params);
+// From tire forces already evaluated on Jets whose slots left_slot and right_slot are the wheel
+// speeds (the EKF's accelerometer row has them from its 7-wide Jet): no second evaluation.
+template <typename JetT>
+inline double TireLawVarianceOf(const ward::TireForces<JetT>& f, int left_slot, int right_slot,
+                                const ward::Params& params, const TireLawUncertainty& u) {
+  // r d/d v_rel = d/d w.
   const double traction = std::abs(f.traction_left_n.a + f.traction_right_n.a) / params.mass_kg;
   const double slope_left =
-      std::abs(f.traction_left_n.v[0]) / params.mass_kg / params.wheel_radius_m;
+      std::abs(f.traction_left_n.v[left_slot]) / params.mass_kg / params.wheel_radius_m;
   const double slope_right =
-      std::abs(f.traction_right_n.v[1]) / params.mass_kg / params.wheel_radius_m;
+      std::abs(f.traction_right_n.v[right_slot]) / params.mass_kg / params.wheel_radius_m;
   const double slip_left =
       slope_left * (u.slip_relative_sd * std::abs(f.v_rel_left_mps.a) + u.slip_floor_mps);
   const double slip_right =
       slope_right * (u.slip_relative_sd * std::abs(f.v_rel_right_mps.a) + u.slip_floor_mps);
   return u.relative_sd * traction * u.relative_sd * traction + slip_left * slip_left +
          slip_right * slip_right + u.floor_mps2 * u.floor_mps2;
+}
+
+inline double TireLawVariance(const double* x, const ward::AttitudeLoads<double>& loads,
+                              const ward::Params& params, const TireLawUncertainty& u) {
+  // Differentiate the traction with respect to the two wheel speeds.
+  using Jet2 = ceres::Jet<double, 2>;
+  Jet2 state[ward::kStateSize];
+  for (int i = 0; i < ward::kStateSize; ++i) state[i] = Jet2(x[i]);
+  state[ward::kOmegaLeft] = Jet2(x[ward::kOmegaLeft], 0);
+  state[ward::kOmegaRight] = Jet2(x[ward::kOmegaRight], 1);
+  return TireLawVarianceOf(ward::ComputeTireForces(state, loads, params), 0, 1, params, u);
 }
 
 inline double TireLawVariance(const double* x, const ward::Attitude<double>& attitude,
@@ -48,11 +56,14 @@ inline double TireLawVariance(const double* x, const ward::Attitude<double>& att
 // The law's variance as the noise of one accelerometer sample of interval sample_interval_s: its
 // error persists over correlation_time, so the per-sample variance grows by correlation_time /
 // interval (never below the plain variance).
+inline double TireLawSampleScale(const TireLawUncertainty& u, double sample_interval_s) {
+  return std::max(1.0, u.correlation_time_s / sample_interval_s);
+}
+
 inline double TireLawSampleVariance(const double* x, const ward::AttitudeLoads<double>& loads,
                                     const ward::Params& params, const TireLawUncertainty& u,
                                     double sample_interval_s) {
-  return TireLawVariance(x, loads, params, u) *
-         std::max(1.0, u.correlation_time_s / sample_interval_s);
+  return TireLawVariance(x, loads, params, u) * TireLawSampleScale(u, sample_interval_s);
 }
 
 }  // namespace slipgraph

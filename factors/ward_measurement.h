@@ -31,10 +31,12 @@ struct ImuOffsets {
   T gyro_z_radps;
 };
 
+// forces_out (optional): the tire forces behind the accelerometer row.
 template <typename T, typename A>
 inline void PredictMeasurements(const T* x, const AttitudeLoads<A>& loads, const ImuOffsets<A>& c,
-                                const Params& p, T* z) {
+                                const Params& p, T* z, TireForces<T>* forces_out = nullptr) {
   const TireForces<T> forces = ComputeTireForces(x, loads, p);
+  if (forces_out != nullptr) *forces_out = forces;
   z[kZAccelX] = forces.f_tire_mps2 + c.accel_x_mps2 + x[kAccelBias] + x[kAdist];
   z[kZYawRate] = x[kYawRate] + c.gyro_z_radps + x[kGyroBias];
   z[kZGpsVx] = x[kVbx];

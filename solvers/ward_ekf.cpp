@@ -274,9 +274,10 @@ void WardEkf::AddImu(const ImuSample& imu) {
   using Jet = ceres::Jet<double, kStateSize>;
   Jet x_jet[kStateSize], z[kMeasurementSize];
   for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
+  TireForces<Jet> forces;
   PredictMeasurements(x_jet, loads_,
                       ImuOffsets<double>{offsets_.accel_x_mps2(), offsets_.gyro_z_radps()}, params_,
-                      z);
+                      z, &forces);
   RowVector nu(0), r(0);
   RowMatrix H(0, kStateSize);
   const auto add_row = [&](int index, double measured, double variance) {
@@ -294,8 +295,10 @@ void WardEkf::AddImu(const ImuSample& imu) {
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's,
       // persistent over correlation_time (a per-sample variance scaled by correlation_time/dt).
-      variance += TireLawSampleVariance(x_.data(), loads_, params_,
-                                        model_.tire_uncertainty, imu_period_s_);
+      // From the row's own forces (their Jets carry d/d w): no second tire-force evaluation.
+      variance += TireLawVarianceOf(forces, kOmegaLeft, kOmegaRight, params_,
+                                    model_.tire_uncertainty) *
+                  TireLawSampleScale(model_.tire_uncertainty, imu_period_s_);
     }
     add_row(kZAccelX, imu.ax, variance);
     // Normalized innovation squared of the accelerometer alone, for the adaptive w3.
