@@ -20,6 +20,7 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
     std::string log, out, method = "baseline";
     bool json = false, skip_bad = false;
     WilcoxOptions wilcox;
+    WilcoxGraphOptions graph;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -33,6 +34,9 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
                   "cycle on Ceres (slower, more accurate)")
       ->check(CLI::IsMember({"baseline", "graph"}))
       ->capture_default_str();
+  cmd->add_flag("--shared-advance", options->graph.shared_advance,
+                "graph: both sides in one problem sharing the rear wheels' positions (a rover "
+                "driving straight); the left/right check then compares the sinkage");
   cmd->add_option("--prior", options->wilcox.prior_fraction,
                   "sd of the advance prior, as a fraction of the rim motion")
       ->capture_default_str();
@@ -43,7 +47,7 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
     namespace fs = std::filesystem;
     const DriveLog log = ReadLogWithWarnings(options->log, options->skip_bad);
     const WilcoxResult result = options->method == "graph"
-                                    ? EstimateWilcoxGraph(log, options->wilcox)
+                                    ? EstimateWilcoxGraph(log, options->wilcox, options->graph)
                                     : EstimateWilcoxBaseline(log, options->wilcox);
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
     const std::string out = options->out.empty()

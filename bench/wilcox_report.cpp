@@ -2,8 +2,9 @@
 // odometry error of the total advance and front-sinkage RMSE per roughness, for an advance prior
 // of 1 % and 10 % of the rim motion, baseline and factor graph on the same runs, and the
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
-// Run: build/bench/wilcox_report [--runs N] [--method baseline|graph|both]   (N runs per
-// roughness, default all 8; the graph takes about 8 s per run)
+// Run: build/bench/wilcox_report [--runs N] [--method baseline|graph|graph_shared|all]
+// (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
+// sides sharing the advance, WilcoxGraphOptions::shared_advance)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -20,15 +21,16 @@
 int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
   size_t runs_per_roughness = 1000;
-  std::vector<std::string> methods = {"baseline", "graph"};
+  std::vector<std::string> methods = {"baseline", "graph", "graph_shared"};
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--runs") == 0) {
       runs_per_roughness = static_cast<size_t>(std::atoi(argv[i + 1]));
     } else if (std::strcmp(argv[i], "--method") == 0) {
       methods =
-          std::strcmp(argv[i + 1], "both") == 0 ? methods : std::vector<std::string>{argv[i + 1]};
+          std::strcmp(argv[i + 1], "all") == 0 ? methods : std::vector<std::string>{argv[i + 1]};
     } else {
-      std::fprintf(stderr, "usage: wilcox_report [--runs N] [--method baseline|graph|both]\n");
+      std::fprintf(stderr,
+                   "usage: wilcox_report [--runs N] [--method baseline|graph|graph_shared|all]\n");
       return 2;
     }
   }
@@ -50,8 +52,11 @@ int main(int argc, char** argv) {
         double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
         int agree = 0;
         for (const DriveLog& log : logs) {
-          const WilcoxResult result = method == "graph" ? EstimateWilcoxGraph(log, options)
-                                                        : EstimateWilcoxBaseline(log, options);
+          WilcoxGraphOptions graph;
+          graph.shared_advance = method == "graph_shared";
+          const WilcoxResult result = method == "baseline"
+                                          ? EstimateWilcoxBaseline(log, options)
+                                          : EstimateWilcoxGraph(log, options, graph);
           const WilcoxScore score = ScoreWilcox(log, result);
           sum += score.odometry_error_fraction;
           worst = std::max(worst, score.odometry_error_fraction);

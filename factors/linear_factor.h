@@ -16,9 +16,11 @@ class LinearFactor : public ceres::CostFunction {
   using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
   // a[b]: rows x (size of block b); rhs: rows.
-  LinearFactor(std::vector<Matrix> a, Eigen::VectorXd rhs) : a_(std::move(a)), rhs_(std::move(rhs)) {
+  LinearFactor(std::vector<Matrix> a, Eigen::VectorXd rhs)
+      : a_(std::move(a)), rhs_(std::move(rhs)) {
     set_num_residuals(static_cast<int>(rhs_.size()));
-    for (const Matrix& m : a_) mutable_parameter_block_sizes()->push_back(static_cast<int>(m.cols()));
+    for (const Matrix& m : a_)
+      mutable_parameter_block_sizes()->push_back(static_cast<int>(m.cols()));
   }
 
   bool Evaluate(double const* const* parameters, double* residuals,

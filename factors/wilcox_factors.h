@@ -85,8 +85,8 @@ struct WilcoxMeasurementFactor {
     T predicted = T(0.0);
     std::vector<const T*> nodes;
     ForEachProbe([&](Profile profile, const wilcox::GridRun& run, double offset, double weight) {
-      NodePointers(run, profile == kTerrain ? y_blocks : s_blocks,
-                   profile == kTerrain ? y_p : s_p, &nodes);
+      NodePointers(run, profile == kTerrain ? y_blocks : s_blocks, profile == kTerrain ? y_p : s_p,
+                   &nodes);
       predicted += weight * wilcox::ProfileAt(run, nodes.data(), T(x + offset));
     });
     residual[0] = (measured_m - predicted) / sd_m;

@@ -23,6 +23,10 @@ struct WilcoxGraphOptions {
   int max_iterations = 100;         // the final solve
   int refine_every = 1;             // cycles between intermediate solves (5 iterations each)
   int window_cycles = 10;           // the intermediate solves move only the last this many cycles
+  // Both sides in one problem sharing the rear wheels' positions (a rigid rover driving straight;
+  // the odometry prior on the sides' mean rim motion); each side keeps its own terrain and
+  // sinkage, and the left/right check then compares the sinkage alone.
+  bool shared_advance = false;
 };
 
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options = {},
