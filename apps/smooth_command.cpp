@@ -1,6 +1,8 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "solvers/batch_smoother.h"
+#include "solvers/wilcox_graph.h"
+#include "solvers/wilcox_velocity.h"
 #include "solvers/window_smoother.h"
 
 namespace slipgraph {
@@ -12,6 +14,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     int threads = 1;
     double chunk_min = 0.0;
     double overlap_s = 60.0;
+    bool advance_velocity = false;
+    double advance_sd_m = 0.003;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
@@ -26,28 +30,45 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
                   "Chunked mode: seconds of look-ahead every estimate has before it is final")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--advance-velocity", options->advance_velocity,
+                "Rocker-bogie logs with articulation and ranging: Wilcox's advance per cycle "
+                "(the factor graph, sides sharing the advance) as a body-velocity measurement");
+  cmd->add_option("--advance-sd", options->advance_sd_m,
+                  "sd of one cycle's advance for --advance-velocity, m")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->callback([options, status]() {
-    BatchSmootherOptions smoother_options;
-    smoother_options.filter.use_gps = !options->no_gps;
-    smoother_options.threads = options->threads;
-    RunEstimatorOverLogs(
-        options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
-          if (options->chunk_min > 0.0) {
-            const double rate_hz =
-                log.wheels.size() > 1
-                    ? (log.wheels.size() - 1) / (log.wheels.back().t - log.wheels.front().t)
-                    : 100.0;
-            const WindowSmootherResult result = SmoothWindowed(
-                log, model,
-                ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
-            report << DescribeWindowRun(result);
-            return EstimatorOutput{result.estimates, {}};
-          }
-          const SmootherResult result = SmoothBatch(log, model, smoother_options);
-          report << DescribeSmootherRun(result);
-          // a_dist: every external force, the model's effect terms included.
-          return EstimatorOutput{DisturbanceWithEffects(result, log, model), {}};
-        });
+    BatchSmootherOptions base_options;
+    base_options.filter.use_gps = !options->no_gps;
+    base_options.threads = options->threads;
+    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
+                                           std::ostream& report) {
+      BatchSmootherOptions smoother_options = base_options;
+      if (options->advance_velocity) {
+        WilcoxGraphOptions graph;
+        graph.shared_advance = true;
+        const WilcoxResult wilcox = EstimateWilcoxGraph(log, {}, graph);
+        smoother_options.problem.body_velocity = WilcoxBodyVelocity(wilcox, options->advance_sd_m);
+        report << "advance velocity: " << smoother_options.problem.body_velocity.size()
+               << " cycles of Wilcox's factor graph (shared advance), advance sd "
+               << options->advance_sd_m << " m\n";
+      }
+      if (options->chunk_min > 0.0) {
+        const double rate_hz =
+            log.wheels.size() > 1
+                ? (log.wheels.size() - 1) / (log.wheels.back().t - log.wheels.front().t)
+                : 100.0;
+        const WindowSmootherResult result = SmoothWindowed(
+            log, model,
+            ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
+        report << DescribeWindowRun(result);
+        return EstimatorOutput{result.estimates, {}};
+      }
+      const SmootherResult result = SmoothBatch(log, model, smoother_options);
+      report << DescribeSmootherRun(result);
+      // a_dist: every external force, the model's effect terms included.
+      return EstimatorOutput{DisturbanceWithEffects(result, log, model), {}};
+    });
     *status = 0;
   });
 }

@@ -79,9 +79,10 @@ WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRu
 std::string FactorCounts::Describe() const {
   std::ostringstream out;
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
-      << " gyro, " << encoders << " encoder, " << gnss << " GNSS, " << oppose_motion
-      << " oppose-motion, " << act_quickly << " decay, " << at_rest << " at-rest, " << bounds
-      << " bound, " << rate_bounds << " rate-bound priors";
+      << " gyro, " << encoders << " encoder, " << gnss << " GNSS, "
+      << (body_velocity > 0 ? std::to_string(body_velocity) + " body velocity, " : std::string())
+      << oppose_motion << " oppose-motion, " << act_quickly << " decay, " << at_rest << " at-rest, "
+      << bounds << " bound, " << rate_bounds << " rate-bound priors";
   return out.str();
 }
 
@@ -123,6 +124,7 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   } else {
     gps_begin_.assign(n + 1, 0);
   }
+  velocity_begin_ = AttachToStates(options.body_velocity, times_);
   if (log.imu.size() > 1) {
     imu_period_s_ = (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1);
   }
@@ -190,10 +192,10 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     const Context c = ContextAt(imu.t);
     double sd_a = noise.imu_sd_accel_mps2;
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
-      sd_a =
-          std::sqrt(sd_a * sd_a + TireLawSampleVariance(ekf_.estimates[k].x.data(),
-                                                        ward::ComputeAttitudeLoads(c.attitude, params),
-                                                        params, tire_uncertainty_, imu_period_s_));
+      sd_a = std::sqrt(sd_a * sd_a +
+                       TireLawSampleVariance(ekf_.estimates[k].x.data(),
+                                             ward::ComputeAttitudeLoads(c.attitude, params), params,
+                                             tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {
       if (effects != nullptr) {
@@ -227,6 +229,13 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
     const double sd = std::isfinite(g.sd_v) && g.sd_v > 0.0 ? g.sd_v : noise.gps_sd_v_mps;
     Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, x);
     ++counts->gnss;
+  }
+  // Another estimator's body-x velocity: the same residual as GNSS projected on body x.
+  for (size_t i = velocity_begin_[k]; i < velocity_begin_[k + 1]; ++i) {
+    const BodyVelocityMeasurement& m = options_.body_velocity[i];
+    if (!std::isfinite(m.v_mps) || !(m.sd_mps > 0.0)) continue;
+    Add("body_velocity", GnssVelocityFactor::Create(m.v_mps, m.sd_mps), nullptr, x);
+    ++counts->body_velocity;
   }
 
   // Weak constraints as soft priors, their densities scaled by the state's cycle time.

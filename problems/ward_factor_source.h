@@ -20,9 +20,20 @@
 
 namespace slipgraph {
 
+// A velocity along body x measured by another estimator over an interval, e.g. a rover's
+// advance per cycle from wheel-profile matching (solvers/wilcox_*): the mean velocity over
+// [t - interval/2, t + interval/2], used as a measurement of v_bx at the state nearest t.
+struct BodyVelocityMeasurement {
+  double t = 0.0;
+  double v_mps = 0.0;
+  double sd_mps = 0.0;
+};
+
 struct WardProblemOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   bool use_gps = true;
+  // Body-x velocity measurements from another estimator, sorted by t (empty: none).
+  std::vector<BodyVelocityMeasurement> body_velocity;
   // |w| below this reads as a stopped wheel (weak constraints 1 and 4), as in the EKF.
   double wheel_still_radps = EkfOptions().wheel_still_radps;
   // Huber scale of the disturbance random walk, in standard deviations of one step.
@@ -76,8 +87,8 @@ struct AddedFactor {
 
 // How many factors of each kind went in, for the report.
 struct FactorCounts {
-  long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, oppose_motion = 0,
-       act_quickly = 0, at_rest = 0, bounds = 0, rate_bounds = 0;
+  long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, body_velocity = 0,
+       oppose_motion = 0, act_quickly = 0, at_rest = 0, bounds = 0, rate_bounds = 0;
   std::string Describe() const;
 };
 
@@ -124,7 +135,7 @@ class WardFactorSource {
   std::vector<std::array<double, 2>> wheel_speeds_;
   std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving
   // IMU and GNSS samples attached to state k: [imu_begin_[k], imu_begin_[k + 1]), same for GNSS.
-  std::vector<size_t> imu_begin_, gps_begin_;
+  std::vector<size_t> imu_begin_, gps_begin_, velocity_begin_;
   double imu_period_s_ = 0.01;
 };
 

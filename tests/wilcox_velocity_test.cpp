@@ -1,0 +1,70 @@
+// Wilcox's advance as a body-velocity measurement for the vehicle graph: the conversion at a
+// hand-made point, and end to end on a simulated rocker-bogie log without GNSS, where the
+// smoother alone cannot see the 20 % slip.
+#include "solvers/wilcox_velocity.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "evaluation/evaluation.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/batch_smoother.h"
+#include "solvers/wilcox_graph.h"
+
+namespace slipgraph {
+namespace {
+
+TEST(WilcoxVelocity, MeanAdvanceOverTheCycleAtItsMiddle) {
+  WilcoxResult result;
+  result.sides.resize(2);
+  for (int k = 0; k < 3; ++k) {
+    WilcoxCycle c;
+    c.t = 1.0 + 0.5 * k;
+    c.advance_m = 0.02 + 0.01 * k;
+    result.sides[0].cycles.push_back(c);
+    c.advance_m += 0.002;  // the right side's advance, 2 mm more
+    result.sides[1].cycles.push_back(c);
+  }
+  const std::vector<BodyVelocityMeasurement> v = WilcoxBodyVelocity(result, 0.003);
+  ASSERT_EQ(v.size(), 2u);  // the first cycle has no start time
+  EXPECT_DOUBLE_EQ(v[0].t, 1.25);
+  EXPECT_NEAR(v[0].v_mps, (0.031) / 0.5, 1e-12);  // the sides' mean advance over 0.5 s
+  EXPECT_NEAR(v[0].sd_mps, 0.006, 1e-12);
+  EXPECT_NEAR(v[1].v_mps, (0.041) / 0.5, 1e-12);
+  // Sides with different cycles give nothing rather than a wrong pairing.
+  result.sides[1].cycles.pop_back();
+  EXPECT_TRUE(WilcoxBodyVelocity(result, 0.003).empty());
+}
+
+TEST(WilcoxVelocity, FixesTheSmoothersVelocityOnASlippingRover) {
+  // The first simulated 1 cm run (20 % slip, no GNSS). Measured: batch v RMSE 0.0743 m/s and
+  // 45 % of samples falsely immobilized without; 0.0088 m/s and none with the advance velocity.
+  const sim::ScenarioRun run = [] {
+    for (const sim::ScenarioRun& r : sim::ExpandScenario("wilcox", 1)) {
+      if (r.relative_directory.rfind("r1cm", 0) == 0) return r;
+    }
+    return sim::ScenarioRun{};
+  }();
+  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  BatchSmootherOptions options;
+  const Evaluation without =
+      Evaluate(log, EstimateTable(SmoothBatch(log, model, options).estimates));
+  WilcoxGraphOptions graph;
+  graph.shared_advance = true;
+  options.problem.body_velocity = WilcoxBodyVelocity(EstimateWilcoxGraph(log, {}, graph), 0.003);
+  ASSERT_GT(options.problem.body_velocity.size(), 50u);
+  const SmootherResult with_result = SmoothBatch(log, model, options);
+  const Evaluation with = Evaluate(log, EstimateTable(with_result.estimates));
+  std::printf("v RMSE without %.4f, with %.4f m/s; false immobilized %.3f -> %.3f\n",
+              without.velocity_rmse, with.velocity_rmse, without.false_immobilized_fraction(),
+              with.false_immobilized_fraction());
+  EXPECT_LT(with.velocity_rmse, 0.3 * without.velocity_rmse);
+  EXPECT_LT(with.velocity_rmse, 0.015);
+  EXPECT_LT(with.false_immobilized_fraction(), 0.01);
+}
+
+}  // namespace
+}  // namespace slipgraph
