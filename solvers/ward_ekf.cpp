@@ -127,8 +127,15 @@ void WardEkf::PredictTo(double t) {
       model_.measurement.imu_sd_accel_mps2, pitch_sd_rad_, params_.gravity_mps2, imu_period_s_);
   q_diag(kVbx) =
       (accel_driven ? accel_density_sq : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz) * dt;
-  q_diag(kAccelBias) = q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 *
-                       (1.0 - std::exp(-2.0 * dt / q.accel_bias_tau_s));
+  // The biases' exact Gauss-Markov variances, recomputed only when the step changes.
+  if (dt != bias_noise_dt_) {
+    bias_noise_dt_ = dt;
+    accel_bias_q_ = q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 *
+                    -std::expm1(-2.0 * dt / q.accel_bias_tau_s);
+    gyro_bias_q_ =
+        q.gyro_bias_sd_radps * q.gyro_bias_sd_radps * -std::expm1(-2.0 * dt / q.gyro_bias_tau_s);
+  }
+  q_diag(kAccelBias) = accel_bias_q_;
   // Adaptive w3: the density scales with the recent accelerometer NIS (1 when consistent).
   const double q_adist =
       std::min(q.a_dist_max_mps3_per_sqrt_hz,
@@ -137,8 +144,7 @@ void WardEkf::PredictTo(double t) {
   q_diag(kOmegaLeft) = q_diag(kOmegaRight) =
       q.omega_radps2_per_sqrt_hz * q.omega_radps2_per_sqrt_hz * dt;
   q_diag(kYawRate) = q.yaw_rate_radps2_per_sqrt_hz * q.yaw_rate_radps2_per_sqrt_hz * dt;
-  q_diag(kGyroBias) =
-      q.gyro_bias_sd_radps * q.gyro_bias_sd_radps * (1.0 - std::exp(-2.0 * dt / q.gyro_bias_tau_s));
+  q_diag(kGyroBias) = gyro_bias_q_;
   P_ = Sandwich(A, P_);
   P_.diagonal() += q_diag;
   t_ = t;
@@ -155,7 +161,7 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
     RowSquare S(m, m);
     for (int i = 0; i < m; ++i) {
       const StateVector Ph = P_ * H.row(i).transpose();
-      for (int j = 0; j < m; ++j) S(j, i) = H.row(j).dot(Ph);
+      for (int j = 0; j <= i; ++j) S(j, i) = S(i, j) = H.row(j).dot(Ph);
       S(i, i) += r(i);
     }
     // One or two rows (every stream but a stacked custom one): closed form, no factorization.
@@ -202,9 +208,9 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
       series.normalized.push_back(innovation / std::sqrt(s));
     }
     x_ += k * innovation;
-    const StateMatrix AP = P_ - k * Ph.transpose();
-    const StateVector APh = unit >= 0 ? StateVector(AP.col(unit)) : StateVector(AP * h);
-    P_ = AP - APh * k.transpose() + r(i) * k * k.transpose();
+    P_.noalias() -= k * Ph.transpose();  // A P
+    const StateVector APh = unit >= 0 ? StateVector(P_.col(unit)) : StateVector(P_ * h);
+    P_.noalias() -= (APh - r(i) * k) * k.transpose();  // (A P) A^T + r k k^T
   }
   ++counters->used;
   return true;

@@ -143,6 +143,8 @@ class WardEkf {
   ward::Attitude<double> CurrentAttitude() const { return {roll_rad_, pitch_rad_}; }
   // Normal forces and gravity along x at the current attitude, updated with each attitude sample.
   ward::AttitudeLoads<double> loads_;
+  // The biases' discrete process noise for the last prediction step (PredictTo).
+  double bias_noise_dt_ = -1.0, accel_bias_q_ = 0.0, gyro_bias_q_ = 0.0;
 
   // EMA of the accelerometer's normalized innovation squared, driving the adaptive w3.
   double accel_nis_ema_ = 1.0;
