@@ -56,11 +56,13 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
     fs::create_directories(out);
     {
       CsvWriter csv((fs::path(out) / "cycles.csv").string(),
-                    {"t", "side", "rim_m", "advance_m", "slip", "sinkage_front_m"});
+                    {"t", "side", "rim_m", "advance_m", "slip", "sinkage_front_m", "sd_advance_m",
+                     "sd_sinkage_front_m"});
       for (const WilcoxSide& side : result.sides) {
         for (const WilcoxCycle& c : side.cycles) {
           csv << c.t << side.side << c.rim_m << c.advance_m
-              << (c.rim_m > 0.0 ? 1.0 - c.advance_m / c.rim_m : 0.0) << c.sinkage_front_m;
+              << (c.rim_m > 0.0 ? 1.0 - c.advance_m / c.rim_m : 0.0) << c.sinkage_front_m
+              << c.advance_sd_m << c.sinkage_front_sd_m;
           csv.EndRow();
         }
       }

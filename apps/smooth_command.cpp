@@ -34,7 +34,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
                 "Rocker-bogie logs with articulation and ranging: Wilcox's advance per cycle "
                 "(the factor graph, sides sharing the advance) as a body-velocity measurement");
   cmd->add_option("--advance-sd", options->advance_sd_m,
-                  "sd of one cycle's advance for --advance-velocity, m")
+                  "sd of one cycle's advance for --advance-velocity where the graph gives none, m")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->callback([options, status]() {
@@ -50,8 +50,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
         const WilcoxResult wilcox = EstimateWilcoxGraph(log, {}, graph);
         smoother_options.problem.body_velocity = WilcoxBodyVelocity(wilcox, options->advance_sd_m);
         report << "advance velocity: " << smoother_options.problem.body_velocity.size()
-               << " cycles of Wilcox's factor graph (shared advance), advance sd "
-               << options->advance_sd_m << " m\n";
+               << " cycles of Wilcox's factor graph (shared advance), each with its marginal sd\n";
       }
       if (options->chunk_min > 0.0) {
         const double rate_hz =

@@ -21,6 +21,7 @@
 // points stay points. The left/right check compares the two sides' advances and sinkages.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,9 @@ struct WilcoxCycle {
   double advance_m = 0.0;        // the MAP estimate of the rear wheel's advance
   double sinkage_front_m = 0.0;  // estimated sinkage under the front wheel
   double cost_curvature = 0.0;   // the parabola's curvature at the minimum (1/m^2): confidence
+  // Marginal standard deviations (the factor graph, from its covariance; NaN when not computed).
+  double advance_sd_m = std::numeric_limits<double>::quiet_NaN();
+  double sinkage_front_sd_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct WilcoxSide {

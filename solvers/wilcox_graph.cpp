@@ -1,12 +1,16 @@
 #include "solvers/wilcox_graph.h"
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/covariance.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <memory>
+#include <utility>
 
 #include "factors/linear_factor.h"
 #include "factors/wilcox_factors.h"
@@ -265,6 +269,50 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     }
     return baselines;
   }
+  // Marginal uncertainty of each advance (x_k - x_{k-1}) and front sinkage (two interpolated s
+  // nodes) from the covariance at the solution; skipped with a note when Ceres cannot compute it.
+  std::map<std::pair<const double*, const double*>, Eigen::MatrixXd> cov;
+  if (g.covariance) {
+    std::vector<std::pair<const double*, const double*>> wanted;
+    const auto want = [&](const double* a, const double* b) {
+      if (cov.emplace(std::make_pair(a, b), Eigen::MatrixXd()).second) wanted.push_back({a, b});
+    };
+    for (size_t k = 1; k < cycles; ++k) {
+      want(&x[k], &x[k]);
+      want(&x[k - 1], &x[k - 1]);
+      want(&x[k - 1], &x[k]);
+      const double front = (x[k] + 2.0 * A) / h;
+      const int i = std::clamp(static_cast<int>(front), 0, nodes - 2);
+      for (SideProfiles& p : side) {
+        want(&p.s[(i / B) * B], &p.s[(i / B) * B]);
+        want(&p.s[(i / B) * B], &p.s[((i + 1) / B) * B]);
+        want(&p.s[((i + 1) / B) * B], &p.s[((i + 1) / B) * B]);
+      }
+    }
+    ceres::Covariance::Options cov_options;
+    cov_options.algorithm_type = ceres::SPARSE_QR;
+    ceres::Covariance covariance(cov_options);
+    if (covariance.Compute(wanted, &problem)) {
+      for (auto& [blocks, m] : cov) {
+        const int rows = problem.ParameterBlockSize(blocks.first);
+        const int cols = problem.ParameterBlockSize(blocks.second);
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block(rows, cols);
+        covariance.GetCovarianceBlock(blocks.first, blocks.second, block.data());
+        m = block;
+      }
+    } else {
+      cov.clear();
+      notes->push_back("the graph's covariance could not be computed: no standard deviations");
+    }
+  }
+  // Covariance of element a of block pa with element b of block pb (either order).
+  const auto cov_of = [&](const double* pa, int a, const double* pb, int b) {
+    auto it = cov.find({pa, pb});
+    if (it != cov.end() && it->second.size() > 0) return it->second(a, b);
+    it = cov.find({pb, pa});
+    if (it != cov.end() && it->second.size() > 0) return it->second(b, a);
+    return std::numeric_limits<double>::quiet_NaN();
+  };
   std::vector<WilcoxSide> out(n_sides);
   for (size_t j = 0; j < n_sides; ++j) {
     out[j].side = baselines[j].side;
@@ -274,6 +322,18 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
       const double front = (x[k] + 2.0 * A) / h;
       const int i = std::clamp(static_cast<int>(front), 0, nodes - 2);
       c.sinkage_front_m = side[j].s[i] + (front - i) * (side[j].s[i + 1] - side[j].s[i]);
+      if (!cov.empty()) {
+        const double var_advance = cov_of(&x[k], 0, &x[k], 0) + cov_of(&x[k - 1], 0, &x[k - 1], 0) -
+                                   2.0 * cov_of(&x[k - 1], 0, &x[k], 0);
+        c.advance_sd_m = std::sqrt(std::max(0.0, var_advance));
+        const double w0 = 1.0 - (front - i), w1 = front - i;
+        const double* b0 = &side[j].s[(i / B) * B];
+        const double* b1 = &side[j].s[((i + 1) / B) * B];
+        const double var_sinkage = w0 * w0 * cov_of(b0, i % B, b0, i % B) +
+                                   2.0 * w0 * w1 * cov_of(b0, i % B, b1, (i + 1) % B) +
+                                   w1 * w1 * cov_of(b1, (i + 1) % B, b1, (i + 1) % B);
+        c.sinkage_front_sd_m = std::sqrt(std::max(0.0, var_sinkage));
+      }
       out[j].cycles.push_back(c);
       out[j].total_advance_m += c.advance_m;
       out[j].total_rim_m += c.rim_m;

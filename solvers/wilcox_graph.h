@@ -27,6 +27,8 @@ struct WilcoxGraphOptions {
   // the odometry prior on the sides' mean rim motion); each side keeps its own terrain and
   // sinkage, and the left/right check then compares the sinkage alone.
   bool shared_advance = false;
+  // Marginal sd of each advance and front sinkage (ceres::Covariance, SPARSE_QR).
+  bool covariance = true;
 };
 
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options = {},

@@ -12,8 +12,9 @@
 namespace slipgraph {
 
 // One measurement per cycle (the sides' mean advance; both sides must have the same cycles), at
-// the cycle's middle, sd = advance_sd_m / the cycle's duration.
+// the cycle's middle, sd = the advance's sd / the cycle's duration: the graph's marginal sd when
+// it has one (WilcoxCycle::advance_sd_m), else fallback_advance_sd_m.
 std::vector<BodyVelocityMeasurement> WilcoxBodyVelocity(const WilcoxResult& result,
-                                                        double advance_sd_m);
+                                                        double fallback_advance_sd_m);
 
 }  // namespace slipgraph
