@@ -27,18 +27,37 @@ std::vector<StreamEntry> MergeStreams(const DriveLog& log, const StreamSelection
   entries.reserve(log.imu.size() + log.wheels.size() + log.attitude.size() + log.gps.size() +
                   log.pose.size() + log.articulation.size() + log.range.size() +
                   log.commands.size());
-  Append(log.imu, Stream::kImu, selection, &entries);
-  Append(log.wheels, Stream::kWheels, selection, &entries);
-  Append(log.attitude, Stream::kAttitude, selection, &entries);
-  Append(log.gps, Stream::kGps, selection, &entries);
-  Append(log.pose, Stream::kPose, selection, &entries);
-  Append(log.articulation, Stream::kArticulation, selection, &entries);
-  Append(log.range, Stream::kRange, selection, &entries);
-  Append(log.commands, Stream::kCommands, selection, &entries);
-  // Each stream is already time-ordered, so a stable sort on t alone keeps the stream order on
-  // ties and each stream's own order.
-  std::stable_sort(entries.begin(), entries.end(),
-                   [](const StreamEntry& a, const StreamEntry& b) { return a.t < b.t; });
+  // Each stream's entries form one run; the runs are merged in stream order, so on equal times
+  // the earlier stream comes first and each stream keeps its own order (a stable sort by t).
+  std::vector<size_t> run_end;
+  const auto append = [&](const auto& samples, Stream stream) {
+    Append(samples, stream, selection, &entries);
+    run_end.push_back(entries.size());
+  };
+  append(log.imu, Stream::kImu);
+  append(log.wheels, Stream::kWheels);
+  append(log.attitude, Stream::kAttitude);
+  append(log.gps, Stream::kGps);
+  append(log.pose, Stream::kPose);
+  append(log.articulation, Stream::kArticulation);
+  append(log.range, Stream::kRange);
+  append(log.commands, Stream::kCommands);
+  const auto by_time = [](const StreamEntry& a, const StreamEntry& b) { return a.t < b.t; };
+  bool runs_sorted = true;
+  size_t begin = 0;
+  for (size_t end : run_end) {
+    runs_sorted = runs_sorted && std::is_sorted(entries.begin() + begin, entries.begin() + end,
+                                                by_time);
+    begin = end;
+  }
+  if (runs_sorted) {  // the usual case: merge the sorted runs, O(n) per run
+    for (size_t r = 1; r < run_end.size(); ++r) {
+      std::inplace_merge(entries.begin(), entries.begin() + run_end[r - 1],
+                         entries.begin() + run_end[r], by_time);
+    }
+  } else {
+    std::stable_sort(entries.begin(), entries.end(), by_time);
+  }
   return entries;
 }
 

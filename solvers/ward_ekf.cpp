@@ -388,7 +388,9 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
   in.slip_ema_rate_per_s =
       dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;
   in.wheels_stopped_s = std::max(0.0, t_ - wheels_stopped_since_);
-  in.f_tire_mps2 = ComputeTireForces(x_.data(), loads_, params_).f_tire_mps2;
+  if (MovingAgainstTheWheels(x_.data(), in.vel_dir)) {  // WC3 alone reads it
+    in.f_tire_mps2 = ComputeTireForces(x_.data(), loads_, params_).f_tire_mps2;
+  }
   in.gravity_along_x_mps2 = GravityAlongX();
   pseudo_.clear();
   const StateVector x_prior = x_;

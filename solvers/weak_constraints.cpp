@@ -10,6 +10,10 @@ double Sign(double value) { return value > 0.0 ? 1.0 : (value < 0.0 ? -1.0 : 0.0
 
 }  // namespace
 
+bool MovingAgainstTheWheels(const double* x, double vel_dir) {
+  return vel_dir != 0.0 && Sign(x[ward::kVbx]) == -vel_dir;
+}
+
 const char* WeakConstraintName(WeakConstraint constraint) {
   static const char* const kNames[kWeakConstraintCount] = {
       "oppose_motion", "act_quickly", "no_pull_back", "at_rest", "bound", "rate"};
@@ -30,7 +34,7 @@ void CollectWeakConstraints(const double* x, const double* x_prev, const WeakCon
     out->push_back({WeakConstraint::kActQuickly, kAdist, c.decay_alpha * a_dist, c.sd_act_quickly});
   }
   // WC3: the disturbance may stop the robot, not pull it backwards.
-  if (in.vel_dir != 0.0 && Sign(x[kVbx]) == -in.vel_dir) {
+  if (MovingAgainstTheWheels(x, in.vel_dir)) {
     const double net_tire = in.f_tire_mps2 - in.gravity_along_x_mps2;
     if (Sign(net_tire) == -in.vel_dir) {
       out->push_back({WeakConstraint::kNoPullBack, kAdist, 0.0, c.sd_no_pull_back});

@@ -41,7 +41,8 @@ struct WeakConstraintInputs {
   double slip_ema = 0.0;              // i_EMA
   double slip_ema_rate_per_s = 0.0;   // d(i_EMA)/dt
   double wheels_stopped_s = 0.0;      // how long both wheels have read zero
-  double f_tire_mps2 = 0.0;           // f_tire at the a priori state
+  double f_tire_mps2 = 0.0;           // f_tire at the a priori state (read when
+                                      // MovingAgainstTheWheels)
   double gravity_along_x_mps2 = 0.0;  // g sin(phi), phi uphill positive
 };
 
@@ -52,6 +53,10 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
   if (sum > -2.0 * wheel_still_radps && sum < 2.0 * wheel_still_radps) return 0.0;
   return sum > 0.0 ? 1.0 : -1.0;
 }
+
+// WC3's condition: the body moves against the wheels' direction. Only then does a constraint read
+// WeakConstraintInputs::f_tire_mps2, so a caller may skip evaluating the tire forces otherwise.
+bool MovingAgainstTheWheels(const double* x, double vel_dir);
 
 // Appends the pseudo-measurements that apply at the a priori state x (and x_prev, the state of
 // the previous cycle, for WC6).

@@ -26,6 +26,28 @@ TEST(MeasurementStream, MergesInTimeOrderWithFixedTieOrder) {
   EXPECT_EQ(merged[4].index, 2);
 }
 
+TEST(MeasurementStream, AStreamOutOfOrderIsStillMergedInTimeOrder) {
+  // The sorted runs are merged; a run out of order falls back to a stable sort of everything.
+  DriveLog log;
+  log.imu = {{0.02}, {0.0}, {0.01}};
+  log.wheels.resize(1);
+  log.wheels[0].t = 0.01;  // tie with imu[2]: IMU first
+  const std::vector<StreamEntry> merged = MergeStreams(log);
+  ASSERT_EQ(merged.size(), 4u);
+  const int imu_order[] = {1, 2, -1, 0};
+  for (size_t i = 0; i < merged.size(); ++i) {
+    if (i > 0) {
+      EXPECT_LE(merged[i - 1].t, merged[i].t);
+    }
+    if (imu_order[i] >= 0) {
+      EXPECT_EQ(merged[i].stream, Stream::kImu) << i;
+      EXPECT_EQ(merged[i].index, imu_order[i]) << i;
+    } else {
+      EXPECT_EQ(merged[i].stream, Stream::kWheels) << i;
+    }
+  }
+}
+
 TEST(MeasurementStream, SelectionLeavesOutStreams) {
   DriveLog log;
   log.imu = {{0.0}};
