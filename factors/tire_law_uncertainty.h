@@ -48,11 +48,6 @@ inline double TireLawVariance(const double* x, const ward::AttitudeLoads<double>
   return TireLawVarianceOf(ward::ComputeTireForces(state, loads, params), 0, 1, params, u);
 }
 
-inline double TireLawVariance(const double* x, const ward::Attitude<double>& attitude,
-                              const ward::Params& params, const TireLawUncertainty& u) {
-  return TireLawVariance(x, ward::ComputeAttitudeLoads(attitude, params), params, u);
-}
-
 // The law's variance as the noise of one accelerometer sample of interval sample_interval_s: its
 // error persists over correlation_time, so the per-sample variance grows by correlation_time /
 // interval (never below the plain variance).

@@ -269,6 +269,16 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     }
     return baselines;
   }
+  // The front wheel at cycle k: the s node before it and the fraction of the way to the next.
+  const auto front_of = [&](size_t k) {
+    const double front = (x[k] + 2.0 * A) / h;
+    const int i = std::clamp(static_cast<int>(front), 0, nodes - 2);
+    return std::make_pair(i, front - i);
+  };
+  // The parameter block (its first node) that holds node i of a profile.
+  const auto block_of = [&](const std::vector<double>& profile, int i) {
+    return &profile[(i / B) * B];
+  };
   // Marginal uncertainty of each advance (x_k - x_{k-1}) and front sinkage (two interpolated s
   // nodes) from the covariance at the solution; skipped with a note when Ceres cannot compute it.
   std::map<std::pair<const double*, const double*>, Eigen::MatrixXd> cov;
@@ -281,12 +291,11 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
       want(&x[k], &x[k]);
       want(&x[k - 1], &x[k - 1]);
       want(&x[k - 1], &x[k]);
-      const double front = (x[k] + 2.0 * A) / h;
-      const int i = std::clamp(static_cast<int>(front), 0, nodes - 2);
-      for (SideProfiles& p : side) {
-        want(&p.s[(i / B) * B], &p.s[(i / B) * B]);
-        want(&p.s[(i / B) * B], &p.s[((i + 1) / B) * B]);
-        want(&p.s[((i + 1) / B) * B], &p.s[((i + 1) / B) * B]);
+      const int i = front_of(k).first;
+      for (const SideProfiles& p : side) {
+        want(block_of(p.s, i), block_of(p.s, i));
+        want(block_of(p.s, i), block_of(p.s, i + 1));
+        want(block_of(p.s, i + 1), block_of(p.s, i + 1));
       }
     }
     ceres::Covariance::Options cov_options;
@@ -319,16 +328,16 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     for (size_t k = 1; k < cycles; ++k) {
       WilcoxCycle c = baselines[j].cycles[k - 1];
       c.advance_m = x[k] - x[k - 1];
-      const double front = (x[k] + 2.0 * A) / h;
-      const int i = std::clamp(static_cast<int>(front), 0, nodes - 2);
-      c.sinkage_front_m = side[j].s[i] + (front - i) * (side[j].s[i + 1] - side[j].s[i]);
+      const auto [i, w1] = front_of(k);
+      const std::vector<double>& s = side[j].s;
+      c.sinkage_front_m = s[i] + w1 * (s[i + 1] - s[i]);
       if (!cov.empty()) {
         const double var_advance = cov_of(&x[k], 0, &x[k], 0) + cov_of(&x[k - 1], 0, &x[k - 1], 0) -
                                    2.0 * cov_of(&x[k - 1], 0, &x[k], 0);
         c.advance_sd_m = std::sqrt(std::max(0.0, var_advance));
-        const double w0 = 1.0 - (front - i), w1 = front - i;
-        const double* b0 = &side[j].s[(i / B) * B];
-        const double* b1 = &side[j].s[((i + 1) / B) * B];
+        const double w0 = 1.0 - w1;
+        const double* b0 = block_of(s, i);
+        const double* b1 = block_of(s, i + 1);
         const double var_sinkage = w0 * w0 * cov_of(b0, i % B, b0, i % B) +
                                    2.0 * w0 * w1 * cov_of(b0, i % B, b1, (i + 1) % B) +
                                    w1 * w1 * cov_of(b1, (i + 1) % B, b1, (i + 1) % B);
