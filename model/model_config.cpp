@@ -81,7 +81,7 @@ bool ModelConfig::IsValid(std::string* error) const {
   }
   for (const std::string& effect : effects) {
     const EffectInfo* info = FindEffect(effect);
-    if (info == nullptr || !info->in_model_catalogue) {
+    if ((info == nullptr || !info->in_model_catalogue) && !IsRegisteredModelEffectName(effect)) {
       *error = "effects: unknown effect '" + effect + "'";
       return false;
     }
@@ -112,6 +112,22 @@ bool ModelConfig::IsValid(std::string* error) const {
     return false;
   }
   return true;
+}
+
+namespace {
+std::vector<std::string>& RegisteredModelEffectNames() {
+  static std::vector<std::string> names;
+  return names;
+}
+}  // namespace
+
+void RegisterModelEffectName(const std::string& effect) {
+  if (!IsRegisteredModelEffectName(effect)) RegisteredModelEffectNames().push_back(effect);
+}
+
+bool IsRegisteredModelEffectName(const std::string& effect) {
+  const std::vector<std::string>& names = RegisteredModelEffectNames();
+  return std::find(names.begin(), names.end(), effect) != names.end();
 }
 
 bool ActsOnWindows(const std::string& effect) {

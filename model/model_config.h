@@ -113,6 +113,11 @@ struct ModelConfig {
 // The effects that act on windows of a drive (ModelConfig::effect_windows).
 bool ActsOnWindows(const std::string& effect);
 
+// Effects a program adds beyond the catalogue (factors/force_term.h registers its terms' names
+// here), so a model may name them in `effects`.
+void RegisterModelEffectName(const std::string& effect);
+bool IsRegisteredModelEffectName(const std::string& effect);
+
 // In-class defaults with the vehicle's nominal tire, rolling and sensor values merged in.
 ModelConfig DefaultModelConfig(const Vehicle& vehicle);
 

@@ -30,6 +30,10 @@ struct WardProblem {
   std::array<double, kModelEffectCount> effects{};
   std::vector<int> active_effects;
   std::vector<std::string> ignored_effects;         // named in the model, no model term yet
+  // Magnitudes of the registered force terms the model names (factors/force_term.h), in the
+  // order of `force_terms`; one parameter block when there is any.
+  std::vector<double> force_term_values;
+  std::vector<const ForceTerm*> force_terms;
   std::vector<std::array<double, 2>> wheel_speeds;  // measured driven-side speeds per state
   std::unique_ptr<ceres::Problem> problem;
   // Residual blocks by factor kind ("dynamics", "accelerometer", ...), for cost breakdowns.

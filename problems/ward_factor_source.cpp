@@ -13,6 +13,7 @@
 #include "factors/disturbance_decay_prior.h"
 #include "factors/effect_accelerometer_factor.h"
 #include "factors/encoder_factor.h"
+#include "factors/force_terms_accelerometer_factor.h"
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"
 #include "factors/oppose_motion_prior.h"
@@ -94,6 +95,13 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
       options_(options),
       params_(MakeParams(log.vehicle, model)),
       tire_uncertainty_(model.tire_uncertainty) {
+  for (const std::string& name : model.effects) {
+    const ForceTerm* term = FindForceTerm(name);
+    if (term != nullptr && std::find(force_terms_.begin(), force_terms_.end(), term) ==
+                               force_terms_.end()) {
+      force_terms_.push_back(term);
+    }
+  }
   if (std::isfinite(options.tire_law_correlation_time_s)) {
     tire_uncertainty_.correlation_time_s = options.tire_law_correlation_time_s;
   }
@@ -128,6 +136,16 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   if (log.imu.size() > 1) {
     imu_period_s_ = (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1);
   }
+}
+
+ForceTermContext ForceTermContextAt(const DriveLog& log, double t) {
+  ForceTermContext c;
+  c.t_s = t;
+  const long a = LatestAtOrBefore(log.attitude, t, kStampToleranceS);
+  if (a >= 0) c.attitude = {log.attitude[a].roll, log.attitude[a].pitch};
+  const long i = LatestAtOrBefore(log.imu, t, kStampToleranceS);
+  if (i >= 0) c.accel_x_mps2 = log.imu[i].ax;
+  return c;
 }
 
 WardFactorSource::Context WardFactorSource::ContextAt(double t) const {
@@ -169,7 +187,7 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
 }
 
 void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* offsets,
-                               double* effects, ceres::Problem* problem,
+                               double* effects, double* force_terms, ceres::Problem* problem,
                                std::vector<AddedFactor>* added, FactorCounts* counts) const {
   const Params& params = params_;
   const SensorNoise& noise = model_.measurement;
@@ -198,7 +216,14 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
                                              tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {
-      if (effects != nullptr) {
+      if (force_terms != nullptr) {
+        ForceTermContext context = ForceTermContextAt(log_, imu.t);
+        context.accel_x_mps2 = imu.ax;
+        Add("accelerometer",
+            new ForceTermsAccelerometerFactor(params, context, sd_a,
+                                              EffectWindowWeightsAt(model_, imu.t), force_terms_),
+            nullptr, x, offsets, effects, force_terms);
+      } else if (effects != nullptr) {
         Add("accelerometer",
             EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a,
                                               EffectWindowWeightsAt(model_, imu.t)),

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "factors/force_term.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
 #include "model/model_config.h"
@@ -92,6 +93,10 @@ struct FactorCounts {
   std::string Describe() const;
 };
 
+// What a registered force term sees at time t of the log (factors/force_term.h): the latest
+// attitude and IMU sample at or before t (level and NaN when there is none).
+ForceTermContext ForceTermContextAt(const DriveLog& log, double t);
+
 class WardFactorSource {
  public:
   // Throws std::invalid_argument when the EKF run has no estimates (no wheel data).
@@ -116,10 +121,15 @@ class WardFactorSource {
   // Every factor of state k: measurements nearest to it, weak-constraint priors on it and, for
   // k > 0, the dynamics and disturbance walk from state k-1 (previous; null for the first state
   // of a problem, which then has no dynamics factor). effects: the model-effect magnitudes
-  // (factors/model_effects.h), or null for the default model.
+  // (factors/model_effects.h), or null for the default model; force_terms: the magnitudes of the
+  // registered force terms the model names (force_terms(), in that order), or null when it names
+  // none (effects must then be given too).
   void AddStep(size_t k, double* previous, double* x, double* offsets, double* effects,
-               ceres::Problem* problem, std::vector<AddedFactor>* added,
+               double* force_terms, ceres::Problem* problem, std::vector<AddedFactor>* added,
                FactorCounts* counts) const;
+
+  // The registered force terms (factors/force_term.h) the model names, each once.
+  const std::vector<const ForceTerm*>& force_terms() const { return force_terms_; }
 
  private:
   struct Context;
@@ -131,6 +141,7 @@ class WardFactorSource {
   WardProblemOptions options_;
   ward::Params params_;
   TireLawUncertainty tire_uncertainty_;  // the model's, with the options' correlation time
+  std::vector<const ForceTerm*> force_terms_;
   std::vector<double> times_;
   std::vector<std::array<double, 2>> wheel_speeds_;
   std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving

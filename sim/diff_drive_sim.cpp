@@ -149,6 +149,9 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     }
     f_external +=
         EffectValue(fx, "corrugation") * m * std::sin(2.0 * M_PI * s / kCorrugationWavelengthM);
+    if (sc.extra_force_n) {
+      f_external += sc.extra_force_n({t, s, v, yaw_rate, grade, cross, m});
+    }
 
     // Body dynamics (eqs. 1-2 with the true forces).
     const double a =

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,17 @@ struct RockerSpec {
   double left_extra_sinkage_m = 0.0;   // > 0: the left side sinks more (breaks the L/R check)
 };
 
+// What a user-supplied extra force may depend on (Scenario::extra_force_n).
+struct ExtraForceInputs {
+  double t_s = 0.0;
+  double distance_m = 0.0;  // along the course
+  double v_mps = 0.0;       // body x velocity
+  double yaw_rate_radps = 0.0;
+  double grade_rad = 0.0;  // uphill positive
+  double cross_slope_rad = 0.0;
+  double mass_kg = 0.0;
+};
+
 struct Scenario {
   std::string name;
   Vehicle vehicle;  // nominal: what vehicle.yaml says; the truth may differ through effects
@@ -96,6 +108,9 @@ struct Scenario {
   SensorSpec sensors;
   EffectSet effects;
   RockerSpec rocker;           // rocker_bogie6 only
+  // A force along body x (N) the catalogue does not have, for testing a user's own effect
+  // (docs/adding-an-effect.md); differential-drive vehicles only. Unset: none.
+  std::function<double(const ExtraForceInputs&)> extra_force_n;
   double sim_step_s = 0.0005;  // internal integration step
 
   double duration_s() const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "factors/force_term.h"
 #include "factors/model_effects.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/smoothed_detection.h"
@@ -70,6 +71,10 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   for (int index : problem->active_effects) {
     result.effects.push_back({ModelEffectNames()[index], problem->effects[index], std::nan("")});
   }
+  for (size_t j = 0; j < problem->force_terms.size(); ++j) {
+    result.effects.push_back(
+        {problem->force_terms[j]->name, problem->force_term_values[j], std::nan("")});
+  }
   const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
     EkfEstimate& e = result.estimates[k];
@@ -83,6 +88,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     for (size_t k = 0; k < n; ++k) states.push_back(problem->states[k].data());
     std::vector<double*> globals = {problem->offsets.data()};
     if (!problem->active_effects.empty()) globals.push_back(problem->effects.data());
+    if (!problem->force_terms.empty()) globals.push_back(problem->force_term_values.data());
     const ChainCovariance covariance =
         ComputeChainCovariance(problem->problem.get(), states, globals);
     result.covariance_ok = covariance.ok;
@@ -116,16 +122,23 @@ std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, co
                                                 const ModelConfig& model) {
   std::vector<EkfEstimate> estimates = result.estimates;
   double theta[kModelEffectCount] = {};
-  bool any = false;
+  std::vector<const ForceTerm*> terms;
+  std::vector<double> phi;
   for (const EffectEstimate& e : result.effects) {
     const int index = ModelEffectIndex(e.name);
-    if (index >= 0) theta[index] = e.value, any = true;
+    if (index >= 0) theta[index] = e.value;
+    const ForceTerm* term = FindForceTerm(e.name);
+    if (term != nullptr) terms.push_back(term), phi.push_back(e.value);
   }
-  if (!any) return estimates;
+  if (result.effects.empty()) return estimates;
   const ward::Params params = ward::MakeParams(log.vehicle, model);
   for (EkfEstimate& e : estimates) {
     e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta,
                                              EffectWindowWeightsAt(model, e.t).soft_ground);
+    if (!terms.empty()) {
+      const ForceTermContext context = ForceTermContextAt(log, e.t);
+      e.x[ward::kAdist] += ForceTermsMps2(terms, phi.data(), e.x.data(), context, params);
+    }
   }
   return estimates;
 }

@@ -104,7 +104,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   CandidateScore c;
   c.effect = signature.effect;
   c.test = signature.test;
-  c.added_as = ModelEffectIndex(signature.effect) >= 0 ? "smoother term"
+  c.added_as = HasModelTerm(signature.effect) ? "smoother term"
                : signature.correct                     ? "measurement correction"
                                                        : "";
   double searched = 1.0, precision = 0.0, weighted = 0.0, model_precision = 0.0;
@@ -179,7 +179,7 @@ void FitAndCompare(const DriveLog& log, const ModelConfig& model, const Smoother
   size_t tried = 0;
   for (CandidateScore& c : *candidates) {
     if (tried >= to_fit) break;
-    if (ModelEffectIndex(c.effect) < 0 || c.dof == 0) continue;
+    if (!HasModelTerm(c.effect) || c.dof == 0) continue;
     if (ActsOnWindows(c.effect) && c.windows.empty()) continue;
     ++tried;
     const Fit fit = FitEffect(log, model, without, options, c.effect, c.windows);
@@ -314,7 +314,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
 
 bool CanAddEffect(const std::string& effect) {
   const EffectSignature* signature = FindSignature(effect);
-  return ModelEffectIndex(effect) >= 0 || (signature != nullptr && signature->correct);
+  return HasModelTerm(effect) || (signature != nullptr && signature->correct);
 }
 
 ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
@@ -322,7 +322,7 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
   ExtendedModel out{log, model, before.corrected};
   for (const std::string& name : effects) {
     const EffectSignature* signature = FindSignature(name);
-    if (ModelEffectIndex(name) >= 0) {
+    if (HasModelTerm(name)) {
       if (ActsOnWindows(name)) {
         // A term on windows: where the diagnosis found the effect (a patch, a change).
         const auto it = std::find_if(before.candidates.begin(), before.candidates.end(),
@@ -348,7 +348,7 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
     } else {
       std::string usable;
       for (const EffectSignature& s : EffectSignatures()) {
-        if (ModelEffectIndex(s.effect) >= 0 || s.correct) usable += " " + s.effect;
+        if (HasModelTerm(s.effect) || s.correct) usable += " " + s.effect;
       }
       throw std::invalid_argument("effect '" + name +
                                   "' has neither a smoother term nor a measurement correction "

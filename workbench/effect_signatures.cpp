@@ -9,6 +9,7 @@
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/measurement_stream.h"
+#include "problems/ward_factor_source.h"
 
 namespace slipgraph {
 namespace {
@@ -432,9 +433,44 @@ std::vector<EffectSignature>& Registry() {
   return signatures;
 }
 
+// A registered force term's test: its shape at the solution's states, scored on the graph.
+EffectSignature ForceTermSignature(const ForceTerm& term) {
+  EffectSignature s;
+  s.effect = term.name;
+  s.test = "graph score of its force shape (registered force term, " + term.unit + ")";
+  const std::string name = term.name;
+  s.series = [name](const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
+    SignatureSeries series;
+    series.stream = "graph";
+    const ForceTerm* t = FindForceTerm(name);
+    if (t == nullptr || m.graph == nullptr || !m.graph->ok()) return std::vector{series};
+    const ward::Params params = ward::MakeParams(log.vehicle, model);
+    std::vector<double> h(m.states.size());
+    for (size_t k = 0; k < h.size(); ++k) {
+      h[k] = (*t->shape)(m.states[k].x.data(), ForceTermContextAt(log, m.states[k].t), params);
+    }
+    SetForceFit(m, h, &series);
+    return std::vector{series};
+  };
+  return s;
+}
+
 }  // namespace
 
-const std::vector<EffectSignature>& EffectSignatures() { return Registry(); }
+const std::vector<EffectSignature>& EffectSignatures() {
+  // Registered force terms without a signature of their own get the graph test of their shape.
+  for (const ForceTerm& term : ForceTerms()) {
+    if (std::none_of(Registry().begin(), Registry().end(),
+                     [&](const EffectSignature& s) { return s.effect == term.name; })) {
+      Registry().push_back(ForceTermSignature(term));
+    }
+  }
+  return Registry();
+}
+
+bool HasModelTerm(const std::string& effect) {
+  return ModelEffectIndex(effect) >= 0 || FindForceTerm(effect) != nullptr;
+}
 
 void RegisterEffectSignature(EffectSignature signature) {
   for (EffectSignature& s : Registry()) {

@@ -66,9 +66,14 @@ struct EffectSignature {
   std::function<void(double magnitude, DriveLog* log)> correct;
 };
 
-// Every effect with a signature: the built-ins in catalogue order, then the registered ones.
+// Every effect with a signature: the built-ins in catalogue order, then the registered ones
+// (a registered force term without a signature of its own gets the graph test of its shape).
 const std::vector<EffectSignature>& EffectSignatures();
 const EffectSignature* FindSignature(const std::string& effect);
+
+// Whether the smoother has a term for `effect`: a catalogue effect's (factors/model_effects.h)
+// or a registered force term's (factors/force_term.h).
+bool HasModelTerm(const std::string& effect);
 
 // Adds a signature (an effect the catalogue does not have, or a second opinion replacing a
 // built-in of the same name).

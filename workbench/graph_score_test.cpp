@@ -19,11 +19,14 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   states_ = problem.states.size();
   if (states_ == 0 || !p.HasParameterBlock(problem.effects.data())) return;
 
-  // Columns: the states, the offsets, the effects (in that order).
+  // Columns: the states, the offsets, the effects, the force terms (in that order).
   ceres::Problem::EvaluateOptions options;
   for (auto& x : problem.states) options.parameter_blocks.push_back(x.data());
   options.parameter_blocks.push_back(problem.offsets.data());
   options.parameter_blocks.push_back(problem.effects.data());
+  // Registered force terms the model has (factors/force_term.h): nuisance like the effects in it.
+  const int force_terms = static_cast<int>(problem.force_terms.size());
+  if (force_terms > 0) options.parameter_blocks.push_back(problem.force_term_values.data());
   effect_column_ = static_cast<int>(ward::kStateSize * states_ + 2);
   // Rows: every residual block, remembering its state (global priors count with the first) and
   // whether a force term enters it.
@@ -55,6 +58,9 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   int c = 0;
   for (; c < effect_column_; ++c) select.emplace_back(c, c, 1.0);
   for (int e : in_model) select.emplace_back(effect_column_ + e, c++, 1.0);
+  for (int j = 0; j < force_terms; ++j) {
+    select.emplace_back(effect_column_ + kModelEffectCount + j, c++, 1.0);
+  }
   Sparse S(J_.cols(), c);
   S.setFromTriplets(select.begin(), select.end());
   N_ = J_ * S;

@@ -60,6 +60,9 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
   ModelConfig all = model;
   all.effects.clear();
   for (const char* name : ModelEffectNames()) all.effects.push_back(name);
+  for (const std::string& name : model.effects) {
+    if (FindForceTerm(name) != nullptr) all.effects.push_back(name);
+  }
   const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, all, solution.ekf, problem_options);
@@ -77,6 +80,9 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
   for (const EffectEstimate& e : solution.effects) {
     const int index = ModelEffectIndex(e.name);
     if (index >= 0) problem->effects[index] = e.value;
+    for (size_t j = 0; j < problem->force_terms.size(); ++j) {
+      if (problem->force_terms[j]->name == e.name) problem->force_term_values[j] = e.value;
+    }
   }
   out.effects = problem->effects;
   for (const GpsSample& g : log.gps) out.gnss_times.push_back(g.t);
