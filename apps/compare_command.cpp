@@ -130,6 +130,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::string log, model, html;
     bool no_gps = false, skip_bad = false, no_plots = false;
     WindowSmootherOptions window;
+    double stiffness_sd = 0.0;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -142,6 +143,10 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
   cmd->add_option("--report,--html", options->html,
                   "Report page (default ./<log>_compare.html); plots of every log in it");
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
+  cmd->add_option("--stiffness-sd", options->stiffness_sd,
+                  "Batch: estimate the tire law's slip stiffness (the terrain is not the law's), "
+                  "with a prior of this relative sd around the law's; 0: the law's as given")
+      ->capture_default_str();
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
@@ -170,6 +175,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                  DescribeWindowRun(windowed)};
       BatchSmootherOptions batch;
       batch.filter = filter;
+      batch.problem.stiffness_prior_sd = options->stiffness_sd;
       start = Clock::now();
       const SmootherResult smoothed = SmoothBatch(log, model, batch);
       runs[2] = {"batch", smoothed.estimates,

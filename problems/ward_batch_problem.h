@@ -34,6 +34,9 @@ struct WardProblem {
   // order of `force_terms`; one parameter block when there is any.
   std::vector<double> force_term_values;
   std::vector<const ForceTerm*> force_terms;
+  // The tire law's slip-stiffness walk (WardProblemOptions::stiffness_walk_sd): one block per
+  // node, empty when off.
+  std::vector<double> stiffness;
   std::vector<std::array<double, 2>> wheel_speeds;  // measured driven-side speeds per state
   std::unique_ptr<ceres::Problem> problem;
   // Residual blocks by factor kind ("dynamics", "accelerometer", ...), for cost breakdowns.

@@ -19,6 +19,7 @@
 #include "factors/oppose_motion_prior.h"
 #include "factors/rate_bound_prior.h"
 #include "factors/state_walk_factor.h"
+#include "factors/stiffness_accelerometer_factor.h"
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
@@ -138,6 +139,19 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   }
 }
 
+size_t WardFactorSource::stiffness_node_count() const {
+  if (times_.empty()) return 0;
+  return static_cast<size_t>(std::floor((times_.back() - times_.front()) / options_.stiffness_node_s)) + 2;
+}
+
+void WardFactorSource::StiffnessNodesAt(double t, size_t* first, double* u) const {
+  const double position =
+      std::max(0.0, (t - times_.front()) / options_.stiffness_node_s);
+  const size_t last_first = stiffness_node_count() - 2;
+  *first = std::min(last_first, static_cast<size_t>(std::floor(position)));
+  *u = std::clamp(position - static_cast<double>(*first), 0.0, 1.0);
+}
+
 ForceTermContext ForceTermContextAt(const DriveLog& log, double t) {
   ForceTermContext c;
   c.t_s = t;
@@ -186,9 +200,13 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
                                         nullptr, offsets)});
 }
 
-void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* offsets,
-                               double* effects, double* force_terms, ceres::Problem* problem,
+void WardFactorSource::AddStep(size_t k, double* previous, double* x,
+                               const GlobalBlocks& globals, ceres::Problem* problem,
                                std::vector<AddedFactor>* added, FactorCounts* counts) const {
+  double* offsets = globals.offsets;
+  double* effects = globals.effects;
+  double* force_terms = globals.force_terms;
+  double* stiffness_nodes = globals.stiffness;
   const Params& params = params_;
   const SensorNoise& noise = model_.measurement;
   const ProcessNoiseConfig& q = model_.process;
@@ -223,6 +241,13 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, double* of
             new ForceTermsAccelerometerFactor(params, context, sd_a,
                                               EffectWindowWeightsAt(model_, imu.t), force_terms_),
             nullptr, x, offsets, effects, force_terms);
+      } else if (stiffness_nodes != nullptr && effects == nullptr) {
+        size_t j = 0;
+        double u = 0.0;
+        StiffnessNodesAt(imu.t, &j, &u);
+        Add("accelerometer",
+            StiffnessAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a, u), nullptr, x,
+            offsets, &stiffness_nodes[j], &stiffness_nodes[j + 1]);
       } else if (effects != nullptr) {
         Add("accelerometer",
             EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a,

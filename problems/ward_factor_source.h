@@ -74,6 +74,18 @@ struct WardProblemOptions {
   //                         0.0160 / 0.0155 -> 0.0165 / 0.0157 (terrain mismatch dominates)
   double omega_walk_radps2_per_sqrt_hz = 0.3;
   double omega_walk_huber_sigmas = 3.0;
+  // The tire law's slip stiffness as a slowly varying unknown (factors/
+  // stiffness_accelerometer_factor.h) with a prior of this sd around the user's law on its first
+  // node; 0: off (the law's stiffness is taken as exact). Nodes every stiffness_node_s, a random
+  // walk of density stiffness_walk_sd (1/sqrt(s)) between them: 0.1 per minute. Only without
+  // model effects (the workbench's diagnoses keep the user's law). Measured (docs/smoother.md):
+  // the sensors see the stiffness only through a slip velocity of about 1 cm/s, so its estimate
+  // is weak and pulled low by any velocity bias; a prior of 0.15 took ward21 batch v RMSE from
+  // 0.0165/0.0157 to 0.0102/0.0121 (seeds 1/2) and cost fig5, where the law is right, 0.0031 ->
+  // 0.0048; 0.5 gave 0.0122/0.0148 and fig5 0.0076.
+  double stiffness_prior_sd = 0.0;
+  double stiffness_node_s = 60.0;
+  double stiffness_walk_sd = 0.1 / std::sqrt(60.0);
 };
 
 // `options` with the choices of the EKF run that initialises the problem (GNSS on or off, the
@@ -96,6 +108,19 @@ struct FactorCounts {
 // What a registered force term sees at time t of the log (factors/force_term.h): the latest
 // attitude and IMU sample at or before t (level and NaN when there is none).
 ForceTermContext ForceTermContextAt(const DriveLog& log, double t);
+
+// The parameter blocks a step's factors share with every other step.
+struct GlobalBlocks {
+  double* offsets = nullptr;  // [c_ax, c_gz]
+  // The model-effect magnitudes (factors/model_effects.h), or null for the default model.
+  double* effects = nullptr;
+  // The magnitudes of the registered force terms the model names (force_terms(), in that
+  // order), or null when it names none (effects must then be given too).
+  double* force_terms = nullptr;
+  // The slip-stiffness nodes (stiffness_node_count() contiguous blocks of one), or null when
+  // the stiffness is the law's (WardProblemOptions::stiffness_prior_sd = 0). Not with effects.
+  double* stiffness = nullptr;
+};
 
 class WardFactorSource {
  public:
@@ -120,16 +145,17 @@ class WardFactorSource {
                       std::vector<AddedFactor>* added) const;
   // Every factor of state k: measurements nearest to it, weak-constraint priors on it and, for
   // k > 0, the dynamics and disturbance walk from state k-1 (previous; null for the first state
-  // of a problem, which then has no dynamics factor). effects: the model-effect magnitudes
-  // (factors/model_effects.h), or null for the default model; force_terms: the magnitudes of the
-  // registered force terms the model names (force_terms(), in that order), or null when it names
-  // none (effects must then be given too).
-  void AddStep(size_t k, double* previous, double* x, double* offsets, double* effects,
-               double* force_terms, ceres::Problem* problem, std::vector<AddedFactor>* added,
+  // of a problem, which then has no dynamics factor), on the problem's global blocks.
+  void AddStep(size_t k, double* previous, double* x, const GlobalBlocks& globals,
+               ceres::Problem* problem, std::vector<AddedFactor>* added,
                FactorCounts* counts) const;
 
   // The registered force terms (factors/force_term.h) the model names, each once.
   const std::vector<const ForceTerm*>& force_terms() const { return force_terms_; }
+  // The slip-stiffness walk's nodes (WardProblemOptions::stiffness_prior_sd): how many, and which two
+  // carry time t with the second's share u.
+  size_t stiffness_node_count() const;
+  void StiffnessNodesAt(double t, size_t* first, double* u) const;
 
  private:
   struct Context;

@@ -75,6 +75,11 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     result.effects.push_back(
         {problem->force_terms[j]->name, problem->force_term_values[j], std::nan("")});
   }
+  if (options.problem.stiffness_prior_sd > 0.0 && problem->stiffness.empty()) {
+    result.notes.push_back("the slip stiffness is the law's: it is estimated only without model "
+                           "effects");
+  }
+  result.stiffness = problem->stiffness;
   const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
     EkfEstimate& e = result.estimates[k];
@@ -89,10 +94,14 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     std::vector<double*> globals = {problem->offsets.data()};
     if (!problem->active_effects.empty()) globals.push_back(problem->effects.data());
     if (!problem->force_terms.empty()) globals.push_back(problem->force_term_values.data());
+    for (double& node : problem->stiffness) globals.push_back(&node);
     const ChainCovariance covariance =
         ComputeChainCovariance(problem->problem.get(), states, globals);
     result.covariance_ok = covariance.ok;
     if (covariance.ok) {
+      for (size_t j = 0; j < problem->stiffness.size(); ++j) {
+        result.stiffness_sd.push_back(std::sqrt(std::max(0.0, covariance.globals(2 + j, 2 + j))));
+      }
       for (size_t e = 0; e < result.effects.size(); ++e) {
         result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));
       }
@@ -150,6 +159,13 @@ std::string DescribeSmootherRun(const SmootherResult& result) {
       << ", covariance " << (result.covariance_ok ? "recovered" : "not recovered") << "\n";
   for (const EffectEstimate& e : result.effects) {
     out << "  effect " << e.name << ": " << e.value << " +- " << e.sd << "\n";
+  }
+  if (!result.stiffness.empty()) {
+    const auto [lo, hi] = std::minmax_element(result.stiffness.begin(), result.stiffness.end());
+    out << "  tire law's slip stiffness x (1 + theta): theta from " << *lo << " to " << *hi
+        << " over " << result.stiffness.size() << " nodes";
+    if (!result.stiffness_sd.empty()) out << " (sd of the first " << result.stiffness_sd[0] << ")";
+    out << "\n";
   }
   for (const std::string& note : result.notes) out << "  " << note << "\n";
   return out.str();

@@ -52,6 +52,9 @@ struct SmootherResult {
   // corr(v_bx error at k, at k+1) from the chain covariance (empty without it): how long the
   // solution's own velocity error persists.
   std::vector<double> velocity_next_correlation;
+  // The tire law's slip-stiffness scale theta at each node of its walk (the law's slope times
+  // 1 + theta; WardProblemOptions::stiffness_prior_sd; empty when off) and its sd.
+  std::vector<double> stiffness, stiffness_sd;
   std::vector<std::string> notes;
 };
 

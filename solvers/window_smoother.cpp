@@ -53,7 +53,7 @@ class Window {
     problem_.AddParameterBlock(x, kStateSize);
     if (first) source_.AddStatePrior(k, x, &problem_, &added_);
     double* previous = first ? nullptr : states_[states_.size() - 2].data();
-    source_.AddStep(k, previous, x, offsets_.data(), nullptr, nullptr, &problem_, &added_, &counts_);
+    source_.AddStep(k, previous, x, {offsets_.data()}, &problem_, &added_, &counts_);
     added_.clear();
   }
 
