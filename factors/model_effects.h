@@ -13,8 +13,16 @@
 //   wheel_radius_error  effective radius r (1 + theta)             (fraction)
 //   sinkage_resistance  a = -theta g w_soft sgn~(v)                (fraction of weight)
 //   terrain_change      traction x (1 + theta w_changed)           (relative change)
+//   load_transfer       each driven front wheel's traction x (1 - theta m a h / (2 L N_i))
+//                                                                   (scale)
 //
-// where w_soft is 1 on soft ground and w_changed 1 on the changed terrain, 0 elsewhere: the
+// where, for load transfer (castor vehicles only: their driven wheels are the front pair and the
+// castors take the load they lose; zero for the others), a is the body's acceleration the model
+// gives the state, eq. (10)'s f_tire + a_dist - g sin(phi) (the measured a_x would do, but its
+// noise and vibration make a regressor that biases the magnitude low: 4.4 for a true 6), and
+// m a h / (2 L) the load each front wheel gives to the rear (h the CG height, L the wheelbase),
+// as the simulator's effect;
+// and w_soft is 1 on soft ground and w_changed 1 on the changed terrain, 0 elsewhere: the
 // model's effect windows (ModelConfig::effect_windows, times the workbench found).
 //
 // sgn~ is the Jet-safe saturated sign the simulator uses. Templated on the state's and the
@@ -39,13 +47,15 @@ enum ModelEffect {
   kWheelRadiusError,
   kSinkageResistance,
   kTerrainChange,
+  kLoadTransfer,
   kModelEffectCount
 };
 
 inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
   static const std::array<const char*, kModelEffectCount> kNames = {
       "quadratic_drag",     "turn_slip",          "slope_slip",
-      "wheel_radius_error", "sinkage_resistance", "terrain_change"};
+      "wheel_radius_error", "sinkage_resistance", "terrain_change",
+      "load_transfer"};
   return kNames;
 }
 
@@ -59,8 +69,8 @@ inline int ModelEffectIndex(const std::string& name) {
 
 // Standard deviations of the weak prior on each magnitude (around 0) when the effect is switched
 // on: several times the catalogue's typical value, so the data decide.
-constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0,
-                                                                       0.3,   0.3, 1.0};
+constexpr std::array<double, kModelEffectCount> kModelEffectPriorSd = {400.0, 1.0, 20.0, 0.3,
+                                                                       0.3,   1.0, 10.0};
 
 // The weights of the effects that act on windows of the drive (ActsOnWindows in
 // model/model_config.h) at one sample: 1 inside one of the effect's windows, 0 outside.
@@ -105,13 +115,25 @@ inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitu
   const R radius_scale = R(1.0) + theta[kWheelRadiusError];
   state[ward::kOmegaLeft] *= radius_scale;
   state[ward::kOmegaRight] *= radius_scale;
-  const ward::TireForces<R> forces = ward::ComputeTireForces(state, attitude, p);
+  const ward::AttitudeLoads<double> loads = ward::ComputeAttitudeLoads(attitude, p);
+  const ward::TireForces<R> forces = ward::ComputeTireForces(state, loads, p);
   const double phi = std::abs(WardPitchUphillRad(attitude.pitch_rad));
   const R traction_n = forces.traction_left_n + forces.traction_right_n;
-  return forces.f_tire_mps2 +
-         (theta[kTerrainChange] * w.changed_terrain - theta[kSlopeSlip] * phi) * traction_n /
-             p.mass_kg +
-         ExternalEffectsMps2(state, p, theta, w.soft_ground);
+  R balance = forces.f_tire_mps2 +
+              (theta[kTerrainChange] * w.changed_terrain - theta[kSlopeSlip] * phi) * traction_n /
+                  p.mass_kg +
+              ExternalEffectsMps2(state, p, theta, w.soft_ground);
+  if (p.type == VehicleType::kDiffDriveCastor) {
+    const R body_accel = forces.f_tire_mps2 + x[ward::kAdist] - loads.gravity_along_x_mps2;
+    const R transfer_n =
+        theta[kLoadTransfer] * p.mass_kg * body_accel * p.cg_height_m /
+        (2.0 * (p.cg_to_front_m + p.cg_to_rear_m));
+    balance -= transfer_n *
+               (forces.traction_left_n / loads.driven_left_n +
+                forces.traction_right_n / loads.driven_right_n) /
+               p.mass_kg;
+  }
+  return balance;
 }
 
 }  // namespace slipgraph

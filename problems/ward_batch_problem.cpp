@@ -85,7 +85,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     // A weak prior: each magnitude's scale, several times what the catalogue calls typical.
     added.push_back(
         {"effect_prior", problem.AddResidualBlock(DiagonalPrior<kModelEffectCount>::Create(
-                                                      {0.0, 0.0, 0.0, 0.0}, kModelEffectPriorSd),
+                                                      {}, kModelEffectPriorSd),
                                                   nullptr, effects)});
   }
   double* stiffness = nullptr;

@@ -254,9 +254,9 @@ TEST(Diagnosis, TerrainChangeRankedFirstAddedAndTheErrorFalls) {
   }
 }
 
-// Load transfer at the catalogue's default moves about 10 N of a 350 N wheel load and is not seen
-// (docs/workbench.md); six times stronger, its test ranks it first with its magnitude (measured
-// on seed 1: 5.8 +- 1.7).
+// Load transfer at the catalogue's default moves about 10 N of a 350 N wheel load and is seldom
+// significant (docs/workbench.md); six times stronger, its term ranks it first, significant,
+// with its magnitude (measured on seed 1: fitted 4.6 +- 1.0, score test 5.1 +- 1.2).
 TEST(Diagnosis, StrongLoadTransferRankedFirst) {
   sim::ScenarioRun run = sim::ExpandScenario("hidden/none", 1).at(0);
   run.scenario.effects["load_transfer"] = 6.0;
@@ -302,8 +302,11 @@ TEST(Diagnosis, OutsideTheCatalogueIsUnexplainedWithSegments) {
   EXPECT_FALSE(d.explained);
   ASSERT_TRUE(d.path_force.tested);
   EXPECT_LT(d.path_force.p_value, 1e-4);
+  // What is left after the best candidate stays significant (measured: after sinkage on a patch
+  // of 1-63 m, p 5.7e-4; before load transfer had a smoother term, its score test took the
+  // corrugation for a load transfer of -12 and left p < 1e-4).
   if (!d.path_force.after_effect.empty()) {
-    EXPECT_LT(d.path_force.after_p_value, 1e-4);
+    EXPECT_LT(d.path_force.after_p_value, 2e-3);
   }
   ASSERT_FALSE(d.failures.empty());
   double covered = 0.0;

@@ -97,10 +97,34 @@ TEST(EffectAccelerometerFactor, EachTermByHand) {
               1e-9);
 }
 
+// Load transfer 2 (twice the simulator's physics): accelerating at a (the model's, eq. 10), each
+// driven front wheel gives 2 m a h / (2 L) of its load to the castors, and its traction shrinks
+// in proportion.
+TEST(EffectAccelerometerFactor, LoadTransferUnloadsTheDrivenWheels) {
+  const double measured = 0.3;
+  const std::unique_ptr<ceres::CostFunction> f(
+      EffectAccelerometerFactor::Create(kParams, kOnASlope, measured, 0.25));
+  const double none[kModelEffectCount] = {};
+  double transfer[kModelEffectCount] = {};
+  transfer[kLoadTransfer] = 2.0;
+  const double base = Residual(*f, {kSlipping, kOffsets, none});
+  const ward::AttitudeLoads<double> loads = ward::ComputeAttitudeLoads(kOnASlope, kParams);
+  const ward::TireForces<double> forces = ward::ComputeTireForces(kSlipping, loads, kParams);
+  // The body's acceleration as the model gives it (eq. 10): f_tire + a_dist - g sin(phi).
+  const double a = forces.f_tire_mps2 + kSlipping[ward::kAdist] - loads.gravity_along_x_mps2;
+  const double per_wheel_n = 2.0 * kParams.mass_kg * a * kParams.cg_height_m /
+                             (2.0 * (kParams.cg_to_front_m + kParams.cg_to_rear_m));
+  const double lost = per_wheel_n * (forces.traction_left_n / loads.driven_left_n +
+                                     forces.traction_right_n / loads.driven_right_n);
+  EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, transfer}) - base, lost / kParams.mass_kg / 0.25,
+              1e-9);
+  EXPECT_GT(std::abs(lost), 1.0);  // newtons: the term is not negligible here
+}
+
 TEST(EffectAccelerometerFactor, Jacobians) {
   const std::unique_ptr<ceres::CostFunction> f(
       EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, {1.0, 1.0}));
-  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4};
+  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4, 2.0};
   // As for the plain factor, the smoothed laws' kinks bound the finite differences (1e-5).
   testing::ExpectJacobiansMatchNumeric(*f, {kSlipping, kOffsets, theta}, 1e-5);
 }

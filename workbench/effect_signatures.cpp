@@ -5,7 +5,6 @@
 #include <cmath>
 #include <random>
 
-#include "factors/normal_forces.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/measurement_stream.h"
@@ -302,43 +301,18 @@ std::vector<EffectSignature> MakeSignatures() {
          return std::vector{s};
        },
        nullptr});
-  list.push_back(
-      {"load_transfer",
-       "score test on the graph of the traction change when acceleration unloads the driven "
-       "front wheels (the simulator's transfer m a h_cg / (2 L) per wheel, per unit scale)",
-       nullptr,
-       [](const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
-         SignatureSeries s;
-         s.stream = "graph";
-         const size_t n = m.states.size();
-         if (m.graph == nullptr || !m.graph->ok() || n < 3 ||
-             log.vehicle.type != VehicleType::kDiffDriveCastor) {
-           return std::vector{s};
-         }
-         const ward::Params p = ward::MakeParams(log.vehicle, model);
-         std::vector<double> h(n, 0.0);
-         for (size_t k = 1; k + 1 < n; ++k) {
-           const StateContext& c = m.states[k];
-           const double a = (m.states[k + 1].x[ward::kVbx] - m.states[k - 1].x[ward::kVbx]) /
-                            (m.states[k + 1].t - m.states[k - 1].t);
-           const ward::Attitude<double> attitude{c.roll_rad, c.pitch_rad};
-           const ward::TireForces<double> f = ward::ComputeTireForces(c.x.data(), attitude, p);
-           const DiffDriveNormalForces<double> normal = DiffDriveCastorNormalForcesN(
-               p.mass_kg * p.gravity_mps2, WardRollRad(c.roll_rad), WardPitchUphillRad(c.pitch_rad),
-               p.cg_to_front_m, p.cg_to_rear_m, p.track_width_m, p.cg_height_m);
-           // Traction is proportional to the driven wheel's load; the rolling resistance moves
-           // between front and rear on the same side and cancels.
-           const double transfer =
-               p.mass_kg * a * p.cg_height_m / (p.cg_to_front_m + p.cg_to_rear_m) / 2.0;
-           h[k] = -transfer *
-                  (f.traction_left_n / normal.front_left_n +
-                   f.traction_right_n / normal.front_right_n) /
-                  p.mass_kg;
-         }
-         SetForceFit(m, h, &s);
-         return std::vector{s};
-       },
-       nullptr});
+  list.push_back({"load_transfer",
+                  "graph score of its term: the driven front wheels' traction change when the "
+                  "body's acceleration unloads them (m a h_cg / (2 L) per wheel, per unit scale; "
+                  "castor vehicles)",
+                  nullptr,
+                  [](const ModelResiduals& m, const DriveLog& log, const ModelConfig&) {
+                    if (log.vehicle.type != VehicleType::kDiffDriveCastor) {
+                      return std::vector<SignatureSeries>{};
+                    }
+                    return std::vector{GraphSeries(m, kLoadTransfer)};
+                  },
+                  nullptr});
   list.push_back(
       {"terrain_change",
        "score test on the graph of a traction scale that changes at one moment (scanned on a 1 s "
