@@ -12,6 +12,8 @@
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/jet.h>
+#include <ceres/sized_cost_function.h>
 
 #include <array>
 #include <cmath>
@@ -36,8 +38,19 @@ struct WardDynamicsFactor {
 
   template <typename T>
   bool operator()(const T* x_k, const T* x_next, const T* offsets, T* residual) const {
-    using std::sin;
     T predicted[ward::kStateSize];
+    Predict(x_k, offsets[0], predicted);
+    for (int i = 0; i < kResiduals; ++i) {
+      residual[i] = sqrt_information_[i] * (x_next[kRows[i]] - predicted[kRows[i]]);
+    }
+    return true;
+  }
+
+  // f(x_k, u_k, dt): x_k propagated over the step; accel_offset is c_ax (the gyro offset does
+  // not enter the dynamics).
+  template <typename T>
+  void Predict(const T* x_k, const T& accel_offset, T* predicted) const {
+    using std::sin;
     if (std::isnan(accel_input_mps2_)) {
       ward::Propagate(x_k, attitude_, params_, dt_s_, predicted);
     } else {
@@ -48,24 +61,32 @@ struct WardDynamicsFactor {
           [&](const T* state, T* x_dot) {
             ward::StateDerivative(state, attitude_, params_, x_dot);
             x_dot[ward::kVbx] =
-                accel_input_mps2_ - offsets[0] - state[ward::kAccelBias] - gravity_along_x;
+                accel_input_mps2_ - accel_offset - state[ward::kAccelBias] - gravity_along_x;
           },
           dt_s_, predicted);
     }
-    for (int i = 0; i < kResiduals; ++i) {
-      residual[i] = sqrt_information_[i] * (x_next[kRows[i]] - predicted[kRows[i]]);
-    }
-    return true;
   }
 
+  // The factor as the problems use it: x_{k+1} enters linearly (its Jacobian is S on the rows'
+  // columns), so only x_k and c_ax are differentiated, with 8-wide Jets instead of the 16 an
+  // automatic differentiation of all three blocks takes. Checked against CreateAutoDiff in
+  // tests/ward_dynamics_factor_test.cpp.
   static ceres::CostFunction* Create(const ward::Params& params,
                                      const ward::Attitude<double>& attitude, double dt_s,
                                      double accel_input_mps2,
-                                     const std::array<double, kResiduals>& sd_per_step) {
+                                     const std::array<double, kResiduals>& sd_per_step);
+
+  // The same factor by automatic differentiation of every block.
+  static ceres::CostFunction* CreateAutoDiff(const ward::Params& params,
+                                             const ward::Attitude<double>& attitude, double dt_s,
+                                             double accel_input_mps2,
+                                             const std::array<double, kResiduals>& sd_per_step) {
     return new ceres::AutoDiffCostFunction<WardDynamicsFactor, kResiduals, ward::kStateSize,
                                            ward::kStateSize, 2>(
         new WardDynamicsFactor(params, attitude, dt_s, accel_input_mps2, sd_per_step));
   }
+
+  double sqrt_information(int i) const { return sqrt_information_[i]; }
 
  private:
   ward::Params params_;
@@ -74,5 +95,62 @@ struct WardDynamicsFactor {
   double accel_input_mps2_;
   std::array<double, kResiduals> sqrt_information_;
 };
+
+class WardDynamicsCost final
+    : public ceres::SizedCostFunction<WardDynamicsFactor::kResiduals, ward::kStateSize,
+                                      ward::kStateSize, 2> {
+ public:
+  explicit WardDynamicsCost(const WardDynamicsFactor& factor) : factor_(factor) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    constexpr int kN = WardDynamicsFactor::kResiduals;
+    const double* x_k = parameters[0];
+    const double* x_next = parameters[1];
+    const double* offsets = parameters[2];
+    if (jacobians == nullptr) {
+      double predicted[ward::kStateSize];
+      factor_.Predict(x_k, offsets[0], predicted);
+      for (int i = 0; i < kN; ++i) {
+        const int row = WardDynamicsFactor::kRows[i];
+        residuals[i] = factor_.sqrt_information(i) * (x_next[row] - predicted[row]);
+      }
+      return true;
+    }
+    using Jet = ceres::Jet<double, ward::kStateSize + 1>;
+    Jet x[ward::kStateSize], predicted[ward::kStateSize];
+    for (int j = 0; j < ward::kStateSize; ++j) x[j] = Jet(x_k[j], j);
+    factor_.Predict(x, Jet(offsets[0], ward::kStateSize), predicted);
+    for (int i = 0; i < kN; ++i) {
+      const int row = WardDynamicsFactor::kRows[i];
+      const double s = factor_.sqrt_information(i);
+      residuals[i] = s * (x_next[row] - predicted[row].a);
+      if (jacobians[0] != nullptr) {
+        for (int j = 0; j < ward::kStateSize; ++j) {
+          jacobians[0][i * ward::kStateSize + j] = -s * predicted[row].v[j];
+        }
+      }
+      if (jacobians[1] != nullptr) {
+        for (int j = 0; j < ward::kStateSize; ++j) jacobians[1][i * ward::kStateSize + j] = 0.0;
+        jacobians[1][i * ward::kStateSize + row] = s;
+      }
+      if (jacobians[2] != nullptr) {
+        jacobians[2][i * 2] = -s * predicted[row].v[ward::kStateSize];
+        jacobians[2][i * 2 + 1] = 0.0;
+      }
+    }
+    return true;
+  }
+
+ private:
+  WardDynamicsFactor factor_;
+};
+
+inline ceres::CostFunction* WardDynamicsFactor::Create(
+    const ward::Params& params, const ward::Attitude<double>& attitude, double dt_s,
+    double accel_input_mps2, const std::array<double, kResiduals>& sd_per_step) {
+  return new WardDynamicsCost(
+      WardDynamicsFactor(params, attitude, dt_s, accel_input_mps2, sd_per_step));
+}
 
 }  // namespace slipgraph

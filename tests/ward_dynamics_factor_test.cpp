@@ -63,5 +63,39 @@ TEST(WardDynamicsFactor, JacobiansMatchNumericAtRandomAndZeroVelocityPoints) {
   }
 }
 
+// The problems' factor differentiates x_k and c_ax only (x_{k+1} enters linearly): the same
+// residuals and Jacobians as automatic differentiation of all three blocks.
+TEST(WardDynamicsFactor, AsAutomaticDifferentiationOfEveryBlock) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double offsets[2] = {0.05, -0.002};
+  for (int trial = 0; trial < 6; ++trial) {
+    const double x[kStateSize] = {u(rng),     0.01 * u(rng), u(rng),        4 * u(rng),
+                                  4 * u(rng), 0.3 * u(rng),  0.001 * u(rng)};
+    double next[kStateSize];
+    for (int i = 0; i < kStateSize; ++i) next[i] = x[i] + 0.01 * u(rng);
+    for (double accel : {std::nan(""), 0.3}) {
+      const std::unique_ptr<ceres::CostFunction> f(
+          WardDynamicsFactor::Create(kParams, {0.03, -0.04}, 0.01, accel, kSd));
+      const std::unique_ptr<ceres::CostFunction> reference(
+          WardDynamicsFactor::CreateAutoDiff(kParams, {0.03, -0.04}, 0.01, accel, kSd));
+      const double* blocks[] = {x, next, offsets};
+      double r[6], r_ref[6], j0[42], j1[42], j2[12], k0[42], k1[42], k2[12];
+      double* jac[] = {j0, j1, j2};
+      double* ref[] = {k0, k1, k2};
+      ASSERT_TRUE(f->Evaluate(blocks, r, jac));
+      ASSERT_TRUE(reference->Evaluate(blocks, r_ref, ref));
+      for (int i = 0; i < 6; ++i) EXPECT_NEAR(r[i], r_ref[i], 1e-9 * std::max(1.0, std::abs(r_ref[i])));
+      for (int i = 0; i < 42; ++i) EXPECT_NEAR(j0[i], k0[i], 1e-9 * std::max(1.0, std::abs(k0[i])));
+      for (int i = 0; i < 42; ++i) EXPECT_EQ(j1[i], k1[i]);
+      for (int i = 0; i < 12; ++i) EXPECT_NEAR(j2[i], k2[i], 1e-9 * std::max(1.0, std::abs(k2[i])));
+      // Without Jacobians: the same residuals on doubles.
+      double r_plain[6];
+      ASSERT_TRUE(f->Evaluate(blocks, r_plain, nullptr));
+      for (int i = 0; i < 6; ++i) EXPECT_NEAR(r_plain[i], r_ref[i], 1e-12 * std::max(1.0, std::abs(r_ref[i])));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace slipgraph
