@@ -18,13 +18,13 @@ struct AccelerometerFactor {
   AccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                       double accel_x_mps2, double sd_mps2)
       : params_(params),
-        attitude_(attitude),
+        loads_(ward::ComputeAttitudeLoads(attitude, params)),
         measured_(accel_x_mps2),
         sqrt_information_(1.0 / sd_mps2) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, T* residual) const {
-    const ward::TireForces<T> forces = ward::ComputeTireForces(x, attitude_, params_);
+    const ward::TireForces<T> forces = ward::ComputeTireForces(x, loads_, params_);
     const T predicted = forces.f_tire_mps2 + offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
     residual[0] = sqrt_information_ * (measured_ - predicted);
     return true;
@@ -39,7 +39,7 @@ struct AccelerometerFactor {
 
  private:
   ward::Params params_;
-  ward::Attitude<double> attitude_;
+  ward::AttitudeLoads<double> loads_;  // the attitude's normal forces, once
   double measured_;
   double sqrt_information_;
 };

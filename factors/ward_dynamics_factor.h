@@ -32,7 +32,10 @@ struct WardDynamicsFactor {
   WardDynamicsFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                      double dt_s, double accel_input_mps2,
                      const std::array<double, kResiduals>& sd_per_step)
-      : params_(params), attitude_(attitude), dt_s_(dt_s), accel_input_mps2_(accel_input_mps2) {
+      : params_(params),
+        loads_(ward::ComputeAttitudeLoads(attitude, params)),
+        dt_s_(dt_s),
+        accel_input_mps2_(accel_input_mps2) {
     for (int i = 0; i < kResiduals; ++i) sqrt_information_[i] = 1.0 / sd_per_step[i];
   }
 
@@ -50,18 +53,15 @@ struct WardDynamicsFactor {
   // not enter the dynamics).
   template <typename T>
   void Predict(const T* x_k, const T& accel_offset, T* predicted) const {
-    using std::sin;
     if (std::isnan(accel_input_mps2_)) {
-      ward::Propagate(x_k, attitude_, params_, dt_s_, predicted);
+      ward::Propagate(x_k, loads_, params_, dt_s_, predicted);
     } else {
-      const double gravity_along_x =
-          params_.gravity_mps2 * sin(WardPitchUphillRad(attitude_.pitch_rad));
       ward::PropagateWith(
           x_k,
           [&](const T* state, T* x_dot) {
-            ward::StateDerivative(state, attitude_, params_, x_dot);
-            x_dot[ward::kVbx] =
-                accel_input_mps2_ - accel_offset - state[ward::kAccelBias] - gravity_along_x;
+            ward::StateDerivative(state, loads_, params_, x_dot);
+            x_dot[ward::kVbx] = accel_input_mps2_ - accel_offset - state[ward::kAccelBias] -
+                                loads_.gravity_along_x_mps2;
           },
           dt_s_, predicted);
     }
@@ -90,7 +90,7 @@ struct WardDynamicsFactor {
 
  private:
   ward::Params params_;
-  ward::Attitude<double> attitude_;
+  ward::AttitudeLoads<double> loads_;  // the attitude's normal forces and g sin(phi), once
   double dt_s_;
   double accel_input_mps2_;
   std::array<double, kResiduals> sqrt_information_;
