@@ -24,8 +24,8 @@ class ForceTermsAccelerometerFactor final : public ceres::CostFunction {
   ForceTermsAccelerometerFactor(const ward::Params& params, const ForceTermContext& context,
                                 double sd_mps2, const EffectWindowWeights& windows,
                                 std::vector<const ForceTerm*> terms)
-      : catalogue_(EffectAccelerometerFactor::Create(params, context.attitude,
-                                                     context.accel_x_mps2, sd_mps2, windows)),
+      : catalogue_(EffectAccelerometerFactor::Create(params, context.attitude, context.accel_x_mps2,
+                                                     sd_mps2, windows)),
         params_(params),
         context_(context),
         sqrt_information_(1.0 / sd_mps2),

@@ -53,9 +53,8 @@ enum ModelEffect {
 
 inline const std::array<const char*, kModelEffectCount>& ModelEffectNames() {
   static const std::array<const char*, kModelEffectCount> kNames = {
-      "quadratic_drag",     "turn_slip",          "slope_slip",
-      "wheel_radius_error", "sinkage_resistance", "terrain_change",
-      "load_transfer"};
+      "quadratic_drag",     "turn_slip",      "slope_slip",   "wheel_radius_error",
+      "sinkage_resistance", "terrain_change", "load_transfer"};
   return kNames;
 }
 
@@ -125,9 +124,8 @@ inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitu
               ExternalEffectsMps2(state, p, theta, w.soft_ground);
   if (p.type == VehicleType::kDiffDriveCastor) {
     const R body_accel = forces.f_tire_mps2 + x[ward::kAdist] - loads.gravity_along_x_mps2;
-    const R transfer_n =
-        theta[kLoadTransfer] * p.mass_kg * body_accel * p.cg_height_m /
-        (2.0 * (p.cg_to_front_m + p.cg_to_rear_m));
+    const R transfer_n = theta[kLoadTransfer] * p.mass_kg * body_accel * p.cg_height_m /
+                         (2.0 * (p.cg_to_front_m + p.cg_to_rear_m));
     balance -= transfer_n *
                (forces.traction_left_n / loads.driven_left_n +
                 forces.traction_right_n / loads.driven_right_n) /

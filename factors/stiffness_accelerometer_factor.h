@@ -29,7 +29,8 @@ inline T TireBalanceWithStiffness(const T* x, const ward::AttitudeLoads<double>&
   const ward::TireForces<T> forces = ward::ComputeTireForces(x, loads, p);
   const T scaled = TractionForceN(loads.driven_left_n, scale * forces.v_rel_left_mps, p.tire) +
                    TractionForceN(loads.driven_right_n, scale * forces.v_rel_right_mps, p.tire);
-  return forces.f_tire_mps2 + (scaled - forces.traction_left_n - forces.traction_right_n) / p.mass_kg;
+  return forces.f_tire_mps2 +
+         (scaled - forces.traction_left_n - forces.traction_right_n) / p.mass_kg;
 }
 
 struct StiffnessAccelerometerFactor {

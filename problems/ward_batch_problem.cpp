@@ -58,11 +58,11 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     problem.AddParameterBlock(force_terms, count);
     Eigen::VectorXd sd(count);
     for (int j = 0; j < count; ++j) sd[j] = out->force_terms[j]->prior_sd;
-    added.push_back({"effect_prior", problem.AddResidualBlock(
-                                         new ceres::NormalPrior(
-                                             Eigen::MatrixXd(sd.cwiseInverse().asDiagonal()),
-                                             Eigen::VectorXd::Zero(count)),
-                                         nullptr, force_terms)});
+    added.push_back(
+        {"effect_prior", problem.AddResidualBlock(
+                             new ceres::NormalPrior(Eigen::MatrixXd(sd.cwiseInverse().asDiagonal()),
+                                                    Eigen::VectorXd::Zero(count)),
+                             nullptr, force_terms)});
     if (out->active_effects.empty()) {
       problem.AddParameterBlock(out->effects.data(), kModelEffectCount);
       problem.SetParameterBlockConstant(out->effects.data());
@@ -84,9 +84,9 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     }
     // A weak prior: each magnitude's scale, several times what the catalogue calls typical.
     added.push_back(
-        {"effect_prior", problem.AddResidualBlock(DiagonalPrior<kModelEffectCount>::Create(
-                                                      {}, kModelEffectPriorSd),
-                                                  nullptr, effects)});
+        {"effect_prior",
+         problem.AddResidualBlock(DiagonalPrior<kModelEffectCount>::Create({}, kModelEffectPriorSd),
+                                  nullptr, effects)});
   }
   double* stiffness = nullptr;
   if (options.stiffness_prior_sd > 0.0 && effects == nullptr && source.size() > 0) {

@@ -29,7 +29,7 @@ struct WardProblem {
   // model switches one on (`active`), the others held at 0.
   std::array<double, kModelEffectCount> effects{};
   std::vector<int> active_effects;
-  std::vector<std::string> ignored_effects;         // named in the model, no model term yet
+  std::vector<std::string> ignored_effects;  // named in the model, no model term yet
   // Magnitudes of the registered force terms the model names (factors/force_term.h), in the
   // order of `force_terms`; one parameter block when there is any.
   std::vector<double> force_term_values;

@@ -98,8 +98,8 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
       tire_uncertainty_(model.tire_uncertainty) {
   for (const std::string& name : model.effects) {
     const ForceTerm* term = FindForceTerm(name);
-    if (term != nullptr && std::find(force_terms_.begin(), force_terms_.end(), term) ==
-                               force_terms_.end()) {
+    if (term != nullptr &&
+        std::find(force_terms_.begin(), force_terms_.end(), term) == force_terms_.end()) {
       force_terms_.push_back(term);
     }
   }
@@ -141,12 +141,13 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
 
 size_t WardFactorSource::stiffness_node_count() const {
   if (times_.empty()) return 0;
-  return static_cast<size_t>(std::floor((times_.back() - times_.front()) / options_.stiffness_node_s)) + 2;
+  return static_cast<size_t>(
+             std::floor((times_.back() - times_.front()) / options_.stiffness_node_s)) +
+         2;
 }
 
 void WardFactorSource::StiffnessNodesAt(double t, size_t* first, double* u) const {
-  const double position =
-      std::max(0.0, (t - times_.front()) / options_.stiffness_node_s);
+  const double position = std::max(0.0, (t - times_.front()) / options_.stiffness_node_s);
   const size_t last_first = stiffness_node_count() - 2;
   *first = std::min(last_first, static_cast<size_t>(std::floor(position)));
   *u = std::clamp(position - static_cast<double>(*first), 0.0, 1.0);
@@ -200,9 +201,9 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
                                         nullptr, offsets)});
 }
 
-void WardFactorSource::AddStep(size_t k, double* previous, double* x,
-                               const GlobalBlocks& globals, ceres::Problem* problem,
-                               std::vector<AddedFactor>* added, FactorCounts* counts) const {
+void WardFactorSource::AddStep(size_t k, double* previous, double* x, const GlobalBlocks& globals,
+                               ceres::Problem* problem, std::vector<AddedFactor>* added,
+                               FactorCounts* counts) const {
   double* offsets = globals.offsets;
   double* effects = globals.effects;
   double* force_terms = globals.force_terms;

@@ -152,8 +152,8 @@ class WardFactorSource {
 
   // The registered force terms (factors/force_term.h) the model names, each once.
   const std::vector<const ForceTerm*>& force_terms() const { return force_terms_; }
-  // The slip-stiffness walk's nodes (WardProblemOptions::stiffness_prior_sd): how many, and which two
-  // carry time t with the second's share u.
+  // The slip-stiffness walk's nodes (WardProblemOptions::stiffness_prior_sd): how many, and which
+  // two carry time t with the second's share u.
   size_t stiffness_node_count() const;
   void StiffnessNodesAt(double t, size_t* first, double* u) const;
 

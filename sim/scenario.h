@@ -107,7 +107,7 @@ struct Scenario {
   Actuation actuation;
   SensorSpec sensors;
   EffectSet effects;
-  RockerSpec rocker;           // rocker_bogie6 only
+  RockerSpec rocker;  // rocker_bogie6 only
   // A force along body x (N) the catalogue does not have, for testing a user's own effect
   // (docs/adding-an-effect.md); differential-drive vehicles only. Unset: none.
   std::function<double(const ExtraForceInputs&)> extra_force_n;

@@ -76,8 +76,9 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
         {problem->force_terms[j]->name, problem->force_term_values[j], std::nan("")});
   }
   if (options.problem.stiffness_prior_sd > 0.0 && problem->stiffness.empty()) {
-    result.notes.push_back("the slip stiffness is the law's: it is estimated only without model "
-                           "effects");
+    result.notes.push_back(
+        "the slip stiffness is the law's: it is estimated only without model "
+        "effects");
   }
   result.stiffness = problem->stiffness;
   const size_t n = problem->states.size();

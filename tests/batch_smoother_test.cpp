@@ -78,8 +78,8 @@ TEST(BatchSmoother, WheelSpeedWalkKeepsQuantizationOutOfTheVelocity) {
 // (EKF 0.0127), v NEES inside its 95 % bound 46 -> 69 % (docs/smoother.md).
 TEST(BatchSmoother, EstimatedSlipStiffnessFollowsTheTerrain) {
   std::vector<Evaluation> fixed, estimated, filter;
-  for (const char* name : {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05",
-                           "ward21/06"}) {
+  for (const char* name :
+       {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
     const DriveLog log = Simulated(name);
     const ModelConfig model = DefaultModelConfig(log.vehicle);
     BatchSmootherOptions options;

@@ -1,7 +1,7 @@
 // The accelerometer factor with the tire law's slip stiffness scaled: with theta = 0 it is the
 // plain AccelerometerFactor; scaling v_rel by s is the law with At and C2 both scaled by s (a
 // hand identity of eq. 8); theta is interpolated between its two nodes; the Jacobian matches
-// central differences.
+// numeric differentiation.
 #include "factors/stiffness_accelerometer_factor.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "factors/imu_factor.h"
+#include "tests/factor_check.h"
 
 namespace slipgraph {
 namespace {
@@ -65,39 +66,13 @@ TEST(StiffnessAccelerometerFactor, ScalesAtAndC2AndInterpolatesItsNodes) {
   EXPECT_GT(std::abs(r - r_law), 1e-3);
 }
 
-TEST(StiffnessAccelerometerFactor, JacobianMatchesCentralDifferences) {
+TEST(StiffnessAccelerometerFactor, JacobianMatchesNumeric) {
   Fixture f;
-  std::vector<double> theta_a = {-0.3}, theta_b = {0.2};
-  std::vector<std::vector<double>*> values = {&f.x, &f.offsets, &theta_a, &theta_b};
-  std::unique_ptr<ceres::CostFunction> factor(
+  const std::vector<double> theta_a = {-0.3}, theta_b = {0.2};
+  const std::unique_ptr<ceres::CostFunction> factor(
       StiffnessAccelerometerFactor::Create(f.params, f.attitude, 0.3, 0.08, 0.25));
-  const auto Residual = [&]() {
-    const double* blocks[] = {f.x.data(), f.offsets.data(), theta_a.data(), theta_b.data()};
-    double r = 0.0;
-    EXPECT_TRUE(factor->Evaluate(blocks, &r, nullptr));
-    return r;
-  };
-  std::vector<std::vector<double>> jacobians;
-  std::vector<double*> pointers;
-  for (auto* v : values) jacobians.emplace_back(v->size(), 0.0);
-  for (auto& j : jacobians) pointers.push_back(j.data());
-  const double* blocks[] = {f.x.data(), f.offsets.data(), theta_a.data(), theta_b.data()};
-  double r = 0.0;
-  ASSERT_TRUE(factor->Evaluate(blocks, &r, pointers.data()));
-  for (size_t b = 0; b < values.size(); ++b) {
-    for (size_t i = 0; i < values[b]->size(); ++i) {
-      double& p = (*values[b])[i];
-      const double step = 1e-6 * std::max(1.0, std::abs(p)), saved = p;
-      p = saved + step;
-      const double plus = Residual();
-      p = saved - step;
-      const double minus = Residual();
-      p = saved;
-      const double numeric = (plus - minus) / (2.0 * step);
-      EXPECT_NEAR(jacobians[b][i], numeric, 1e-5 * std::max(1.0, std::abs(numeric)))
-          << "block " << b << " entry " << i;
-    }
-  }
+  testing::ExpectJacobiansMatchNumeric(
+      *factor, {f.x.data(), f.offsets.data(), theta_a.data(), theta_b.data()}, 1e-6);
 }
 
 }  // namespace

@@ -85,14 +85,16 @@ TEST(WardDynamicsFactor, AsAutomaticDifferentiationOfEveryBlock) {
       double* ref[] = {k0, k1, k2};
       ASSERT_TRUE(f->Evaluate(blocks, r, jac));
       ASSERT_TRUE(reference->Evaluate(blocks, r_ref, ref));
-      for (int i = 0; i < 6; ++i) EXPECT_NEAR(r[i], r_ref[i], 1e-9 * std::max(1.0, std::abs(r_ref[i])));
+      for (int i = 0; i < 6; ++i)
+        EXPECT_NEAR(r[i], r_ref[i], 1e-9 * std::max(1.0, std::abs(r_ref[i])));
       for (int i = 0; i < 42; ++i) EXPECT_NEAR(j0[i], k0[i], 1e-9 * std::max(1.0, std::abs(k0[i])));
       for (int i = 0; i < 42; ++i) EXPECT_EQ(j1[i], k1[i]);
       for (int i = 0; i < 12; ++i) EXPECT_NEAR(j2[i], k2[i], 1e-9 * std::max(1.0, std::abs(k2[i])));
       // Without Jacobians: the same residuals on doubles.
       double r_plain[6];
       ASSERT_TRUE(f->Evaluate(blocks, r_plain, nullptr));
-      for (int i = 0; i < 6; ++i) EXPECT_NEAR(r_plain[i], r_ref[i], 1e-12 * std::max(1.0, std::abs(r_ref[i])));
+      for (int i = 0; i < 6; ++i)
+        EXPECT_NEAR(r_plain[i], r_ref[i], 1e-12 * std::max(1.0, std::abs(r_ref[i])));
     }
   }
 }

@@ -105,8 +105,8 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   c.effect = signature.effect;
   c.test = signature.test;
   c.added_as = HasModelTerm(signature.effect) ? "smoother term"
-               : signature.correct                     ? "measurement correction"
-                                                       : "";
+               : signature.correct            ? "measurement correction"
+                                              : "";
   double searched = 1.0, precision = 0.0, weighted = 0.0, model_precision = 0.0;
   for (const SignatureSeries& s : signature.series(m, log, model)) {
     const SlopeFit fit =

@@ -58,7 +58,8 @@ class GraphProjector {
  public:
   // `problem` holds every model effect as a parameter block (no manifold) and its parameter
   // blocks are set to the solution; `in_model` lists the effects the user's model has (nuisance,
-  // not tested), to which the registered force terms the problem carries are added. Throws std::runtime_error when Ceres cannot evaluate the problem.
+  // not tested), to which the registered force terms the problem carries are added. Throws
+  // std::runtime_error when Ceres cannot evaluate the problem.
   GraphProjector(WardProblem& problem, const std::vector<int>& in_model);
 
   bool ok() const { return ok_; }
