@@ -68,6 +68,10 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
         const WindowSmootherResult result = SmoothWindowed(
             log, model,
             ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
+        if (options->stiffness_sd > 0.0) {
+          report << "note: --stiffness-sd is for the whole-log solve; the chunks keep the law's "
+                    "slip stiffness\n";
+        }
         report << DescribeWindowRun(result);
         return EstimatorOutput{result.estimates, {}};
       }
