@@ -20,13 +20,14 @@ struct EffectAccelerometerFactor {
                             const EffectWindowWeights& windows = {})
       : params_(params),
         attitude_(attitude),
+        loads_(ward::ComputeAttitudeLoads(attitude, params)),
         measured_(accel_x_mps2),
         sqrt_information_(1.0 / sd_mps2),
         windows_(windows) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, const T* theta, T* residual) const {
-    const T predicted = TireBalanceWithEffects(x, attitude_, params_, theta, windows_) +
+    const T predicted = TireBalanceWithEffects(x, attitude_, loads_, params_, theta, windows_) +
                         offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
     residual[0] = sqrt_information_ * (measured_ - predicted);
     return true;
@@ -43,6 +44,7 @@ struct EffectAccelerometerFactor {
  private:
   ward::Params params_;
   ward::Attitude<double> attitude_;
+  ward::AttitudeLoads<double> loads_;  // the attitude's normal forces and g sin(phi), once
   double measured_;
   double sqrt_information_;
   EffectWindowWeights windows_;

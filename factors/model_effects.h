@@ -104,17 +104,17 @@ inline T ExternalEffectsMps2(const T* x, const ward::Params& p, const T* theta,
 // The accelerometer's model prediction without offsets, biases and a_dist: f_tire with the
 // effects' terms. theta: kModelEffectCount magnitudes (inactive ones are 0); w: the windowed
 // effects' weights at this sample.
+// loads: ComputeAttitudeLoads(attitude, p), which a factor computes once.
 template <typename T>
 inline T TireBalanceWithEffects(const T* x, const ward::Attitude<double>& attitude,
-                                const ward::Params& p, const T* theta,
-                                const EffectWindowWeights& w = {}) {
+                                const ward::AttitudeLoads<double>& loads, const ward::Params& p,
+                                const T* theta, const EffectWindowWeights& w = {}) {
   using R = T;
   R state[ward::kStateSize];
   for (int i = 0; i < ward::kStateSize; ++i) state[i] = x[i];
   const R radius_scale = R(1.0) + theta[kWheelRadiusError];
   state[ward::kOmegaLeft] *= radius_scale;
   state[ward::kOmegaRight] *= radius_scale;
-  const ward::AttitudeLoads<double> loads = ward::ComputeAttitudeLoads(attitude, p);
   const ward::TireForces<R> forces = ward::ComputeTireForces(state, loads, p);
   const double phi = std::abs(WardPitchUphillRad(attitude.pitch_rad));
   const R traction_n = forces.traction_left_n + forces.traction_right_n;

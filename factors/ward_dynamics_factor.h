@@ -18,7 +18,6 @@
 #include <array>
 #include <cmath>
 
-#include "factors/frames.h"
 #include "factors/ward_dynamics.h"
 
 namespace slipgraph {
@@ -108,15 +107,7 @@ class WardDynamicsCost final
     const double* x_k = parameters[0];
     const double* x_next = parameters[1];
     const double* offsets = parameters[2];
-    if (jacobians == nullptr) {
-      double predicted[ward::kStateSize];
-      factor_.Predict(x_k, offsets[0], predicted);
-      for (int i = 0; i < kN; ++i) {
-        const int row = WardDynamicsFactor::kRows[i];
-        residuals[i] = factor_.sqrt_information(i) * (x_next[row] - predicted[row]);
-      }
-      return true;
-    }
+    if (jacobians == nullptr) return factor_(x_k, x_next, offsets, residuals);
     using Jet = ceres::Jet<double, ward::kStateSize + 1>;
     Jet x[ward::kStateSize], predicted[ward::kStateSize];
     for (int j = 0; j < ward::kStateSize; ++j) x[j] = Jet(x_k[j], j);

@@ -236,8 +236,8 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     }
     if (std::isfinite(imu.ax)) {
       if (force_terms != nullptr) {
-        ForceTermContext context = ForceTermContextAt(log_, imu.t);
-        context.accel_x_mps2 = imu.ax;
+        // The sample's attitude is c's already: no second look-up.
+        const ForceTermContext context{imu.t, c.attitude, imu.ax};
         Add("accelerometer",
             new ForceTermsAccelerometerFactor(params, context, sd_a,
                                               EffectWindowWeightsAt(model_, imu.t), force_terms_),
