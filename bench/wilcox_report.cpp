@@ -2,9 +2,14 @@
 // odometry error of the total advance and front-sinkage RMSE per roughness, for an advance prior
 // of 1 % and 10 % of the rim motion, baseline and factor graph on the same runs, and the
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
-// Run: build/bench/wilcox_report [--runs N] [--method baseline|graph|graph_shared|all]
+// Run: build/bench/wilcox_report [--runs N] [--method baseline|baseline_learned|graph|
+//                                 graph_shared|all] [--suite wilcox|wilcox_slope]
 // (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
-// sides sharing the advance, WilcoxGraphOptions::shared_advance)
+// sides sharing the advance, WilcoxGraphOptions::shared_advance; baseline_learned: the baseline
+// learning its prior's slip law from the paper's no-slip start, WilcoxOptions::learn_slip).
+// --suite wilcox_slope: the hill runs (slip 20 % + the slope), baseline only, with the prior's
+// slip law as the paper has it (0), constant at the true level (0.2), slope-dependent with the
+// true law (0.2, 1) and learned from 0; odometry error and the largest error along the way.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -21,18 +26,68 @@
 int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
   size_t runs_per_roughness = 1000;
-  std::vector<std::string> methods = {"baseline", "graph", "graph_shared"};
+  std::vector<std::string> methods = {"baseline", "baseline_learned", "graph", "graph_shared"};
+  std::string suite = "wilcox";
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--runs") == 0) {
       runs_per_roughness = static_cast<size_t>(std::atoi(argv[i + 1]));
+    } else if (std::strcmp(argv[i], "--suite") == 0) {
+      suite = argv[i + 1];
     } else if (std::strcmp(argv[i], "--method") == 0) {
       methods =
           std::strcmp(argv[i + 1], "all") == 0 ? methods : std::vector<std::string>{argv[i + 1]};
     } else {
       std::fprintf(stderr,
-                   "usage: wilcox_report [--runs N] [--method baseline|graph|graph_shared|all]\n");
+                   "usage: wilcox_report [--runs N] [--method baseline|baseline_learned|graph|"
+                   "graph_shared|all] [--suite wilcox|wilcox_slope]\n");
       return 2;
     }
+  }
+  if (suite == "wilcox_slope") {
+    struct Law {
+      const char* name;
+      double slip, per_slope;
+      bool learn;
+    };
+    const Law laws[] = {{"no slip (the paper)", 0.0, 0.0, false},
+                        {"constant 0.2", 0.2, 0.0, false},
+                        {"0.2 + slope (the truth)", 0.2, 1.0, false},
+                        {"learned from 0", 0.0, 0.0, true}};
+    std::map<std::string, std::vector<DriveLog>> logs_by_roughness;
+    for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox_slope", 1)) {
+      logs_by_roughness[run.relative_directory.substr(1, run.relative_directory.find("cm") - 1)]
+          .push_back(sim::Simulate(run.scenario, run.seed).log);
+    }
+    std::printf(
+        "| RMS roughness cm | runs | prior | prior's slip law | odometry error mean (max) | "
+        "largest error along the way, mean mm | learned slip, per slope (left) |\n"
+        "|---|---|---|---|---|---|---|\n");
+    for (const auto& [roughness, logs] : logs_by_roughness) {
+      for (double prior : {0.01, 0.1}) {
+        for (const Law& law : laws) {
+          WilcoxOptions options;
+          options.prior_fraction = prior;
+          options.prior_slip = law.slip;
+          options.prior_slip_per_slope = law.per_slope;
+          options.learn_slip = law.learn;
+          double sum = 0.0, worst = 0.0, along = 0.0, slip = 0.0, per_slope = 0.0;
+          for (const DriveLog& log : logs) {
+            const WilcoxResult result = EstimateWilcoxBaseline(log, options);
+            const WilcoxScore score = ScoreWilcox(log, result);
+            sum += score.odometry_error_fraction;
+            worst = std::max(worst, score.odometry_error_fraction);
+            along += score.max_position_error_m;
+            slip += result.sides.at(0).law_slip;
+            per_slope += result.sides.at(0).law_slip_per_slope;
+          }
+          const double n = static_cast<double>(logs.size());
+          std::printf("| %s | %zu | %.0f %% | %s | %.2f %% (%.2f %%) | %.1f | %.3f, %.2f |\n",
+                      roughness.c_str(), logs.size(), 100.0 * prior, law.name, 100.0 * sum / n,
+                      100.0 * worst, 1000.0 * along / n, slip / n, per_slope / n);
+        }
+      }
+    }
+    return 0;
   }
   std::map<std::string, std::vector<DriveLog>> by_roughness;
   for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox", 1)) {
@@ -49,12 +104,13 @@ int main(int argc, char** argv) {
       for (const std::string& method : methods) {
         WilcoxOptions options;
         options.prior_fraction = prior;
+        options.learn_slip = method == "baseline_learned";
         double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
         int agree = 0;
         for (const DriveLog& log : logs) {
           WilcoxGraphOptions graph;
           graph.shared_advance = method == "graph_shared";
-          const WilcoxResult result = method == "baseline"
+          const WilcoxResult result = method.rfind("baseline", 0) == 0
                                           ? EstimateWilcoxBaseline(log, options)
                                           : EstimateWilcoxGraph(log, options, graph);
           const WilcoxScore score = ScoreWilcox(log, result);

@@ -1,5 +1,6 @@
 #include "sim/rocker_bogie_sim.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -28,6 +29,35 @@ double Sinkage(const RockerSpec& spec, double x_m, bool left) {
          (left ? spec.left_extra_sinkage_m * soft : 0.0);
 }
 
+// The course's hills as an elevation along the path, z(x) = integral of tan(grade): a table at
+// 1 mm, interpolated (both sides ride the same hills).
+class HillElevation {
+ public:
+  HillElevation(const Course& course, double length_m) : course_(course) {
+    z_.push_back(0.0);
+    if (course.hills.empty()) return;
+    const size_t n = static_cast<size_t>(std::ceil(length_m / kStepM)) + 1;
+    for (size_t i = 1; i < n; ++i) {
+      const double slope0 = std::tan(course.GradeRad((i - 1) * kStepM));
+      const double slope1 = std::tan(course.GradeRad(i * kStepM));
+      z_.push_back(z_.back() + 0.5 * (slope0 + slope1) * kStepM);
+    }
+  }
+  double At(double x_m) const {
+    if (z_.size() < 2 || x_m <= 0.0) return z_.front();
+    const double u = x_m / kStepM;
+    const size_t i = std::min(static_cast<size_t>(u), z_.size() - 2);
+    const double f = std::min(1.0, u - i);
+    return (1.0 - f) * z_[i] + f * z_[i + 1];
+  }
+  double Slope(double x_m) const { return std::tan(course_.GradeRad(x_m)); }
+
+ private:
+  static constexpr double kStepM = 0.001;
+  const Course& course_;
+  std::vector<double> z_;
+};
+
 }  // namespace
 
 SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
@@ -54,9 +84,11 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
   const TerrainProfile right = MakeTerrainProfile(spec.roughness_rms_m, course_length, seed ^ 0x2);
   const TerrainProfile* sides[2] = {&left, &right};
   result.profiles = {left, right};
-  // Elevation of the surface a wheel rides on (y - s) at x, side 0 = left.
+  const HillElevation hills(sc.course, course_length);
+  // Terrain elevation (profile and hills) at x, and the surface a wheel rides on (y - s).
+  const auto terrain = [&](int side, double x) { return sides[side]->Elevation(x) + hills.At(x); };
   const auto ride = [&](int side, double x) {
-    return sides[side]->WheelElevation(x, patch) - Sinkage(spec, x, side == 0);
+    return sides[side]->WheelElevation(x, patch) + hills.At(x) - Sinkage(spec, x, side == 0);
   };
 
   SensorSimulator sensors(sc.sensors, sc.effects, 6, dt, &rng, &log);
@@ -73,7 +105,11 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
   for (int64_t k = 0; k <= steps; ++k) {
     const double t = k / steps_per_s;
     commands.Step(t, dt);
-    if (k % cycle_period == 0) slip = spec.slip_mean + spec.slip_sd * unit(rng);
+    if (k % cycle_period == 0) {
+      slip = std::clamp(spec.slip_mean + spec.slip_per_slope * hills.Slope(x_rear + axle) +
+                            spec.slip_sd * unit(rng),
+                        0.0, 0.9);
+    }
     const double omega = commands.v_mps() / r_nominal;
     const double v = r_true * omega * (1.0 - slip);
     // Wheel contact elevations, [side][rear, middle, front].
@@ -104,8 +140,7 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
         for (int i = 0; i < spec.range_points; ++i) {
           const double d = 2.0 * axle + spec.range_first_m + i * spec.range_spacing_m;
           log.range.push_back(
-              {t, label, d,
-               sides[side]->Elevation(x_rear + d) - z[side][0] + spec.range_sd_m * unit(rng)});
+              {t, label, d, terrain(side, x_rear + d) - z[side][0] + spec.range_sd_m * unit(rng)});
         }
       }
     }

@@ -74,6 +74,10 @@ struct RockerSpec {
   double roughness_rms_m = 0.01;       // RMS of each side's synthetic terrain profile y(x)
   double slip_mean = 0.2;              // true slip: advance = rim motion x (1 - slip)
   double slip_sd = 0.02;               // cycle-to-cycle variation of the slip
+  // Slip against slope (Wilcox Sec. 5: odometry over-estimates uphill, under-estimates downhill):
+  // slip = slip_mean + slip_per_slope x dz/dx of the course's hills under the rover's middle
+  // wheels, clamped to [0, 0.9]. The hills (Course::hills) lift both sides' profiles.
+  double slip_per_slope = 0.0;
   double cycle_rate_hz = 1.0;          // articulation and range sampling
   double articulation_sd_m = 0.00004;  // 0.04 mm (Wilcox Sec. 3)
   double range_sd_m = 0.002;           // 2 mm

@@ -159,6 +159,15 @@ Scenario WilcoxRun(double roughness_m, double left_extra_sinkage_m, const std::s
   return sc;
 }
 
+// A hill up and down under the rover, slip rising with the slope (Wilcox Sec. 5): 20 % on the
+// level, +1 per unit of slope (peak grade 0.2 rad: 40 % up, 0 % down).
+Scenario WilcoxSlopeRun(double roughness_m, const std::string& name) {
+  Scenario sc = WilcoxRun(roughness_m, 0.0, name);
+  sc.course.hills = {{0.5, 2.0, 0.2, 0.0}, {2.5, 2.0, -0.2, 0.0}};
+  sc.rocker.slip_per_slope = 1.0;
+  return sc;
+}
+
 const double kWilcoxRoughnessCm[] = {0.25, 0.5, 1.0, 2.0, 4.0};
 constexpr int kWilcoxRunsPerRoughness = 8;
 
@@ -254,6 +263,16 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
                         RunSeed(seed, 900 + run)});
       }
     }
+  } else if (name == "wilcox_slope") {
+    for (double roughness_cm : {1.0, 2.0}) {
+      for (int run = 1; run <= 6; ++run) {
+        char dir[48];
+        std::snprintf(dir, sizeof(dir), "r%gcm_run%02d", roughness_cm, run);
+        runs.push_back({dir,
+                        WilcoxSlopeRun(roughness_cm / 100.0, std::string("wilcox_slope/") + dir),
+                        RunSeed(seed, 5000 + static_cast<uint64_t>(roughness_cm) * 100 + run)});
+      }
+    }
   } else if (name.rfind("wilcox/", 0) == 0) {
     // wilcox/<roughness cm>, e.g. wilcox/1: one run of the suite.
     const double roughness_cm = std::atof(name.c_str() + 7);
@@ -275,7 +294,7 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
 
 std::string ScenarioHelp() {
   return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, wilcox, wilcox/ROUGHNESS_CM, "
-         "wilcox_lr, hidden, hidden/EFFECT, hidden/none";
+         "wilcox_lr, wilcox_slope, hidden, hidden/EFFECT, hidden/none";
 }
 
 }  // namespace sim

@@ -8,6 +8,7 @@
 //   wilcox            articulated rover, roughness 0.25-4 cm RMS at 20 % slip, 8 runs each
 //                     (Wilcox Fig. 4); wilcox/R: one run at R cm
 //   wilcox_lr         4 runs with equal sinkage on both sides, 4 with more on the left
+//   wilcox_slope      6 runs each at 1 and 2 cm over a hill up and down, slip 20 % + the slope
 //   hidden            one log per catalogue effect with only that effect on, plus `none`
 //   hidden/EFFECT     one of them (hidden/none: no effect)
 // Every scenario is a pure function of (name, seed): the same inputs give the same bytes.

@@ -113,6 +113,7 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
         {"roughness_rms_m", r.roughness_rms_m},
         {"slip_mean", r.slip_mean},
         {"slip_sd", r.slip_sd},
+        {"slip_per_slope", r.slip_per_slope},
         {"cycle_rate_hz", r.cycle_rate_hz},
         {"articulation_sd_m", r.articulation_sd_m},
         {"range_sd_m", r.range_sd_m},

@@ -113,6 +113,25 @@ double WilcoxRimMotion(const DriveLog& log, Side side, double t0, double t1) {
   return sum;
 }
 
+double WilcoxScanSlope(const WilcoxScan& scan) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& [d, dz] : scan.range) {
+    if (d > 0.0 && std::isfinite(dz)) sum += dz / d, ++n;
+  }
+  return n > 0 ? sum / n : 0.0;
+}
+
+double WilcoxCycleSlope(const std::vector<const WilcoxScan*>& scans) {
+  double slope = 0.0;
+  for (const WilcoxScan* scan : scans) slope += WilcoxScanSlope(*scan);
+  return scans.empty() ? 0.0 : slope / scans.size();
+}
+
+double WilcoxPriorAdvance(double rim_m, double slip) {
+  return rim_m * (1.0 - std::clamp(slip, -0.5, 0.9));
+}
+
 namespace {
 
 WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) {
@@ -151,12 +170,15 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   const double sd_h2 = o.histogram_sd_m * o.histogram_sd_m;
   const double sd_r2 = o.range_sd_m * o.range_sd_m + sd_h2;
   const double sd_a2 = o.articulation_sd_m * o.articulation_sd_m + sd_h2;
+  SlipSlopeLaw law(o.prior_slip, o.prior_slip_per_slope, o.learn);
   for (size_t c = 1; c < scans.size(); ++c) {
     const WilcoxScan& z = scans[c];
     WilcoxCycle cycle;
     cycle.t = z.t;
     cycle.rim_m = WilcoxRimMotion(log, side, scans[c - 1].t, z.t);
-    const double mean = cycle.rim_m * (1.0 - o.prior_slip);
+    cycle.slope = WilcoxCycleSlope({&scans[c - 1], &z});
+    cycle.prior_slip = law.Slip(cycle.slope);
+    const double mean = WilcoxPriorAdvance(cycle.rim_m, cycle.prior_slip);
     const double sd_x = std::max(1e-5, o.prior_fraction * std::abs(cycle.rim_m));
     // MAP over whole bins of advance: the ranged points except the farthest, and the middle
     // wheel, against the histograms with the rear wheel at bin i.
@@ -213,6 +235,9 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
       }
     }
     cycle.advance_m = advance;
+    if (o.learn_slip) {
+      law.AddCycle(cycle.slope, cycle.rim_m, mean, sd_x, advance, cycle.cost_curvature);
+    }
     // Translate and re-reference to the new rear contact.
     const double ride = ride_at(advance);
     Histogram y_new = y.Translated(advance, ride);
@@ -234,6 +259,9 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   }
   for (const WilcoxCycle& cycle : out.cycles) out.mean_sinkage_m += cycle.sinkage_front_m;
   if (!out.cycles.empty()) out.mean_sinkage_m /= out.cycles.size();
+  out.law_slip = law.slip();
+  out.law_slip_per_slope = law.slip_per_slope();
+  out.law_cycles_used = law.cycles_used();
   return out;
 }
 
@@ -304,7 +332,7 @@ WilcoxScore ScoreWilcox(const DriveLog& log, const WilcoxResult& result) {
                                      [](const TruthSample& s, double v) { return s.t < v; });
     return it == log.truth.end() ? log.truth.back() : *it;
   };
-  double error = 0.0, rim_error = 0.0, sq = 0.0;
+  double error = 0.0, rim_error = 0.0, sq = 0.0, max_position_error = 0.0;
   int sides = 0;
   for (size_t k = 0; k < result.sides.size(); ++k) {
     const WilcoxSide& side = result.sides[k];
@@ -317,6 +345,13 @@ WilcoxScore ScoreWilcox(const DriveLog& log, const WilcoxResult& result) {
     error += std::abs(side.total_advance_m - truth_advance) / truth_advance;
     rim_error += std::abs(side.total_rim_m - truth_advance) / truth_advance;
     ++sides;
+    // Along the way: errors that cancel in the total (uphill against downhill) show here.
+    double travelled = 0.0, worst = 0.0;
+    for (const WilcoxCycle& c : side.cycles) {
+      travelled += c.advance_m;
+      worst = std::max(worst, std::abs(travelled - (truth_at(c.t).x - x0)));
+    }
+    max_position_error += worst;
     const int front = k == 0 ? 0 : 3;  // sinkage_fl, sinkage_fr
     const double start_x = log.truth.front().x;
     for (const WilcoxCycle& c : side.cycles) {
@@ -331,6 +366,7 @@ WilcoxScore ScoreWilcox(const DriveLog& log, const WilcoxResult& result) {
   if (sides > 0) {
     score.odometry_error_fraction = error / sides;
     score.rim_odometry_error_fraction = rim_error / sides;
+    score.max_position_error_m = max_position_error / sides;
   }
   score.sinkage_rmse_m =
       score.sinkage_samples > 0 ? std::sqrt(sq / score.sinkage_samples) : std::nan("");

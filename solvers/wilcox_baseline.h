@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "io/drive_log.h"
+#include "solvers/slip_slope_law.h"
 
 namespace slipgraph {
 
@@ -33,6 +34,15 @@ struct WilcoxOptions {
   double bin_m = 0.01;          // histogram resolution (the paper: about a contact patch)
   double prior_fraction = 0.1;  // sd of the advance prior as a fraction of the rim motion
   double prior_slip = 0.0;      // prior mean: rim motion x (1 - prior_slip) (the paper: 0)
+  // Slip against slope (the paper's Sec. 3 step 2 and Sec. 5): the prior's slip is
+  // prior_slip + prior_slip_per_slope x the slope the ranged points show (WilcoxScanSlope,
+  // averaged over the cycle's two scans), clamped to [-0.5, 0.9]. Uphill slip grows, so a
+  // constant prior over-estimates the advance uphill and under-estimates it downhill.
+  double prior_slip_per_slope = 0.0;
+  // Learn the law (prior_slip, prior_slip_per_slope) as the rover drives, from what the terrain
+  // matching measures on each cycle (solvers/slip_slope_law.h): for a user who knows neither.
+  bool learn_slip = false;
+  SlipSlopeLawOptions learn;
   double range_sd_m = 0.002;    // ranging noise (the paper's Sojourner figure)
   double articulation_sd_m = 0.00004;
   // The histograms' own error (ranging noise carried over, interpolation between ranged points),
@@ -56,6 +66,8 @@ struct WilcoxCycle {
   double advance_m = 0.0;        // the MAP estimate of the rear wheel's advance
   double sinkage_front_m = 0.0;  // estimated sinkage under the front wheel
   double cost_curvature = 0.0;   // the parabola's curvature at the minimum (1/m^2): confidence
+  double slope = 0.0;            // the slope the cycle's scans show (WilcoxCycleSlope)
+  double prior_slip = 0.0;       // the prior's slip for this cycle (the law at that slope)
   // Marginal standard deviations (the factor graph, from its covariance; NaN when not computed).
   double advance_sd_m = std::numeric_limits<double>::quiet_NaN();
   double sinkage_front_sd_m = std::numeric_limits<double>::quiet_NaN();
@@ -66,6 +78,9 @@ struct WilcoxSide {
   std::vector<WilcoxCycle> cycles;
   double total_advance_m = 0.0, total_rim_m = 0.0;
   double mean_sinkage_m = 0.0;
+  // The prior's slip law at the end (the user's, or what WilcoxOptions::learn_slip learned).
+  double law_slip = 0.0, law_slip_per_slope = 0.0;
+  int law_cycles_used = 0;
 };
 
 struct WilcoxResult {
@@ -83,6 +98,14 @@ struct WilcoxScan {
   std::vector<std::pair<double, double>> range;
 };
 std::vector<WilcoxScan> WilcoxScans(const DriveLog& log, Side side);
+// The terrain's slope under and ahead of the rover from one scan, the paper's estimate
+// (sum_j z(j) / d(j)) / N over the ranged points (z relative to the rear wheel, uphill positive).
+double WilcoxScanSlope(const WilcoxScan& scan);
+// The slope a cycle drove: the mean of WilcoxScanSlope over its scans (before and after, of
+// each side).
+double WilcoxCycleSlope(const std::vector<const WilcoxScan*>& scans);
+// The advance prior's mean: rim motion x (1 - slip), the slip clamped to [-0.5, 0.9].
+double WilcoxPriorAdvance(double rim_m, double slip);
 // Rim motion of one side's wheels between t0 and t1 (odometry).
 double WilcoxRimMotion(const DriveLog& log, Side side, double t0, double t1);
 // The left/right check on a result's two sides (sets sides_agree and agreement).
@@ -97,6 +120,9 @@ WilcoxResult EstimateWilcoxBaseline(const DriveLog& log, const WilcoxOptions& op
 struct WilcoxScore {
   double odometry_error_fraction = 0.0;      // |estimated - true| / true, both sides averaged
   double rim_odometry_error_fraction = 0.0;  // the same for the plain rim motion
+  // The largest |estimated - true| distance travelled at any cycle (sides averaged): the errors
+  // that cancel in the total, e.g. a hill's uphill and downhill.
+  double max_position_error_m = 0.0;
   double sinkage_rmse_m = 0.0;
   size_t sinkage_samples = 0;
 };

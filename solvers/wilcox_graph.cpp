@@ -78,6 +78,10 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
   const int block_count = (needed + B - 1) / B;
   const int nodes = block_count * B;
   std::vector<double> x(cycles, 0.0);
+  // The advance prior's slip law (the user's; WilcoxOptions::learn_slip is the baseline's) and
+  // what it gave each cycle.
+  const SlipSlopeLaw law(o.prior_slip, o.prior_slip_per_slope, o.learn);
+  std::vector<double> slope(cycles, 0.0), prior_slip(cycles, 0.0);
 
   ceres::Problem problem;
   for (double& v : x) problem.AddParameterBlock(&v, 1);
@@ -208,11 +212,18 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
   ceres::Solve(step_options, &problem, &step_summary);
   int held_blocks = 0;
   for (size_t k = 1; k < cycles; ++k) {
-    const double mean = rim[k] * (1.0 - o.prior_slip);
+    std::vector<const WilcoxScan*> cycle_scans;
+    for (const SideProfiles& p : side) {
+      cycle_scans.insert(cycle_scans.end(), {&p.scans[k - 1], &p.scans[k]});
+    }
+    slope[k] = WilcoxCycleSlope(cycle_scans);
+    prior_slip[k] = law.Slip(slope[k]);
+    const double mean = WilcoxPriorAdvance(rim[k], prior_slip[k]);
     const double sd = std::max(1e-4, o.prior_fraction * std::abs(rim[k]));
-    double best_a = mean, best_cost = 1e300;
     const double step = 0.0005;
-    for (double a = std::max(0.0, mean - 6.0 * sd - 0.01); a <= mean + 6.0 * sd + 0.01; a += step) {
+    const double from = std::max(0.0, mean - 6.0 * sd - 0.01);
+    std::vector<double> costs;
+    for (double a = from; a <= mean + 6.0 * sd + 0.01; a += step) {
       x[k] = x[k - 1] + a;
       double c = (a - mean) * (a - mean) / (sd * sd);
       for (SideProfiles& p : side) {
@@ -221,8 +232,10 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
           c += cost_of(f, p, k);
         }
       }
-      if (c < best_cost) best_cost = c, best_a = a;
+      costs.push_back(c);
     }
+    const size_t best = std::min_element(costs.begin(), costs.end()) - costs.begin();
+    const double best_a = from + best * step;
     x[k] = x[k - 1] + best_a;
     for (SideProfiles& p : side) {
       extend_terrain(p, k);
@@ -325,9 +338,13 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
   std::vector<WilcoxSide> out(n_sides);
   for (size_t j = 0; j < n_sides; ++j) {
     out[j].side = baselines[j].side;
+    out[j].law_slip = law.slip();
+    out[j].law_slip_per_slope = law.slip_per_slope();
     for (size_t k = 1; k < cycles; ++k) {
       WilcoxCycle c = baselines[j].cycles[k - 1];
       c.advance_m = x[k] - x[k - 1];
+      c.slope = slope[k];
+      c.prior_slip = prior_slip[k];
       const auto [i, w1] = front_of(k);
       const std::vector<double>& s = side[j].s;
       c.sinkage_front_m = s[i] + w1 * (s[i + 1] - s[i]);
@@ -356,9 +373,15 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
 
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options,
                                  const WilcoxGraphOptions& graph) {
-  const WilcoxResult baseline = EstimateWilcoxBaseline(log, options);
+  WilcoxOptions baseline_options = options;
+  baseline_options.learn_slip = false;
+  const WilcoxResult baseline = EstimateWilcoxBaseline(log, baseline_options);
   WilcoxResult result;
   result.notes = baseline.notes;
+  if (options.learn_slip) {
+    result.notes.push_back(
+        "learn_slip is the baseline's: the graph keeps the prior's slip law as given");
+  }
   std::vector<Side> sides;
   for (size_t i = 0; i < baseline.sides.size(); ++i) {
     sides.push_back(i == 0 ? Side::kLeft : Side::kRight);

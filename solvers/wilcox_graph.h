@@ -31,6 +31,11 @@ struct WilcoxGraphOptions {
   bool covariance = true;
 };
 
+// The advance prior's slip law is WilcoxOptions' prior_slip and prior_slip_per_slope as given
+// (learn_slip is the baseline's and is ignored here, with a note). Measured: with a level slip
+// of 0.2 instead of 0 the cycle-by-cycle search settles in a wrong minimum at the start on
+// some runs (docs/wilcox.md); `slipgraph sinkage` therefore offers the slip options with the
+// baseline only.
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options = {},
                                  const WilcoxGraphOptions& graph = {});
 
