@@ -13,7 +13,6 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
-#include <algorithm>
 #include <cmath>
 
 namespace slipgraph {

@@ -345,23 +345,21 @@ WilcoxScore ScoreWilcox(const DriveLog& log, const WilcoxResult& result) {
     error += std::abs(side.total_advance_m - truth_advance) / truth_advance;
     rim_error += std::abs(side.total_rim_m - truth_advance) / truth_advance;
     ++sides;
-    // Along the way: errors that cancel in the total (uphill against downhill) show here.
-    double travelled = 0.0, worst = 0.0;
-    for (const WilcoxCycle& c : side.cycles) {
-      travelled += c.advance_m;
-      worst = std::max(worst, std::abs(travelled - (truth_at(c.t).x - x0)));
-    }
-    max_position_error += worst;
     const int front = k == 0 ? 0 : 3;  // sinkage_fl, sinkage_fr
     const double start_x = log.truth.front().x;
+    double travelled = 0.0, worst = 0.0;
     for (const WilcoxCycle& c : side.cycles) {
       const TruthSample truth = truth_at(c.t);
+      // Along the way: errors that cancel in the total (uphill against downhill) show here.
+      travelled += c.advance_m;
+      worst = std::max(worst, std::abs(travelled - (truth.x - x0)));
       if (truth.x - start_x < 2.0 * log.vehicle.axle_spacing_m) continue;
       const double e = c.sinkage_front_m - truth.sinkage[front];
       if (!std::isfinite(e)) continue;
       sq += e * e;
       ++score.sinkage_samples;
     }
+    max_position_error += worst;
   }
   if (sides > 0) {
     score.odometry_error_fraction = error / sides;

@@ -220,10 +220,9 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     prior_slip[k] = law.Slip(slope[k]);
     const double mean = WilcoxPriorAdvance(rim[k], prior_slip[k]);
     const double sd = std::max(1e-4, o.prior_fraction * std::abs(rim[k]));
+    double best_a = mean, best_cost = 1e300;
     const double step = 0.0005;
-    const double from = std::max(0.0, mean - 6.0 * sd - 0.01);
-    std::vector<double> costs;
-    for (double a = from; a <= mean + 6.0 * sd + 0.01; a += step) {
+    for (double a = std::max(0.0, mean - 6.0 * sd - 0.01); a <= mean + 6.0 * sd + 0.01; a += step) {
       x[k] = x[k - 1] + a;
       double c = (a - mean) * (a - mean) / (sd * sd);
       for (SideProfiles& p : side) {
@@ -232,10 +231,8 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
           c += cost_of(f, p, k);
         }
       }
-      costs.push_back(c);
+      if (c < best_cost) best_cost = c, best_a = a;
     }
-    const size_t best = std::min_element(costs.begin(), costs.end()) - costs.begin();
-    const double best_a = from + best * step;
     x[k] = x[k - 1] + best_a;
     for (SideProfiles& p : side) {
       extend_terrain(p, k);
