@@ -51,20 +51,12 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
   cmd->add_flag("--learn-slip", options->wilcox.learn_slip,
                 "learn the prior's slip and slip per slope as the rover drives, starting from "
                 "--prior-slip and --slip-per-slope (from what the terrain matching measures on "
-                "rough ground)");
+                "rough ground; the graph takes the law cycle by cycle as the baseline learns it)");
   cmd->add_option("--bin", options->wilcox.bin_m, "Histogram bin, m")->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
-    if (options->method == "graph" &&
-        (options->wilcox.prior_slip != 0.0 || options->wilcox.prior_slip_per_slope != 0.0 ||
-         options->wilcox.learn_slip)) {
-      throw std::invalid_argument(
-          "--prior-slip, --slip-per-slope and --learn-slip work with --method baseline only: "
-          "the graph's advance search settles in a wrong minimum at the start with a prior slip "
-          "other than 0 (docs/wilcox.md)");
-    }
     const DriveLog log = ReadLogWithWarnings(options->log, options->skip_bad);
     const WilcoxResult result = options->method == "graph"
                                     ? EstimateWilcoxGraph(log, options->wilcox, options->graph)

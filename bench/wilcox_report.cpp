@@ -2,15 +2,17 @@
 // odometry error of the total advance and front-sinkage RMSE per roughness, for an advance prior
 // of 1 % and 10 % of the rim motion, baseline and factor graph on the same runs, and the
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
-// Run: build/bench/wilcox_report [--runs N] [--method baseline|baseline_learned|graph|
-//                                 graph_shared|all] [--suite wilcox|wilcox_slope]
+// Run: build/bench/wilcox_report [--runs N] [--method baseline|graph|graph_shared[_learned]|all]
+//                                 [--roughness CM] [--prior FRACTION] [--suite wilcox|wilcox_slope]
 // (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
-// sides sharing the advance, WilcoxGraphOptions::shared_advance; baseline_learned: the baseline
-// learning its prior's slip law from the paper's no-slip start, WilcoxOptions::learn_slip).
-// --suite wilcox_slope: the hill runs (slip 20 % + the slope), baseline only, with the prior's
+// sides sharing the advance, WilcoxGraphOptions::shared_advance; *_learned: the prior learning
+// its slip law from the paper's no-slip start, WilcoxOptions::learn_slip; --roughness 1 and
+// --prior 0.1 keep one roughness and one prior).
+// --suite wilcox_slope: the hill runs (slip 20 % + the slope), each method with the prior's
 // slip law as the paper has it (0), constant at the true level (0.2), slope-dependent with the
 // true law (0.2, 1) and learned from 0; odometry error and the largest error along the way.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,11 +28,17 @@
 int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
   size_t runs_per_roughness = 1000;
-  std::vector<std::string> methods = {"baseline", "baseline_learned", "graph", "graph_shared"};
-  std::string suite = "wilcox";
+  std::vector<std::string> methods = {"baseline",      "baseline_learned", "graph",
+                                      "graph_learned", "graph_shared",     "graph_shared_learned"};
+  std::string suite = "wilcox", only_roughness;
+  double only_prior = 0.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--runs") == 0) {
       runs_per_roughness = static_cast<size_t>(std::atoi(argv[i + 1]));
+    } else if (std::strcmp(argv[i], "--roughness") == 0) {
+      only_roughness = argv[i + 1];
+    } else if (std::strcmp(argv[i], "--prior") == 0) {
+      only_prior = std::atof(argv[i + 1]);
     } else if (std::strcmp(argv[i], "--suite") == 0) {
       suite = argv[i + 1];
     } else if (std::strcmp(argv[i], "--method") == 0) {
@@ -38,8 +46,9 @@ int main(int argc, char** argv) {
           std::strcmp(argv[i + 1], "all") == 0 ? methods : std::vector<std::string>{argv[i + 1]};
     } else {
       std::fprintf(stderr,
-                   "usage: wilcox_report [--runs N] [--method baseline|baseline_learned|graph|"
-                   "graph_shared|all] [--suite wilcox|wilcox_slope]\n");
+                   "usage: wilcox_report [--runs N] [--method baseline|graph|graph_shared"
+                   "[_learned]|all] [--roughness CM] [--prior FRACTION] "
+                   "[--suite wilcox|wilcox_slope]\n");
       return 2;
     }
   }
@@ -59,31 +68,43 @@ int main(int argc, char** argv) {
           .push_back(sim::Simulate(run.scenario, run.seed).log);
     }
     std::printf(
-        "| RMS roughness cm | runs | prior | prior's slip law | odometry error mean (max) | "
-        "largest error along the way, mean mm | learned slip, per slope (left) |\n"
-        "|---|---|---|---|---|---|---|\n");
+        "| RMS roughness cm | runs | prior | method | prior's slip law | odometry error mean (max) "
+        "| largest error along the way, mean mm | learned slip, per slope (left) |\n"
+        "|---|---|---|---|---|---|---|---|\n");
     for (const auto& [roughness, logs] : logs_by_roughness) {
+      if (!only_roughness.empty() && roughness != only_roughness) continue;
       for (double prior : {0.01, 0.1}) {
+        if (only_prior > 0.0 && std::abs(prior - only_prior) > 1e-9) continue;
         for (const Law& law : laws) {
           WilcoxOptions options;
           options.prior_fraction = prior;
           options.prior_slip = law.slip;
           options.prior_slip_per_slope = law.per_slope;
           options.learn_slip = law.learn;
-          double sum = 0.0, worst = 0.0, along = 0.0, slip = 0.0, per_slope = 0.0;
-          for (const DriveLog& log : logs) {
-            const WilcoxResult result = EstimateWilcoxBaseline(log, options);
-            const WilcoxScore score = ScoreWilcox(log, result);
-            sum += score.odometry_error_fraction;
-            worst = std::max(worst, score.odometry_error_fraction);
-            along += score.max_position_error_m;
-            slip += result.sides.at(0).law_slip;
-            per_slope += result.sides.at(0).law_slip_per_slope;
+          for (const std::string& method : methods) {
+            if (method.find("_learned") != std::string::npos) continue;  // the laws say it
+            double sum = 0.0, worst = 0.0, along = 0.0, slip = 0.0, per_slope = 0.0;
+            for (const DriveLog& log : logs) {
+              WilcoxGraphOptions graph;
+              graph.shared_advance = method.rfind("graph_shared", 0) == 0;
+              graph.covariance = false;
+              const WilcoxResult result = method.rfind("baseline", 0) == 0
+                                              ? EstimateWilcoxBaseline(log, options)
+                                              : EstimateWilcoxGraph(log, options, graph);
+              const WilcoxScore score = ScoreWilcox(log, result);
+              sum += score.odometry_error_fraction;
+              worst = std::max(worst, score.odometry_error_fraction);
+              along += score.max_position_error_m;
+              slip += result.sides.at(0).law_slip;
+              per_slope += result.sides.at(0).law_slip_per_slope;
+            }
+            const double n = static_cast<double>(logs.size());
+            std::printf(
+                "| %s | %zu | %.0f %% | %s | %s | %.2f %% (%.2f %%) | %.1f | %.3f, %.2f |\n",
+                roughness.c_str(), logs.size(), 100.0 * prior, method.c_str(), law.name,
+                100.0 * sum / n, 100.0 * worst, 1000.0 * along / n, slip / n, per_slope / n);
+            std::fflush(stdout);
           }
-          const double n = static_cast<double>(logs.size());
-          std::printf("| %s | %zu | %.0f %% | %s | %.2f %% (%.2f %%) | %.1f | %.3f, %.2f |\n",
-                      roughness.c_str(), logs.size(), 100.0 * prior, law.name, 100.0 * sum / n,
-                      100.0 * worst, 1000.0 * along / n, slip / n, per_slope / n);
         }
       }
     }
@@ -93,6 +114,7 @@ int main(int argc, char** argv) {
   for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox", 1)) {
     const std::string roughness =
         run.relative_directory.substr(1, run.relative_directory.find("cm") - 1);
+    if (!only_roughness.empty() && roughness != only_roughness) continue;
     std::vector<DriveLog>& logs = by_roughness[roughness];
     if (logs.size() < runs_per_roughness) logs.push_back(sim::Simulate(run.scenario, run.seed).log);
   }
@@ -101,15 +123,16 @@ int main(int argc, char** argv) {
       "front sinkage RMSE mm | sides agree |\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& [roughness, logs] : by_roughness) {
     for (double prior : {0.01, 0.1}) {
+      if (only_prior > 0.0 && std::abs(prior - only_prior) > 1e-9) continue;
       for (const std::string& method : methods) {
         WilcoxOptions options;
         options.prior_fraction = prior;
-        options.learn_slip = method == "baseline_learned";
+        options.learn_slip = method.size() > 8 && method.substr(method.size() - 8) == "_learned";
         double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
         int agree = 0;
         for (const DriveLog& log : logs) {
           WilcoxGraphOptions graph;
-          graph.shared_advance = method == "graph_shared";
+          graph.shared_advance = method.rfind("graph_shared", 0) == 0;
           const WilcoxResult result = method.rfind("baseline", 0) == 0
                                           ? EstimateWilcoxBaseline(log, options)
                                           : EstimateWilcoxGraph(log, options, graph);

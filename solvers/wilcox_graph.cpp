@@ -34,6 +34,7 @@ struct SideProfiles {
   std::vector<WilcoxScan> scans;
   std::vector<double> y, s;
   double mapped_to = 0.0;
+  double ranged_from = 0.0;  // the first ground the sensor ranged: behind it the terrain is guessed
 };
 
 // Solves the sides in `sides` (one, or both sharing the rear wheels' positions: a rigid rover
@@ -122,13 +123,13 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     }
     return out;
   };
-  // A factor's squared residual at the current values (for the initial search).
-  const auto cost_of = [&](const WilcoxMeasurementFactor& f, SideProfiles& p, size_t k) {
+  // A factor's residual at the current values (for the initial search).
+  const auto residual_of = [&](const WilcoxMeasurementFactor& f, SideProfiles& p, size_t k) {
     const std::vector<double*> blocks = blocks_of(f, p, k);
     std::vector<const double*> values(blocks.begin(), blocks.end());
     double r = 0.0;
     f(values.data(), &r);
-    return r * r;
+    return r;
   };
   // Terrain ranged by cycle k beyond what is mapped: y = dz + the rear wheel's ride height.
   const auto extend_terrain = [&](SideProfiles& p, size_t k) {
@@ -150,6 +151,7 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     }
     if (k == 0) {  // under the rover: a line from the rear wheel to the first ranged point
       const double first = z.range.front().first;
+      p.ranged_from = first;
       for (int i = 0; i * h < first && i < nodes; ++i) {
         p.y[i] = z.range.front().second * i * h / first;
       }
@@ -218,6 +220,10 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     }
     slope[k] = WilcoxCycleSlope(cycle_scans);
     prior_slip[k] = law.Slip(slope[k]);
+    if (o.learn_slip) {  // the baseline's law as it stood at this cycle (causal)
+      prior_slip[k] = 0.0;
+      for (const WilcoxSide& b : baselines) prior_slip[k] += b.cycles[k - 1].prior_slip / n_sides;
+    }
     const double mean = WilcoxPriorAdvance(rim[k], prior_slip[k]);
     const double sd = std::max(1e-4, o.prior_fraction * std::abs(rim[k]));
     double best_a = mean, best_cost = 1e300;
@@ -226,10 +232,24 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
       x[k] = x[k - 1] + a;
       double c = (a - mean) * (a - mean) / (sd * sd);
       for (SideProfiles& p : side) {
+        // While the rear wheel is on the guessed ground under the start, its ride height is
+        // unknown: the offset that best aligns the factors is taken out (weighted mean of their
+        // errors), and the factors whose far wheel is on guessed ground too are left out.
+        const bool guessed = x[k] - patch < p.ranged_from;
+        double sum_w = 0.0, sum_we = 0.0;
         for (const WilcoxMeasurementFactor& f : factors_of(p, k, x[k])) {
           if (x[k] + f.offset_m + patch > p.mapped_to) continue;  // unmapped ground
-          c += cost_of(f, p, k);
+          if (guessed && x[k] + f.offset_m - patch < p.ranged_from) continue;
+          // The profiles so far are estimates, good to about histogram_sd_m: the search's
+          // residual has that error beside the measurement's.
+          const double sd_f = std::sqrt(f.sd_m * f.sd_m + o.histogram_sd_m * o.histogram_sd_m);
+          const double e = residual_of(f, p, k) * f.sd_m;
+          c += e * e / (sd_f * sd_f);
+          const double w = 1.0 / (sd_f * sd_f);
+          sum_w += w;
+          sum_we += w * e;
         }
+        if (guessed && sum_w > 0.0) c -= sum_we * sum_we / sum_w;
       }
       if (c < best_cost) best_cost = c, best_a = a;
     }
@@ -335,8 +355,10 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
   std::vector<WilcoxSide> out(n_sides);
   for (size_t j = 0; j < n_sides; ++j) {
     out[j].side = baselines[j].side;
-    out[j].law_slip = law.slip();
-    out[j].law_slip_per_slope = law.slip_per_slope();
+    out[j].law_slip = o.learn_slip ? baselines[j].law_slip : law.slip();
+    out[j].law_slip_per_slope =
+        o.learn_slip ? baselines[j].law_slip_per_slope : law.slip_per_slope();
+    out[j].law_cycles_used = o.learn_slip ? baselines[j].law_cycles_used : 0;
     for (size_t k = 1; k < cycles; ++k) {
       WilcoxCycle c = baselines[j].cycles[k - 1];
       c.advance_m = x[k] - x[k - 1];
@@ -370,15 +392,9 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
 
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options,
                                  const WilcoxGraphOptions& graph) {
-  WilcoxOptions baseline_options = options;
-  baseline_options.learn_slip = false;
-  const WilcoxResult baseline = EstimateWilcoxBaseline(log, baseline_options);
+  const WilcoxResult baseline = EstimateWilcoxBaseline(log, options);
   WilcoxResult result;
   result.notes = baseline.notes;
-  if (options.learn_slip) {
-    result.notes.push_back(
-        "learn_slip is the baseline's: the graph keeps the prior's slip law as given");
-  }
   std::vector<Side> sides;
   for (size_t i = 0; i < baseline.sides.size(); ++i) {
     sides.push_back(i == 0 ? Side::kLeft : Side::kRight);

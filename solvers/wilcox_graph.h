@@ -3,7 +3,7 @@
 // path, a factor per range sample and per articulation measurement (factors/wilcox_factors.h),
 // the odometry prior on each advance, and smoothness priors on y (curvature) and s (slope).
 // Built cycle by cycle: each new position starts from a search over the advance on the profiles
-// mapped so far (as the baseline searches its histograms), the newly ranged ground extends the
+// mapped so far (as the baseline searches its histograms; below), the newly ranged ground extends the
 // terrain, and every `refine_every` cycles the whole graph is refined; a final solve at the end.
 // (From the baseline's positions instead, the joint problem stays in the baseline's local
 // minimum: odometry error unchanged; from the true positions it stays there: 0.004 %.)
@@ -31,11 +31,17 @@ struct WilcoxGraphOptions {
   bool covariance = true;
 };
 
-// The advance prior's slip law is WilcoxOptions' prior_slip and prior_slip_per_slope as given
-// (learn_slip is the baseline's and is ignored here, with a note). Measured: with a level slip
-// of 0.2 instead of 0 the cycle-by-cycle search settles in a wrong minimum at the start on
-// some runs (docs/wilcox.md); `slipgraph sinkage` therefore offers the slip options with the
-// baseline only.
+// The advance prior's slip law is WilcoxOptions' prior_slip and prior_slip_per_slope; with
+// learn_slip each cycle's prior takes the law as the baseline had learned it by that cycle (the
+// baseline runs first in any case: it gives the rim motion and the fallback).
+//
+// The search for each new advance scores the factors against the profiles estimated so far, so
+// each factor's variance there adds WilcoxOptions::histogram_sd_m (those profiles' own error; the
+// factors in the solve keep the measurement's sd alone, the profiles being parameters there).
+// While the rear wheel is on the guessed ground under the start, the search takes out the ride
+// height offset that best aligns the factors, as the baseline does, and leaves out factors whose
+// far wheel is on guessed ground. Measured (docs/wilcox.md): before these two, a prior slip
+// other than 0 sent the start into a wrong minimum on some runs.
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options = {},
                                  const WilcoxGraphOptions& graph = {});
 
