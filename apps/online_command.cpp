@@ -3,6 +3,8 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "evaluation/evaluation.h"
+#include "solvers/wilcox_baseline.h"
+#include "solvers/wilcox_velocity.h"
 #include "solvers/window_smoother.h"
 
 namespace slipgraph {
@@ -12,6 +14,8 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
     EstimatorRunOptions run;
     bool no_gps = false;
     WindowSmootherOptions window;
+    bool advance_velocity = false;
+    double advance_sd_m = 0.003;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
@@ -32,6 +36,14 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
       ->capture_default_str();
   cmd->add_flag("!--no-covariance", options->window.covariance,
                 "Skip the window's marginal covariance (report the EKF's sd)");
+  cmd->add_flag("--advance-velocity", options->advance_velocity,
+                "Rocker-bogie logs with articulation and ranging: Wilcox's advance per cycle (the "
+                "baseline, causal, learning its prior's slip) as a body-velocity measurement, "
+                "taken by the window when the cycle's scan arrives");
+  cmd->add_option("--advance-sd", options->advance_sd_m,
+                  "sd of one cycle's advance for --advance-velocity, m")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->footer(
       "The estimate file's standard columns are the window's refined estimates; ekf_* columns "
       "hold the front end's estimate at the same sample, lag_s when the refined one became "
@@ -40,7 +52,17 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
     options->window.filter.use_gps = !options->no_gps;
     RunEstimatorOverLogs(
         options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
-          const WindowSmootherResult result = SmoothWindowed(log, model, options->window);
+          WindowSmootherOptions window = options->window;
+          if (options->advance_velocity) {
+            WilcoxOptions wilcox;
+            wilcox.learn_slip = true;
+            window.problem.body_velocity =
+                WilcoxBodyVelocity(EstimateWilcoxBaseline(log, wilcox), options->advance_sd_m);
+            window.problem.body_velocity_when_available = true;
+            report << "advance velocity: " << window.problem.body_velocity.size()
+                   << " cycles of Wilcox's baseline (learned slip), each taken at its scan\n";
+          }
+          const WindowSmootherResult result = SmoothWindowed(log, model, window);
           report << DescribeWindowRun(result);
           if (!log.truth.empty()) {
             Evaluation ekf = Evaluate(log, EstimateTable(result.ekf.estimates));

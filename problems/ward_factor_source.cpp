@@ -83,6 +83,9 @@ std::string FactorCounts::Describe() const {
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
       << " gyro, " << encoders << " encoder, " << gnss << " GNSS, "
       << (body_velocity > 0 ? std::to_string(body_velocity) + " body velocity, " : std::string())
+      << (body_velocity_too_late > 0
+              ? std::to_string(body_velocity_too_late) + " body velocity too late for the window, "
+              : std::string())
       << oppose_motion << " oppose-motion, " << act_quickly << " decay, " << at_rest << " at-rest, "
       << bounds << " bound, " << rate_bounds << " rate-bound priors";
   return out.str();
@@ -134,6 +137,17 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
     gps_begin_.assign(n + 1, 0);
   }
   velocity_begin_ = AttachToStates(options.body_velocity, times_);
+  velocity_state_.assign(options.body_velocity.size(), n);
+  for (size_t k = 0; k < n; ++k) {
+    for (size_t i = velocity_begin_[k]; i < velocity_begin_[k + 1]; ++i) {
+      velocity_state_[i] = k;
+      velocity_by_availability_.push_back(i);
+    }
+  }
+  std::stable_sort(
+      velocity_by_availability_.begin(), velocity_by_availability_.end(), [&](size_t a, size_t b) {
+        return options.body_velocity[a].available_t < options.body_velocity[b].available_t;
+      });
   if (log.imu.size() > 1) {
     imu_period_s_ = (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1);
   }
@@ -281,10 +295,12 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, x);
     ++counts->gnss;
   }
-  // Another estimator's body-x velocity: the same residual as GNSS projected on body x.
+  // Another estimator's body-x velocity: the same residual as GNSS projected on body x (online,
+  // only if it already exists; AddLateBodyVelocity adds it when it does).
   for (size_t i = velocity_begin_[k]; i < velocity_begin_[k + 1]; ++i) {
     const BodyVelocityMeasurement& m = options_.body_velocity[i];
     if (!std::isfinite(m.v_mps) || !(m.sd_mps > 0.0)) continue;
+    if (options_.body_velocity_when_available && m.available_t > times_[k]) continue;
     Add("body_velocity", GnssVelocityFactor::Create(m.v_mps, m.sd_mps), nullptr, x);
     ++counts->body_velocity;
   }
@@ -365,6 +381,29 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
       nullptr, previous, x);
   ++counts->rate_bounds;
   ++counts->dynamics;
+}
+
+void WardFactorSource::AddLateBodyVelocity(size_t k, const std::function<double*(size_t)>& state_of,
+                                           ceres::Problem* problem, std::vector<AddedFactor>* added,
+                                           FactorCounts* counts) const {
+  if (!options_.body_velocity_when_available || k == 0 || k >= times_.size()) return;
+  const auto available = [&](size_t i) { return options_.body_velocity[i].available_t; };
+  auto it = std::upper_bound(velocity_by_availability_.begin(), velocity_by_availability_.end(),
+                             times_[k - 1], [&](double t, size_t i) { return t < available(i); });
+  for (; it != velocity_by_availability_.end() && available(*it) <= times_[k]; ++it) {
+    const BodyVelocityMeasurement& m = options_.body_velocity[*it];
+    if (velocity_state_[*it] >= k) continue;  // on state k or later: AddStep has it
+    if (!std::isfinite(m.v_mps) || !(m.sd_mps > 0.0)) continue;
+    double* x = state_of(velocity_state_[*it]);
+    if (x == nullptr) {
+      ++counts->body_velocity_too_late;
+      continue;
+    }
+    const ceres::ResidualBlockId id =
+        problem->AddResidualBlock(GnssVelocityFactor::Create(m.v_mps, m.sd_mps), nullptr, x);
+    added->push_back({"body_velocity", id});
+    ++counts->body_velocity;
+  }
 }
 
 }  // namespace slipgraph

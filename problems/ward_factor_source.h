@@ -10,6 +10,8 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,9 @@ struct BodyVelocityMeasurement {
   double t = 0.0;
   double v_mps = 0.0;
   double sd_mps = 0.0;
+  // When the estimate exists (the end of its interval, for an advance per cycle): an online
+  // window takes it only from then (WardProblemOptions::body_velocity_when_available).
+  double available_t = -std::numeric_limits<double>::infinity();
 };
 
 struct WardProblemOptions {
@@ -35,6 +40,10 @@ struct WardProblemOptions {
   bool use_gps = true;
   // Body-x velocity measurements from another estimator, sorted by t (empty: none).
   std::vector<BodyVelocityMeasurement> body_velocity;
+  // Online: each body-velocity measurement enters at the first state at or after its
+  // available_t, on the state nearest its t if that is still in the window (AddLateBodyVelocity;
+  // otherwise it is counted as too late). Off for post-processing: each at its own state.
+  bool body_velocity_when_available = false;
   // |w| below this reads as a stopped wheel (weak constraints 1 and 4), as in the EKF.
   double wheel_still_radps = EkfOptions().wheel_still_radps;
   // Huber scale of the disturbance random walk, in standard deviations of one step.
@@ -101,7 +110,8 @@ struct AddedFactor {
 // How many factors of each kind went in, for the report.
 struct FactorCounts {
   long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, body_velocity = 0,
-       oppose_motion = 0, act_quickly = 0, at_rest = 0, bounds = 0, rate_bounds = 0;
+       body_velocity_too_late = 0, oppose_motion = 0, act_quickly = 0, at_rest = 0, bounds = 0,
+       rate_bounds = 0;
   std::string Describe() const;
 };
 
@@ -149,6 +159,12 @@ class WardFactorSource {
   void AddStep(size_t k, double* previous, double* x, const GlobalBlocks& globals,
                ceres::Problem* problem, std::vector<AddedFactor>* added,
                FactorCounts* counts) const;
+  // With body_velocity_when_available: the body-velocity measurements that become available at
+  // state k (available_t in (t_{k-1}, t_k]) on earlier states, each on state_of(its state), or
+  // counted too late when that returns null (the state has left the window).
+  void AddLateBodyVelocity(size_t k, const std::function<double*(size_t)>& state_of,
+                           ceres::Problem* problem, std::vector<AddedFactor>* added,
+                           FactorCounts* counts) const;
 
   // The registered force terms (factors/force_term.h) the model names, each once.
   const std::vector<const ForceTerm*>& force_terms() const { return force_terms_; }
@@ -173,6 +189,9 @@ class WardFactorSource {
   std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving
   // IMU and GNSS samples attached to state k: [imu_begin_[k], imu_begin_[k + 1]), same for GNSS.
   std::vector<size_t> imu_begin_, gps_begin_, velocity_begin_;
+  // With body_velocity_when_available: the measurements attached to a state, by available_t.
+  std::vector<size_t> velocity_by_availability_;
+  std::vector<size_t> velocity_state_;  // the state measurement i is attached to
   double imu_period_s_ = 0.01;
 };
 

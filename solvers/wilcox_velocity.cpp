@@ -30,7 +30,8 @@ std::vector<BodyVelocityMeasurement> WilcoxBodyVelocity(const WilcoxResult& resu
     const double sd = !have_sd ? fallback_advance_sd_m
                       : shared ? first[k].advance_sd_m
                                : std::sqrt(variance);
-    out.push_back({0.5 * (first[k].t + first[k - 1].t), advance / duration, sd / duration});
+    out.push_back(
+        {0.5 * (first[k].t + first[k - 1].t), advance / duration, sd / duration, first[k].t});
   }
   return out;
 }

@@ -54,6 +54,9 @@ class Window {
     if (first) source_.AddStatePrior(k, x, &problem_, &added_);
     double* previous = first ? nullptr : states_[states_.size() - 2].data();
     source_.AddStep(k, previous, x, {offsets_.data()}, &problem_, &added_, &counts_);
+    source_.AddLateBodyVelocity(
+        k, [&](size_t j) { return j >= first_ && j < k ? states_[j - first_].data() : nullptr; },
+        &problem_, &added_, &counts_);
     added_.clear();
   }
 
@@ -204,7 +207,8 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   window.Update(true);
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
                                        &result.estimates);
-  result.notes.insert(result.notes.begin(), window.counts().Describe());
+  result.counts = window.counts();
+  result.notes.insert(result.notes.begin(), result.counts.Describe());
   return result;
 }
 

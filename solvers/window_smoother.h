@@ -45,6 +45,7 @@ struct WindowSmootherResult {
   long covariance_failures = 0;
   std::vector<double> update_ms;      // per update: solve and marginalization, wall time
   std::vector<double> covariance_ms;  // per update: marginal covariance of the leaving states
+  FactorCounts counts;                // the factors that went in (and measurements too late)
   std::vector<std::string> notes;
 };
 

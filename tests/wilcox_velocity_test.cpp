@@ -1,6 +1,6 @@
 // Wilcox's advance as a body-velocity measurement for the vehicle graph: the conversion at a
 // hand-made point, and end to end on a simulated rocker-bogie log without GNSS, where the
-// smoother alone cannot see the 20 % slip.
+// smoother alone cannot see the 20 % slip, in the batch and online in the window.
 #include "solvers/wilcox_velocity.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/wilcox_graph.h"
+#include "solvers/window_smoother.h"
 
 namespace slipgraph {
 namespace {
@@ -74,6 +75,50 @@ TEST(WilcoxVelocity, FixesTheSmoothersVelocityOnASlippingRover) {
   EXPECT_LT(with.velocity_rmse, 0.3 * without.velocity_rmse);
   EXPECT_LT(with.velocity_rmse, 0.015);
   EXPECT_LT(with.false_immobilized_fraction(), 0.01);
+}
+
+TEST(WilcoxVelocity, OnlineWindowTakesEachCycleWhenItsScanArrives) {
+  // The same run online: the baseline's advances (causal, learning the prior's slip), each
+  // available at its cycle's end, half a cycle after the state it measures. Measured: window v
+  // RMSE 0.0699 m/s and 43 % falsely immobilized without, 0.0085 m/s and none with (2 s window);
+  // a 0.3 s window has let that state go when the scan arrives: every cycle too late.
+  const sim::ScenarioRun run = [] {
+    for (const sim::ScenarioRun& r : sim::ExpandScenario("wilcox", 1)) {
+      if (r.relative_directory.rfind("r1cm", 0) == 0) return r;
+    }
+    return sim::ScenarioRun{};
+  }();
+  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  WindowSmootherOptions options;
+  options.filter.use_gps = false;
+  options.covariance = false;
+  const Evaluation without =
+      Evaluate(log, EstimateTable(SmoothWindowed(log, model, options).estimates));
+  WilcoxOptions wilcox;
+  wilcox.learn_slip = true;
+  options.problem.body_velocity = WilcoxBodyVelocity(EstimateWilcoxBaseline(log, wilcox), 0.003);
+  options.problem.body_velocity_when_available = true;
+  const long cycles = static_cast<long>(options.problem.body_velocity.size());
+  ASSERT_GT(cycles, 50);
+  for (const BodyVelocityMeasurement& m : options.problem.body_velocity) {
+    ASSERT_NEAR(m.available_t - m.t, 0.5, 0.01);  // 1 s cycles
+  }
+  const WindowSmootherResult with_result = SmoothWindowed(log, model, options);
+  EXPECT_EQ(with_result.counts.body_velocity, cycles);
+  EXPECT_EQ(with_result.counts.body_velocity_too_late, 0);
+  const Evaluation with = Evaluate(log, EstimateTable(with_result.estimates));
+  std::printf("window v RMSE without %.4f, with %.4f m/s; false immobilized %.3f -> %.3f\n",
+              without.velocity_rmse, with.velocity_rmse, without.false_immobilized_fraction(),
+              with.false_immobilized_fraction());
+  EXPECT_LT(with.velocity_rmse, 0.3 * without.velocity_rmse);
+  EXPECT_LT(with.velocity_rmse, 0.015);
+  EXPECT_LT(with.false_immobilized_fraction(), 0.01);
+
+  options.window_s = 0.3;
+  const WindowSmootherResult short_window = SmoothWindowed(log, model, options);
+  EXPECT_EQ(short_window.counts.body_velocity, 0);
+  EXPECT_EQ(short_window.counts.body_velocity_too_late, cycles);
 }
 
 }  // namespace
