@@ -2,12 +2,15 @@
 // odometry error of the total advance and front-sinkage RMSE per roughness, for an advance prior
 // of 1 % and 10 % of the rim motion, baseline and factor graph on the same runs, and the
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
-// Run: build/bench/wilcox_report [--runs N] [--method baseline|graph|graph_shared[_learned]|all]
+// Run: build/bench/wilcox_report [--runs N] [--method
+// baseline|graph|graph_shared[_learned],...|all]
 //                                 [--roughness CM] [--prior FRACTION] [--suite wilcox|wilcox_slope]
+//                                 [--svg FILE]
 // (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
 // sides sharing the advance, WilcoxGraphOptions::shared_advance; *_learned: the prior learning
 // its slip law from the paper's no-slip start, WilcoxOptions::learn_slip; --roughness 1 and
-// --prior 0.1 keep one roughness and one prior).
+// --prior 0.1 keep one roughness and one prior; --method takes a comma-separated list; --svg
+// writes the mean odometry error per method and prior against roughness as a plot).
 // --suite wilcox_slope: the hill runs (slip 20 % + the slope), each method with the prior's
 // slip law as the paper has it (0), constant at the true level (0.2), slope-dependent with the
 // true law (0.2, 1) and learned from 0; odometry error and the largest error along the way.
@@ -16,10 +19,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "evaluation/html_report.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/wilcox_baseline.h"
@@ -32,6 +38,7 @@ int main(int argc, char** argv) {
                                       "graph_learned", "graph_shared",     "graph_shared_learned"};
   std::string suite = "wilcox", only_roughness;
   double only_prior = 0.0;
+  std::string svg_path;  // Fig. 4 as a plot: mean odometry error per method and prior
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--runs") == 0) {
       runs_per_roughness = static_cast<size_t>(std::atoi(argv[i + 1]));
@@ -42,13 +49,18 @@ int main(int argc, char** argv) {
     } else if (std::strcmp(argv[i], "--suite") == 0) {
       suite = argv[i + 1];
     } else if (std::strcmp(argv[i], "--method") == 0) {
-      methods =
-          std::strcmp(argv[i + 1], "all") == 0 ? methods : std::vector<std::string>{argv[i + 1]};
+      if (std::strcmp(argv[i + 1], "all") != 0) {
+        methods.clear();
+        std::stringstream list(argv[i + 1]);
+        for (std::string m; std::getline(list, m, ',');) methods.push_back(m);
+      }
+    } else if (std::strcmp(argv[i], "--svg") == 0) {
+      svg_path = argv[i + 1];
     } else {
       std::fprintf(stderr,
                    "usage: wilcox_report [--runs N] [--method baseline|graph|graph_shared"
                    "[_learned]|all] [--roughness CM] [--prior FRACTION] "
-                   "[--suite wilcox|wilcox_slope]\n");
+                   "[--suite wilcox|wilcox_slope] [--svg FILE]\n");
       return 2;
     }
   }
@@ -118,6 +130,7 @@ int main(int argc, char** argv) {
     std::vector<DriveLog>& logs = by_roughness[roughness];
     if (logs.size() < runs_per_roughness) logs.push_back(sim::Simulate(run.scenario, run.seed).log);
   }
+  std::map<std::string, std::vector<std::pair<double, double>>> curves;
   std::printf(
       "| RMS roughness cm | runs | prior | method | odometry error mean (max) | rim motion alone | "
       "front sinkage RMSE mm | sides agree |\n|---|---|---|---|---|---|---|---|\n");
@@ -144,11 +157,47 @@ int main(int argc, char** argv) {
           agree += result.sides_agree;
         }
         const double n = static_cast<double>(logs.size());
+        curves[method + " " + std::to_string(static_cast<int>(std::lround(100.0 * prior))) + " %"]
+            .emplace_back(std::atof(roughness.c_str()), 100.0 * sum / n);
         std::printf("| %s | %zu | %.0f %% | %s | %.2f %% (%.2f %%) | %.1f %% | %.2f | %d/%zu |\n",
                     roughness.c_str(), logs.size(), 100.0 * prior, method.c_str(), 100.0 * sum / n,
                     100.0 * worst, 100.0 * rim / n, 1000.0 * sinkage / n, agree, logs.size());
         std::fflush(stdout);
       }
+    }
+  }
+  if (!svg_path.empty()) {
+    // Both axes logarithmic, as the values span 0.1-25 % over 0.25-4 cm.
+    Plot plot;
+    plot.title =
+        "Wilcox Fig. 4, simulated wilcox suite (20 % slip): mean odometry error, prior 1 % "
+        "(dashed) and 10 %";
+    plot.x_label = "RMS roughness, log2 cm (-2: 0.25 cm, 0: 1 cm, 2: 4 cm)";
+    plot.y_label = "odometry error, log10 % (0: 1 %)";
+    const char* colors[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                            "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"};
+    int c = 0;
+    for (auto& [name, points] : curves) {
+      std::sort(points.begin(), points.end());
+      PlotSeries s = NewSeries(name, colors[c++ % 8], name.find(" 1 %") != std::string::npos);
+      for (const auto& [roughness, error] : points) {
+        s.t.push_back(std::log2(roughness));
+        s.y.push_back(std::log10(std::max(error, 1e-3)));
+      }
+      plot.series.push_back(s);
+    }
+    for (const auto& [label, level] :
+         {std::make_pair("1 % (the paper)", 1.0), std::make_pair("0.5 % (Ceres target)", 0.5)}) {
+      PlotSeries s = NewSeries(label, "#999999", true);
+      s.t = {-2.0, 2.0};
+      s.y = {std::log10(level), std::log10(level)};
+      plot.series.push_back(s);
+    }
+    std::ofstream out(svg_path);
+    out << RenderSvg(plot, 900, 420);
+    if (!out) {
+      std::fprintf(stderr, "cannot write %s\n", svg_path.c_str());
+      return 1;
     }
   }
   std::printf("\nwilcox_lr (2 cm, left sinks 1 cm more in soft patches on asym runs):\n\n");

@@ -10,7 +10,7 @@
 namespace slipgraph {
 namespace {
 
-constexpr int kLeft = 70, kRight = 150, kTop = 28, kBottom = 34;  // margins, px
+constexpr int kLeft = 70, kRight = 170, kTop = 28, kBottom = 34;  // margins, px
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
