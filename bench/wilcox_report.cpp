@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
     }
     for (const auto& [label, level] :
          {std::make_pair("1 % (the paper)", 1.0), std::make_pair("0.5 % (Ceres target)", 0.5)}) {
-      PlotSeries s = NewSeries(label, "#999999", true);
+      PlotSeries s = NewSeries(label, "#000000", true);
       s.t = {-2.0, 2.0};
       s.y = {std::log10(level), std::log10(level)};
       plot.series.push_back(s);

@@ -45,8 +45,8 @@ TEST(WilcoxGraph, SharedAdvanceOnTheHandMadeProfile) {
 
 TEST(WilcoxGraph, EndToEndOnSimulatedOneCentimetreRoughness) {
   // The first two simulated 1 cm runs, 10 % prior, against truth. Measured (docs/wilcox.md, 8
-  // runs): separate sides 0.93 % mean (run 1 0.28 %, run 2 1.33 %), shared advance 0.44 % (0.12 %,
-  // 0.95 %); sinkage RMSE about 0.6-0.8 mm against 2 mm ranging noise. The baseline: 2.0 %.
+  // runs): separate sides 0.92 % mean (run 1 1.01 %, run 2 1.15 %), shared advance 0.45 % (0.34 %,
+  // 0.52 %); sinkage RMSE about 0.5-0.6 mm against 2 mm ranging noise. The baseline: 2.0 %.
   int runs = 0;
   double separate = 0.0, shared = 0.0;
   for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox", 1)) {
