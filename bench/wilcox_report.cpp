@@ -31,6 +31,20 @@
 #include "solvers/wilcox_baseline.h"
 #include "solvers/wilcox_graph.h"
 
+namespace {
+
+// One run by a method's name: baseline* or graph* (graph_shared*: the sides sharing the advance).
+slipgraph::WilcoxResult Estimate(const std::string& method, const slipgraph::DriveLog& log,
+                                 const slipgraph::WilcoxOptions& options, bool covariance) {
+  if (method.rfind("baseline", 0) == 0) return slipgraph::EstimateWilcoxBaseline(log, options);
+  slipgraph::WilcoxGraphOptions graph;
+  graph.shared_advance = method.rfind("graph_shared", 0) == 0;
+  graph.covariance = covariance;
+  return slipgraph::EstimateWilcoxGraph(log, options, graph);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
   size_t runs_per_roughness = 1000;
@@ -97,12 +111,7 @@ int main(int argc, char** argv) {
             if (method.find("_learned") != std::string::npos) continue;  // the laws say it
             double sum = 0.0, worst = 0.0, along = 0.0, slip = 0.0, per_slope = 0.0;
             for (const DriveLog& log : logs) {
-              WilcoxGraphOptions graph;
-              graph.shared_advance = method.rfind("graph_shared", 0) == 0;
-              graph.covariance = false;
-              const WilcoxResult result = method.rfind("baseline", 0) == 0
-                                              ? EstimateWilcoxBaseline(log, options)
-                                              : EstimateWilcoxGraph(log, options, graph);
+              const WilcoxResult result = Estimate(method, log, options, false);
               const WilcoxScore score = ScoreWilcox(log, result);
               sum += score.odometry_error_fraction;
               worst = std::max(worst, score.odometry_error_fraction);
@@ -144,11 +153,7 @@ int main(int argc, char** argv) {
         double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
         int agree = 0;
         for (const DriveLog& log : logs) {
-          WilcoxGraphOptions graph;
-          graph.shared_advance = method.rfind("graph_shared", 0) == 0;
-          const WilcoxResult result = method.rfind("baseline", 0) == 0
-                                          ? EstimateWilcoxBaseline(log, options)
-                                          : EstimateWilcoxGraph(log, options, graph);
+          const WilcoxResult result = Estimate(method, log, options, true);
           const WilcoxScore score = ScoreWilcox(log, result);
           sum += score.odometry_error_fraction;
           worst = std::max(worst, score.odometry_error_fraction);

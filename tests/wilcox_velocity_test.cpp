@@ -18,6 +18,14 @@
 namespace slipgraph {
 namespace {
 
+// The first simulated 1 cm run of the wilcox suite.
+DriveLog FirstOneCentimetreRun() {
+  for (const sim::ScenarioRun& r : sim::ExpandScenario("wilcox", 1)) {
+    if (r.relative_directory.rfind("r1cm", 0) == 0) return sim::Simulate(r.scenario, r.seed).log;
+  }
+  return DriveLog{};
+}
+
 TEST(WilcoxVelocity, MeanAdvanceOverTheCycleAtItsMiddle) {
   WilcoxResult result;
   result.sides.resize(2);
@@ -52,13 +60,7 @@ TEST(WilcoxVelocity, FixesTheSmoothersVelocityOnASlippingRover) {
   // The first simulated 1 cm run (20 % slip, no GNSS). Measured: batch v RMSE 0.0743 m/s and
   // 45 % of samples falsely immobilized without; 0.0079 m/s and none with the advance velocity
   // (each cycle with the graph's marginal sd of its advance, about 2.2 mm).
-  const sim::ScenarioRun run = [] {
-    for (const sim::ScenarioRun& r : sim::ExpandScenario("wilcox", 1)) {
-      if (r.relative_directory.rfind("r1cm", 0) == 0) return r;
-    }
-    return sim::ScenarioRun{};
-  }();
-  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const DriveLog log = FirstOneCentimetreRun();
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   BatchSmootherOptions options;
   const Evaluation without =
@@ -82,13 +84,7 @@ TEST(WilcoxVelocity, OnlineWindowTakesEachCycleWhenItsScanArrives) {
   // available at its cycle's end, half a cycle after the state it measures. Measured: window v
   // RMSE 0.0699 m/s and 43 % falsely immobilized without, 0.0085 m/s and none with (2 s window);
   // a 0.3 s window has let that state go when the scan arrives: every cycle too late.
-  const sim::ScenarioRun run = [] {
-    for (const sim::ScenarioRun& r : sim::ExpandScenario("wilcox", 1)) {
-      if (r.relative_directory.rfind("r1cm", 0) == 0) return r;
-    }
-    return sim::ScenarioRun{};
-  }();
-  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const DriveLog log = FirstOneCentimetreRun();
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   WindowSmootherOptions options;
   options.filter.use_gps = false;
