@@ -98,6 +98,8 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
           {"mean_sinkage_m", side.mean_sinkage_m},
           {"prior_slip", side.law_slip},
           {"prior_slip_per_slope", side.law_slip_per_slope},
+          {"prior_slip_sd", side.law_slip_sd},
+          {"prior_slip_per_slope_sd", side.law_slip_per_slope_sd},
           {"law_cycles_used", side.law_cycles_used}};
     }
     if (truth) {

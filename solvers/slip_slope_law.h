@@ -44,6 +44,10 @@ class SlipSlopeLaw {
   double slip() const { return coefficients_(0); }
   double slip_per_slope() const { return coefficients_(1); }
   int cycles_used() const { return used_; }
+  // The coefficients' sd from the fit's information (the law as a slowly drifting one, which the
+  // forgetting models: for a law that never changes it errs on the large side, up to sqrt(2)).
+  double slip_sd() const { return std::sqrt(info_.inverse()(0, 0)); }
+  double slip_per_slope_sd() const { return std::sqrt(info_.inverse()(1, 1)); }
 
   // One cycle: the slope it drove, its rim motion, the prior's mean and sd on the advance, the
   // MAP advance and the curvature of the MAP's cost (chi-square, prior included) at it. Returns

@@ -262,6 +262,10 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   out.law_slip = law.slip();
   out.law_slip_per_slope = law.slip_per_slope();
   out.law_cycles_used = law.cycles_used();
+  if (o.learn_slip) {
+    out.law_slip_sd = law.slip_sd();
+    out.law_slip_per_slope_sd = law.slip_per_slope_sd();
+  }
   return out;
 }
 

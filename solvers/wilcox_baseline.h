@@ -43,7 +43,7 @@ struct WilcoxOptions {
   // matching measures on each cycle (solvers/slip_slope_law.h): for a user who knows neither.
   bool learn_slip = false;
   SlipSlopeLawOptions learn;
-  double range_sd_m = 0.002;    // ranging noise (the paper's Sojourner figure)
+  double range_sd_m = 0.002;  // ranging noise (the paper's Sojourner figure)
   double articulation_sd_m = 0.00004;
   // The histograms' own error (ranging noise carried over, interpolation between ranged points),
   // added in quadrature to each measurement's: without it the 0.04 mm articulation term trusts
@@ -80,6 +80,7 @@ struct WilcoxSide {
   double mean_sinkage_m = 0.0;
   // The prior's slip law at the end (the user's, or what WilcoxOptions::learn_slip learned).
   double law_slip = 0.0, law_slip_per_slope = 0.0;
+  double law_slip_sd = 0.0, law_slip_per_slope_sd = 0.0;  // SlipSlopeLaw's, when learned
   int law_cycles_used = 0;
 };
 

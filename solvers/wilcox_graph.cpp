@@ -359,6 +359,8 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
     out[j].law_slip_per_slope =
         o.learn_slip ? baselines[j].law_slip_per_slope : law.slip_per_slope();
     out[j].law_cycles_used = o.learn_slip ? baselines[j].law_cycles_used : 0;
+    out[j].law_slip_sd = baselines[j].law_slip_sd;
+    out[j].law_slip_per_slope_sd = baselines[j].law_slip_per_slope_sd;
     for (size_t k = 1; k < cycles; ++k) {
       WilcoxCycle c = baselines[j].cycles[k - 1];
       c.advance_m = x[k] - x[k - 1];

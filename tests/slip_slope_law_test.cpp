@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <random>
 
 namespace slipgraph {
 namespace {
@@ -69,6 +71,43 @@ TEST(SlipSlopeLaw, ForgettingFollowsAChangeOfSoil) {
   EXPECT_NEAR(law.slip(), 0.1, 0.01);
   drive(0.4, 60);  // three memories later
   EXPECT_NEAR(law.slip(), 0.4, 0.03);
+}
+
+TEST(SlipSlopeLaw, ItsSdIsTheSpreadOfItsEstimates) {
+  // 300 independent drives of 150 cycles on a law that does not change, each look's noise as the
+  // law models it: the reported sd against the spread of the estimates over the drives. With the
+  // forgetting the reported sd is that of a law that may drift, so for this constant one it may
+  // exceed the spread by up to sqrt(2), never fall short of it.
+  SlipSlopeLawOptions options;
+  const double rim = 0.0625, prior_sd = 0.1 * rim, sd_data = 0.004;
+  std::mt19937 random(7);
+  std::normal_distribution<double> gauss;
+  double sum = 0.0, sum_sq = 0.0, sum_per = 0.0, sum_per_sq = 0.0, sd = 0.0, sd_per = 0.0;
+  const int drives = 300;
+  for (int d = 0; d < drives; ++d) {
+    SlipSlopeLaw law(0.0, 0.0, options);
+    for (int k = 0; k < 150; ++k) {
+      const double slope = 0.15 * std::sin(0.1 * k);
+      const double slip = 0.2 + 1.0 * slope + options.slip_noise_sd * gauss(random);
+      const double mean = rim * (1.0 - law.Slip(slope));
+      const Map map =
+          GaussianMap(mean, prior_sd, rim * (1.0 - slip) + sd_data * gauss(random), sd_data);
+      law.AddCycle(slope, rim, mean, prior_sd, map.advance, map.curvature);
+    }
+    sum += law.slip(), sum_sq += law.slip() * law.slip();
+    sum_per += law.slip_per_slope(), sum_per_sq += law.slip_per_slope() * law.slip_per_slope();
+    sd += law.slip_sd() / drives, sd_per += law.slip_per_slope_sd() / drives;
+  }
+  const double spread = std::sqrt(sum_sq / drives - (sum / drives) * (sum / drives));
+  const double spread_per =
+      std::sqrt(sum_per_sq / drives - (sum_per / drives) * (sum_per / drives));
+  std::printf("slip sd %.4f spread %.4f; per slope sd %.3f spread %.3f\n", sd, spread, sd_per,
+              spread_per);
+  EXPECT_NEAR(sum / drives, 0.2, 0.01);
+  EXPECT_GT(sd, 0.9 * spread);
+  EXPECT_LT(sd, 1.6 * spread);
+  EXPECT_GT(sd_per, 0.9 * spread_per);
+  EXPECT_LT(sd_per, 1.6 * spread_per);
 }
 
 }  // namespace
