@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "io/measurement_stream.h"
+#include "solvers/ipd_covariance_matching.h"
 
 namespace slipgraph {
 namespace {
@@ -223,6 +224,7 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
   double last_update_t = segments.empty() ? 0.0 : segments.front().t_start;
   const std::array<double, kAlphaSize> zero{};
   size_t next_update = 0;
+  IpdCovarianceMatching matching(options.match_covariance_segments);
   long rejected = 0, readmitted = 0;
   int gated_in_a_row = 0;
 
@@ -278,6 +280,7 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     PredictionError e = EvaluatePrediction(segments[i], alpha.data(), options, q);
     e.parameter_covariance = ParameterCovariance(segments[i], alpha.data(), P, options);
     e.predicted_covariance += e.parameter_covariance;
+    matching.Apply(segments[i].t_end, &e);
     result.calibrated.push_back(e);
   }
   while (next_update < segments.size()) update(segments[next_update++]);

@@ -41,6 +41,9 @@ struct IpdOptions {
   // until it passes the gate (fading memory: the model, not a pose, is wrong — a terrain
   // change). 0: never.
   int readmit_after = 1;
+  // The reported prediction covariance matched to the recent errors
+  // (solvers/ipd_covariance_matching.h), with a memory of this many predictions; 0: off.
+  double match_covariance_segments = 20.0;
 };
 
 // The segments' innovation gate: chi-square with 3 dof at 99.99 % (a pose glitch must not wreck

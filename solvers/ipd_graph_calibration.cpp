@@ -15,6 +15,7 @@
 #include "factors/ipd_segment_factor.h"
 #include "problems/marginalization.h"
 #include "solvers/chain_covariance.h"
+#include "solvers/ipd_covariance_matching.h"
 
 namespace slipgraph {
 namespace {
@@ -92,6 +93,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
 
   size_t next_segment_to_add = 0;
   size_t next_prediction = 0;
+  IpdCovarianceMatching matching(options.match_covariance_segments);
   const int last_block = BlockOf(segments.back().t_end, t0, graph.block_s);
   std::map<int, ceres::ResidualBlockId> walk_into;  // block index -> the walk from the previous
   std::set<int> jumped;
@@ -105,6 +107,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       PredictionError e = EvaluatePrediction(seg, latest.data(), options, stochastic.q());
       e.parameter_covariance = ParameterCovariance(seg, latest.data(), latest_covariance, options);
       e.predicted_covariance += e.parameter_covariance;
+      matching.Apply(seg.t_end, &e);
       result.calibrated.push_back(e);
     }
     // Add alpha blocks up to j, each tied to the previous by the walk.

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cmath>
 
 #include "sim/scenarios.h"
@@ -101,7 +103,8 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   const PredictionStats calibrated = Summarize(result.calibrated);
   // Measured (docs/ipd.md): 0.295 -> 0.071 m, heading 0.311 -> 0.044 rad, sd along 0.112 ->
   // 0.054 (the simulator's own slip model gets 0.045), cross 0.263 -> 0.073 m; predicted /
-  // sample variance after the first minute 0.88, 0.83 (heading 0.54).
+  // sample variance after the first minute 1.12, 1.07, 0.83 with the covariance matching (0.88,
+  // 0.83, 0.54 without); on this test's log 1.11, 1.05, 0.91.
   EXPECT_LT(calibrated.mean_position_error_m, 0.32 * no_slip.mean_position_error_m);    // 68 %
   EXPECT_LT(calibrated.sd_cross_m, 0.4 * no_slip.sd_cross_m);                           // 60 %
   EXPECT_LT(calibrated.mean_heading_error_rad, 0.17 * no_slip.mean_heading_error_rad);  // 83 %
@@ -111,9 +114,14 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
     if (e.t_start >= result.calibrated.front().t_start + 60.0) after_first_minute.push_back(e);
   }
   const PredictionStats late = Summarize(after_first_minute);
+  std::printf("predicted / sample variance after the first minute: %.2f %.2f %.2f\n",
+              late.predicted_over_sample[0], late.predicted_over_sample[1],
+              late.predicted_over_sample[2]);
+  for (int i = 0; i < 3; ++i) {  // the 20 %, heading included since the matching
+    EXPECT_GT(late.predicted_over_sample[i], 0.8);
+    EXPECT_LT(late.predicted_over_sample[i], 1.2);
+  }
   for (int i = 0; i < 2; ++i) {
-    EXPECT_GT(late.predicted_over_sample[i], 0.75);
-    EXPECT_LT(late.predicted_over_sample[i], 1.25);
     EXPECT_GT(batch.predicted_over_sample[i], 0.8);
     EXPECT_LT(batch.predicted_over_sample[i], 1.35);  // 1.09, 1.28
   }
