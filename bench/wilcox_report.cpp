@@ -2,10 +2,9 @@
 // odometry error of the total advance and front-sinkage RMSE per roughness, for an advance prior
 // of 1 % and 10 % of the rim motion, baseline and factor graph on the same runs, and the
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
-// Run: build/bench/wilcox_report [--runs N] [--method
-// baseline|graph|graph_shared[_learned],...|all]
-//                                 [--roughness CM] [--prior FRACTION] [--suite wilcox|wilcox_slope]
-//                                 [--svg FILE]
+// Run: build/bench/wilcox_report [--runs N]
+//          [--method baseline|graph|graph_shared[_learned],...|all] [--roughness CM]
+//          [--prior FRACTION] [--suite wilcox|wilcox_slope] [--svg FILE]
 // (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
 // sides sharing the advance, WilcoxGraphOptions::shared_advance; *_learned: the prior learning
 // its slip law from the paper's no-slip start, WilcoxOptions::learn_slip; --roughness 1 and
@@ -41,6 +40,13 @@ slipgraph::WilcoxResult Estimate(const std::string& method, const slipgraph::Dri
   graph.shared_advance = method.rfind("graph_shared", 0) == 0;
   graph.covariance = covariance;
   return slipgraph::EstimateWilcoxGraph(log, options, graph);
+}
+
+// A method name ending in _learned: the prior learns its slip law (WilcoxOptions::learn_slip).
+bool Learns(const std::string& method) {
+  const std::string suffix = "_learned";
+  return method.size() > suffix.size() &&
+         method.compare(method.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -108,7 +114,7 @@ int main(int argc, char** argv) {
           options.prior_slip_per_slope = law.per_slope;
           options.learn_slip = law.learn;
           for (const std::string& method : methods) {
-            if (method.find("_learned") != std::string::npos) continue;  // the laws say it
+            if (Learns(method)) continue;  // the laws say whether the prior learns
             double sum = 0.0, worst = 0.0, along = 0.0, slip = 0.0, per_slope = 0.0;
             for (const DriveLog& log : logs) {
               const WilcoxResult result = Estimate(method, log, options, false);
@@ -149,7 +155,7 @@ int main(int argc, char** argv) {
       for (const std::string& method : methods) {
         WilcoxOptions options;
         options.prior_fraction = prior;
-        options.learn_slip = method.size() > 8 && method.substr(method.size() - 8) == "_learned";
+        options.learn_slip = Learns(method);
         double sum = 0.0, worst = 0.0, rim = 0.0, sinkage = 0.0;
         int agree = 0;
         for (const DriveLog& log : logs) {

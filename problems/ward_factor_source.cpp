@@ -137,17 +137,20 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
     gps_begin_.assign(n + 1, 0);
   }
   velocity_begin_ = AttachToStates(options.body_velocity, times_);
-  velocity_state_.assign(options.body_velocity.size(), n);
-  for (size_t k = 0; k < n; ++k) {
-    for (size_t i = velocity_begin_[k]; i < velocity_begin_[k + 1]; ++i) {
-      velocity_state_[i] = k;
-      velocity_by_availability_.push_back(i);
+  if (options.body_velocity_when_available) {  // the order AddLateBodyVelocity reads them in
+    velocity_state_.assign(options.body_velocity.size(), n);
+    for (size_t k = 0; k < n; ++k) {
+      for (size_t i = velocity_begin_[k]; i < velocity_begin_[k + 1]; ++i) {
+        velocity_state_[i] = k;
+        velocity_by_availability_.push_back(i);
+      }
     }
+    std::stable_sort(velocity_by_availability_.begin(), velocity_by_availability_.end(),
+                     [&](size_t a, size_t b) {
+                       return options.body_velocity[a].available_t <
+                              options.body_velocity[b].available_t;
+                     });
   }
-  std::stable_sort(
-      velocity_by_availability_.begin(), velocity_by_availability_.end(), [&](size_t a, size_t b) {
-        return options.body_velocity[a].available_t < options.body_velocity[b].available_t;
-      });
   if (log.imu.size() > 1) {
     imu_period_s_ = (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1);
   }

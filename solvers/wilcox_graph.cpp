@@ -355,10 +355,10 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
   std::vector<WilcoxSide> out(n_sides);
   for (size_t j = 0; j < n_sides; ++j) {
     out[j].side = baselines[j].side;
-    out[j].law_slip = o.learn_slip ? baselines[j].law_slip : law.slip();
-    out[j].law_slip_per_slope =
-        o.learn_slip ? baselines[j].law_slip_per_slope : law.slip_per_slope();
-    out[j].law_cycles_used = o.learn_slip ? baselines[j].law_cycles_used : 0;
+    // The law is the baseline's (the user's as given when it does not learn).
+    out[j].law_slip = baselines[j].law_slip;
+    out[j].law_slip_per_slope = baselines[j].law_slip_per_slope;
+    out[j].law_cycles_used = baselines[j].law_cycles_used;
     out[j].law_slip_sd = baselines[j].law_slip_sd;
     out[j].law_slip_per_slope_sd = baselines[j].law_slip_per_slope_sd;
     for (size_t k = 1; k < cycles; ++k) {

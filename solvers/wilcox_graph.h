@@ -3,8 +3,9 @@
 // path, a factor per range sample and per articulation measurement (factors/wilcox_factors.h),
 // the odometry prior on each advance, and smoothness priors on y (curvature) and s (slope).
 // Built cycle by cycle: each new position starts from a search over the advance on the profiles
-// mapped so far (as the baseline searches its histograms; below), the newly ranged ground extends the
-// terrain, and every `refine_every` cycles the whole graph is refined; a final solve at the end.
+// mapped so far (as the baseline searches its histograms; below), the newly ranged ground extends
+// the terrain, and every `refine_every` cycles the whole graph is refined; a final solve at the
+// end.
 // (From the baseline's positions instead, the joint problem stays in the baseline's local
 // minimum: odometry error unchanged; from the true positions it stays there: 0.004 %.)
 #pragma once
