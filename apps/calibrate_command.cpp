@@ -101,8 +101,10 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
       ->capture_default_str();
   cmd->add_option("--spacing", options->ipd.spacing_s, "A new segment starts every, s")
       ->capture_default_str();
-  cmd->add_option("--block", options->graph.block_s,
-                  "window/batch: seconds of driving per alpha block")
+  cmd->add_option("--block", options->graph.block_s, "batch: seconds of driving per alpha block")
+      ->capture_default_str();
+  cmd->add_option("--window-block", options->graph.window_block_s,
+                  "window: seconds of driving per alpha block (it solves after each)")
       ->capture_default_str();
   cmd->add_option("--window", options->graph.window_s, "window: seconds of alpha blocks kept")
       ->capture_default_str();

@@ -1,6 +1,7 @@
 // IPD speed on one core: evaluating one segment factor (a 2 s segment at 100 Hz, residual and
-// the 3 x 13 Jacobian) and the linearization of one identification-EKF update (prediction with
-// its Jacobian and eq. 15's covariance terms), per segment. Run: build/bench/ipd_bench
+// the 3 x 13 Jacobian), the linearization of one identification-EKF update (prediction with
+// its Jacobian and eq. 15's covariance terms), per segment, and the online calibrations (EKF and
+// Ceres window) on a few minutes of ipd35, per update. Run: build/bench/ipd_bench
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -9,16 +10,22 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ipd_calibration.h"
+#include "solvers/ipd_graph_calibration.h"
 
 namespace slipgraph {
 namespace {
 
-const std::vector<IpdSegment>& Segments() {
-  static const std::vector<IpdSegment> segments = [] {
+const DriveLog& Log() {
+  static const DriveLog log = [] {
     sim::Scenario sc = sim::ExpandScenario("ipd35", 1).at(0).scenario;
     sc.commands.resize(60);  // a few minutes are enough
-    return BuildIpdSegments(sim::Simulate(sc, 1).log, IpdOptions());
+    return sim::Simulate(sc, 1).log;
   }();
+  return log;
+}
+
+const std::vector<IpdSegment>& Segments() {
+  static const std::vector<IpdSegment> segments = BuildIpdSegments(Log(), IpdOptions());
   return segments;
 }
 
@@ -59,6 +66,29 @@ void BM_UpdateLinearization(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(count), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_UpdateLinearization)->Unit(benchmark::kMillisecond);
+
+// A whole online calibration; the counter is its updates (EKF: one per segment; window: one
+// solve per 0.5 s block, with the terrain memory's scoring) per second of computing.
+template <typename Calibrate>
+void RunCalibration(benchmark::State& state, Calibrate calibrate) {
+  size_t updates = 0;
+  for (auto _ : state) {
+    const IpdCalibrationResult r = calibrate(Log());
+    updates += r.update_t.size();
+    benchmark::DoNotOptimize(r.final_alpha[0]);
+  }
+  state.counters["updates_per_s"] =
+      benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kIsRate);
+  state.counters["log_s"] = Log().wheels.back().t - Log().wheels.front().t;
+}
+void BM_EkfCalibration(benchmark::State& state) {
+  RunCalibration(state, [](const DriveLog& log) { return CalibrateIpdEkf(log); });
+}
+BENCHMARK(BM_EkfCalibration)->Unit(benchmark::kMillisecond);
+void BM_WindowCalibration(benchmark::State& state) {
+  RunCalibration(state, [](const DriveLog& log) { return CalibrateIpdWindow(log); });
+}
+BENCHMARK(BM_WindowCalibration)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace slipgraph

@@ -9,7 +9,8 @@
 // pose noise leave to any estimator.
 //
 // Terrain boundaries come from the simulated course (the estimators never see them): the time
-// the robot's travelled distance crosses a patch start. Recovery time after a boundary: the
+// the robot's signed travel (the integral of its forward speed, as the simulator advances along
+// the course) crosses a patch start. Recovery time after a boundary: the
 // first moment after it from which the mean position error of the next 5 s of predictions is
 // within 1.2 x the settled error (the mean from 20 s after the boundary to the next one);
 // 30 s when it does not get there within 30 s.
@@ -38,7 +39,7 @@ std::vector<double> BoundaryTimes(const sim::Scenario& sc, const DriveLog& log) 
   double s = 0.0;
   size_t next = 1;
   for (size_t k = 1; k < log.truth.size() && next < sc.course.patches.size(); ++k) {
-    s += std::hypot(log.truth[k].x - log.truth[k - 1].x, log.truth[k].y - log.truth[k - 1].y);
+    s += log.truth[k].vx * (log.truth[k].t - log.truth[k - 1].t);  // as the simulator advances it
     if (s >= sc.course.patches[next].s_start_m) {
       times.push_back(log.truth[k].t);
       ++next;

@@ -83,6 +83,7 @@ Marginalization Marginalize(const ceres::Problem& problem, const std::vector<dou
 
   // Schur complement with a pseudo-inverse of H_mm (directions it does not constrain are dropped).
   const int k = size - m;
+  if (k == 0) return out;  // nothing kept touches the leaving blocks: nothing to carry
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(H.topLeftCorner(m, m));
   const Eigen::VectorXd& s = eigen.eigenvalues();
   const double floor = 1e-12 * std::max(s.maxCoeff(), 0.0);

@@ -19,7 +19,9 @@
 namespace slipgraph {
 
 struct Marginalization {
-  std::unique_ptr<MarginalPrior> prior;  // on `kept`, in that order; null when it failed
+  // On `kept`, in that order. Null when it failed (error says why) or when no kept block
+  // touches the leaving ones (kept empty, error empty: nothing to carry).
+  std::unique_ptr<MarginalPrior> prior;
   std::vector<double*> kept;
   std::string error;  // why it failed (a residual block that could not be evaluated)
 };

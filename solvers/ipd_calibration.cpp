@@ -9,6 +9,7 @@
 
 #include "io/measurement_stream.h"
 #include "solvers/ipd_covariance_matching.h"
+#include "solvers/ipd_terrain_memory.h"
 
 namespace slipgraph {
 namespace {
@@ -225,7 +226,9 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
   const std::array<double, kAlphaSize> zero{};
   size_t next_update = 0;
   IpdCovarianceMatching matching(options.match_covariance_segments);
-  long rejected = 0, readmitted = 0;
+  IpdTerrainMemory memory(options);
+  double model_since_t = last_update_t;  // the current model's start: the last misfit or recall
+  long rejected = 0, readmitted = 0, recalled = 0;
   int gated_in_a_row = 0;
 
   // Segment j's update, applied once its end pose is measured.
@@ -234,20 +237,41 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     last_update_t = std::max(last_update_t, seg.t_end);
     P += AlphaMatrix::Identity() * options.alpha_walk_sd * options.alpha_walk_sd * elapsed;  // (29)
     // h(alpha) and H = dh/dalpha by automatic differentiation (30)-(31).
-    const SegmentLinearization l = LinearizeSegment(seg, alpha.data(), options);
+    SegmentLinearization l = LinearizeSegment(seg, alpha.data(), options);
+    ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
+        seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
+    Eigen::Matrix3d R = terms.Total(q);
+    Eigen::Matrix3d HPH = l.H * P * l.H.transpose();  // the prior's share of the residual
+    Eigen::LDLT<Eigen::Matrix3d> S_ldlt(HPH + R);
+    double nis = l.residual.dot(S_ldlt.solve(l.residual));
+    IpdSlipModel stored;
+    if (memory.Score(seg, -0.5 * (nis + S_ldlt.vectorD().array().log().sum()), &stored)) {
+      // Back on a terrain driven before: its model replaces the current one.
+      ++recalled;
+      alpha = stored.alpha;
+      P = stored.P;
+      stochastic.Recall(stored.q);
+      q = stored.q;
+      model_since_t = seg.t_end;
+      gated_in_a_row = 0;
+      l = LinearizeSegment(seg, alpha.data(), options);
+      terms = ipd::PredictionCovariance(seg.steps, alpha.data(), options.gravity_mps2,
+                                        seg.sigma_start, seg.sigma_end);
+      R = terms.Total(q);
+      HPH = l.H * P * l.H.transpose();
+      S_ldlt.compute(HPH + R);
+      nis = l.residual.dot(S_ldlt.solve(l.residual));
+    }
     const Eigen::Vector3d& residual = l.residual;
     const Eigen::Matrix<double, 3, kAlphaSize>& H = l.H;
-    const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
-        seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
-    const Eigen::Matrix3d R = terms.Total(q);
-    Eigen::Matrix3d HPH = H * P * H.transpose();  // the prior's share of the residual
-    Eigen::LDLT<Eigen::Matrix3d> S_ldlt(HPH + R);
-    double nis = residual.dot(S_ldlt.solve(residual));
     if (nis > kSegmentGateChi2) {
       ++rejected;
       if (options.readmit_after <= 0 || ++gated_in_a_row <= options.readmit_after) return;
-      // Persistent: scale alpha's covariance until the residual is plausible.
+      // Persistent: the terrain changed. Remember the model that has ended (it may be needed
+      // again), then scale alpha's covariance until the residual is plausible.
       ++readmitted;
+      memory.Misfit({alpha, P, q}, model_since_t, seg.t_end);
+      model_since_t = seg.t_end;
       for (int iteration = 0; iteration < 30 && nis > kSegmentGateChi2; ++iteration) {
         P *= 2.0;
         HPH *= 2.0;
@@ -295,6 +319,12 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
                            std::to_string(readmitted) +
                            " of them taken with alpha's covariance inflated (a persistent "
                            "misfit: the terrain changed)");
+  }
+  if (recalled > 0 || memory.size() > 0) {
+    result.notes.push_back("terrain memory: " + std::to_string(memory.stored()) +
+                           " slip model(s) stored, " + std::to_string(memory.merged()) +
+                           " re-stored as the same terrain, " + std::to_string(recalled) +
+                           " recalled");
   }
   return result;
 }

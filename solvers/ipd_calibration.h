@@ -26,6 +26,16 @@
 
 namespace slipgraph {
 
+// The terrain memory (solvers/ipd_terrain_memory.h): slip models of earlier terrains, recalled
+// when the segments say the robot is back on one.
+struct IpdTerrainMemoryOptions {
+  int capacity = 8;        // stored models (0: off)
+  double settle_s = 30.0;  // a model is stored only after this long in use
+  double search_s = 20.0;  // stored models are scored this long after a misfit
+  int window = 4;          // segments in the likelihood comparison
+  double log_bayes_factor = 4.605;  // ln(100)
+};
+
 struct IpdOptions {
   double segment_s = 2.0;  // path segment length (prediction horizon)
   double spacing_s = 0.5;  // a new segment starts this often (segments overlap)
@@ -44,6 +54,7 @@ struct IpdOptions {
   // The reported prediction covariance matched to the recent errors
   // (solvers/ipd_covariance_matching.h), with a memory of this many predictions; 0: off.
   double match_covariance_segments = 20.0;
+  IpdTerrainMemoryOptions terrain_memory;
 };
 
 // The segments' innovation gate: chi-square with 3 dof at 99.99 % (a pose glitch must not wreck
@@ -129,6 +140,8 @@ class StochasticCalibrator {
   void Update(const Eigen::Vector3d& residual, const ipd::PredictionCovarianceTerms& terms,
               const Eigen::Matrix3d& parameter_covariance, double elapsed_s);
   const Eigen::Vector3d& q() const { return q_; }
+  // A recalled terrain's Q (solvers/ipd_terrain_memory.h); the estimate's covariance is kept.
+  void Recall(const Eigen::Vector3d& q) { q_ = q; }
 
  private:
   IpdOptions options_;

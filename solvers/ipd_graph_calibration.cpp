@@ -13,9 +13,11 @@
 
 #include "factors/diagonal_prior.h"
 #include "factors/ipd_segment_factor.h"
+#include "factors/marginal_prior.h"
 #include "problems/marginalization.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/ipd_covariance_matching.h"
+#include "solvers/ipd_terrain_memory.h"
 
 namespace slipgraph {
 namespace {
@@ -78,6 +80,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
   const std::vector<IpdSegment>& segments = result.segments;
   if (segments.empty()) return result;
   const double t0 = segments.front().t_start;
+  const double block_s = graph.window_block_s;
   StochasticCalibrator stochastic(options);
   ceres::Problem::Options problem_options;
   problem_options.enable_fast_removal = true;
@@ -89,17 +92,19 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>::Identity() * options.alpha_prior_sd *
       options.alpha_prior_sd;
   const Alpha zero{};
-  const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
+  const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(block_s));
 
   size_t next_segment_to_add = 0;
   size_t next_prediction = 0;
   IpdCovarianceMatching matching(options.match_covariance_segments);
-  const int last_block = BlockOf(segments.back().t_end, t0, graph.block_s);
+  const int last_block = BlockOf(segments.back().t_end, t0, block_s);
   std::map<int, ceres::ResidualBlockId> walk_into;  // block index -> the walk from the previous
-  std::set<int> jumped;
-  int gated_in_a_row = 0, jumps = 0;
+  std::set<int> jumped, recalled_into;
+  int gated_in_a_row = 0, jumps = 0, recalls = 0;
+  IpdTerrainMemory memory(options);
+  double model_since_t = t0;  // the current model's start: the last jump or recall
   for (int j = 0; j <= last_block + 1; ++j) {
-    const double block_end = t0 + (j + 1) * graph.block_s;
+    const double block_end = t0 + (j + 1) * block_s;
     // Predictions of segments starting before this block's solve use the newest solved alpha.
     while (next_prediction < segments.size() && segments[next_prediction].t_start < block_end) {
       const IpdSegment& seg = segments[next_prediction++];
@@ -129,7 +134,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
     while (next_segment_to_add < segments.size() &&
            segments[next_segment_to_add].t_end <= block_end) {
       const IpdSegment& seg = segments[next_segment_to_add++];
-      const int b = BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s);
+      const int b = BlockOf(0.5 * (seg.t_start + seg.t_end), t0, block_s);
       const int index = std::clamp(b - first_block, 0, static_cast<int>(blocks.size()) - 1);
       const SegmentLinearization l = LinearizeSegment(seg, latest.data(), options);
       const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
@@ -137,18 +142,42 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       const Eigen::Matrix3d HPH = l.H * latest_covariance * l.H.transpose();
       // A jump: segments failing the gate in a row at the newest alpha free the walk into
       // their block (once per block).
-      const Eigen::Matrix3d S = HPH + terms.Total(stochastic.q());
-      const bool gated = l.residual.dot(S.ldlt().solve(l.residual)) > kSegmentGateChi2;
+      const Eigen::LDLT<Eigen::Matrix3d> S(HPH + terms.Total(stochastic.q()));
+      const double nis = l.residual.dot(S.solve(l.residual));
+      const bool gated = nis > kSegmentGateChi2;
       gated_in_a_row = gated ? gated_in_a_row + 1 : 0;
       const int block = first_block + index;
       if (graph.jump_sd > 0.0 && options.readmit_after > 0 &&
           gated_in_a_row > options.readmit_after && index > 0 && walk_into.count(block) &&
           !jumped.count(block)) {
+        memory.Misfit({Eigen::Map<const Eigen::Matrix<double, ipd::kAlphaSize, 1>>(latest.data()),
+                       latest_covariance, stochastic.q()},
+                      model_since_t, seg.t_end);
+        model_since_t = seg.t_end;
         problem.RemoveResidualBlock(walk_into[block]);
         walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(),
                                    blocks[index].data());
         jumped.insert(block);
         ++jumps;
+      }
+      // Back on a terrain driven before (solvers/ipd_terrain_memory.h): the newest block takes
+      // the stored model as its prior instead of the walk from the block before it.
+      IpdSlipModel stored;
+      const int newest = first_block + static_cast<int>(blocks.size()) - 1;
+      if (memory.Score(seg, -0.5 * (nis + S.vectorD().array().log().sum()), &stored) &&
+          blocks.size() > 1 && walk_into.count(newest) && !recalled_into.count(newest)) {
+        problem.RemoveResidualBlock(walk_into[newest]);
+        walk_into.erase(newest);
+        problem.AddResidualBlock(
+            new MarginalPrior({ipd::kAlphaSize}, stored.alpha,
+                              stored.P.inverse(), Eigen::VectorXd::Zero(ipd::kAlphaSize)),
+            nullptr, blocks.back().data());
+        for (int i = 0; i < ipd::kAlphaSize; ++i) latest[i] = blocks.back()[i] = stored.alpha[i];
+        latest_covariance = stored.P;
+        stochastic.Recall(stored.q);
+        model_since_t = seg.t_end;
+        recalled_into.insert(newest);
+        ++recalls;
       }
       // Q from the residual the segment leaves with the alpha known before it (as the EKF does).
       if (options.calibrate_q) stochastic.Update(l.residual, terms, HPH, options.spacing_s);
@@ -175,7 +204,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
     result.alpha.push_back(latest);
     result.q.push_back(stochastic.q());
     // Marginalize blocks older than the window.
-    while (static_cast<double>(blocks.size()) * graph.block_s > graph.window_s &&
+    while (static_cast<double>(blocks.size()) * block_s > graph.window_s &&
            blocks.size() > 1) {
       Marginalization m = Marginalize(problem, {blocks.front().data()});
       problem.RemoveParameterBlock(blocks.front().data());
@@ -184,7 +213,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       walk_into.erase(first_block);  // its walk went with the block before it
       if (m.prior && !m.kept.empty()) {
         problem.AddResidualBlock(m.prior.release(), nullptr, m.kept);
-      } else {
+      } else if (!m.error.empty()) {
         result.notes.push_back("marginalization failed (" + m.error +
                                "): the window restarts from its prior");
         problem.AddResidualBlock(
@@ -197,6 +226,12 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
     result.notes.push_back(std::to_string(jumps) +
                            " block(s) where segments failed the gate in a row: the walk into "
                            "them freed (a jump)");
+  }
+  if (recalls > 0 || memory.size() > 0) {
+    result.notes.push_back("terrain memory: " + std::to_string(memory.stored()) +
+                           " slip model(s) stored, " + std::to_string(memory.merged()) +
+                           " re-stored as the same terrain, " + std::to_string(recalls) +
+                           " recalled");
   }
   result.final_alpha = latest;
   std::vector<double*> chain;

@@ -82,12 +82,14 @@ TEST(IpdCalibration, FollowsAJumpInTheSlipModel) {
   ASSERT_FALSE(with.notes.empty());
   EXPECT_NE(with.notes.front().find("inflated"), std::string::npos) << with.notes.front();
   // The Ceres window's counterpart: the walk into the block where segments fail the gate in a
-  // row is freed (a jump). It helps less than the EKF's (measured 0.203 against 0.223 m here;
-  // on ipd35 the window's mean error 0.076 -> 0.072 m).
+  // row is freed (a jump). Measured here with 0.5 s blocks: 0.134 against 0.215 m without it
+  // (0.203 against 0.223 with the earlier 5 s blocks).
   IpdGraphOptions no_jump;
   no_jump.jump_sd = 0.0;
   const IpdCalibrationResult window = CalibrateIpdWindow(log);
   const IpdCalibrationResult window_without = CalibrateIpdWindow(log, IpdOptions{}, no_jump);
+  std::printf("after the change: window %.3f, without the jump %.3f m\n", error_after(window),
+              error_after(window_without));
   EXPECT_LT(error_after(window), 0.95 * error_after(window_without))
       << error_after(window) << " vs " << error_after(window_without);
 }
@@ -95,9 +97,10 @@ TEST(IpdCalibration, FollowsAJumpInTheSlipModel) {
 TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   const DriveLog log = SimulateIpd(35.0, "");
   const IpdCalibrationResult result = CalibrateIpdEkf(log);
-  // The Ceres forms on the same log: the online window at least as good as the EKF (2 % slack
-  // on the mean position error), the batch (not causal) better.
-  const PredictionStats window = Summarize(CalibrateIpdWindow(log).calibrated);
+  // The Ceres forms on the same log: the online window at least as good as the EKF, the batch
+  // (not causal) better.
+  const IpdCalibrationResult window_result = CalibrateIpdWindow(log);
+  const PredictionStats window = Summarize(window_result.calibrated);
   const PredictionStats batch = Summarize(CalibrateIpdBatch(log).calibrated);
   const PredictionStats no_slip = Summarize(result.no_slip);
   const PredictionStats calibrated = Summarize(result.calibrated);
@@ -125,9 +128,24 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
     EXPECT_GT(batch.predicted_over_sample[i], 0.8);
     EXPECT_LT(batch.predicted_over_sample[i], 1.35);  // 1.09, 1.28
   }
-  // The window is not quite as good as the EKF (ipd35 seed 1: 0.072 vs 0.071 m; docs/ipd.md).
-  EXPECT_LT(window.mean_position_error_m, 1.1 * calibrated.mean_position_error_m);
-  EXPECT_LT(window.mean_heading_error_rad, 1.25 * calibrated.mean_heading_error_rad);
+  std::printf("mean position error EKF %.4f window %.4f batch %.4f m; heading %.4f %.4f rad\n",
+              calibrated.mean_position_error_m, window.mean_position_error_m,
+              batch.mean_position_error_m, calibrated.mean_heading_error_rad,
+              window.mean_heading_error_rad);
+  // The window at least as good as the EKF (ipd35 seeds 1-3: 0.0703 / 0.0692 / 0.0690 against
+  // 0.0709 / 0.0698 / 0.0695 m; docs/ipd.md).
+  EXPECT_LE(window.mean_position_error_m, calibrated.mean_position_error_m);
+  EXPECT_LE(window.mean_heading_error_rad, 1.02 * calibrated.mean_heading_error_rad);
+  std::vector<PredictionError> window_late;
+  for (const PredictionError& e : window_result.calibrated) {
+    if (e.t_start >= window_result.calibrated.front().t_start + 60.0) window_late.push_back(e);
+  }
+  const Eigen::Vector3d window_ratio = Summarize(window_late).predicted_over_sample;
+  std::printf("window: %.2f %.2f %.2f\n", window_ratio[0], window_ratio[1], window_ratio[2]);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_GT(window_ratio[i], 0.8);
+    EXPECT_LT(window_ratio[i], 1.2);
+  }
   EXPECT_LT(batch.mean_position_error_m, calibrated.mean_position_error_m);
 }
 

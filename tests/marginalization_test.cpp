@@ -198,5 +198,22 @@ TEST(Marginalization, ReportsABlockThatCannotBeEvaluated) {
   EXPECT_FALSE(m.error.empty());
 }
 
+// A block whose factors reach no other block (the IPD window's block after a recalled terrain
+// model replaced the walk out of it) leaves nothing to carry: no prior, and no failure.
+TEST(Marginalization, ABlockThatTouchesNothingKeptLeavesNoPriorAndNoError) {
+  ceres::Problem::Options options;
+  options.enable_fast_removal = true;
+  ceres::Problem problem(options);
+  std::array<double, 2> a{1.0, 2.0}, b{0.0, 0.0};
+  problem.AddResidualBlock(
+      new ceres::AutoDiffCostFunction<Prior, 2, 2>(new Prior{{0.5, 0.5}}), nullptr, a.data());
+  problem.AddResidualBlock(
+      new ceres::AutoDiffCostFunction<Prior, 2, 2>(new Prior{{0.0, 0.0}}), nullptr, b.data());
+  const Marginalization m = Marginalize(problem, {a.data()});
+  EXPECT_FALSE(m.prior);
+  EXPECT_TRUE(m.kept.empty());
+  EXPECT_TRUE(m.error.empty()) << m.error;
+}
+
 }  // namespace
 }  // namespace slipgraph
