@@ -2,7 +2,8 @@
 // latency. Prints figures (docs/benchmarks.md records them with this command):
 //
 //   build/bench/smoother_bench batch MINUTES [--no-covariance]   one length per process (peak RSS)
-//   build/bench/smoother_bench window [ITERATIONS...]              2 s window at 100 Hz
+//   build/bench/smoother_bench window [--ceres] [ITERATIONS...]    2 s window at 100 Hz (chain
+//                                                                   Gauss-Newton, or ceres::Solve)
 //   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES      chunked mode, 60 s overlap
 //
 // For the batch it also times a hand-written block-tridiagonal Cholesky of a system with the
@@ -13,6 +14,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -116,19 +118,43 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
 }
 
-int Window(const std::vector<int>& iterations) {
+// The truth velocity RMSE of the window's estimates (the accuracy the latency buys).
+double VelocityRmse(const DriveLog& log, const WindowSmootherResult& r) {
+  double sum = 0.0;
+  size_t n = 0, i = 0;
+  for (const EkfEstimate& e : r.estimates) {
+    while (i + 1 < log.truth.size() && log.truth[i + 1].t <= e.t + 1e-9) ++i;
+    if (log.truth.empty() || std::abs(log.truth[i].t - e.t) > 1e-6) continue;
+    sum += (e.x[0] - log.truth[i].vx) * (e.x[0] - log.truth[i].vx);
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / n) : std::nan("");
+}
+
+int Window(const std::vector<int>& iterations, bool chain) {
   const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
   const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
   std::printf(
-      "| iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms |\n");
-  std::printf("|---|---|---|---|---|---|\n");
+      "| solver | iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms | "
+      "update with the covariance p50 ms | p99 ms | fallbacks to Ceres | v RMSE m/s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : iterations) {
     WindowSmootherOptions options;
     options.max_iterations = n;
+    options.solver = chain ? WindowSolver::kChainGaussNewton : WindowSolver::kCeres;
     const WindowSmootherResult r = SmoothWindowed(sim.log, model, options);
-    std::printf("| %d | %zu | %.2f | %.2f | %.2f | %.2f |\n", n, r.update_ms.size(),
-                Percentile(r.update_ms, 0.5), Percentile(r.update_ms, 0.99),
-                Percentile(r.covariance_ms, 0.5), Percentile(r.covariance_ms, 0.99));
+    std::vector<double> total = r.update_ms;  // with kChainGaussNewton it holds the covariance
+    for (size_t i = 0; i < total.size() && i < r.covariance_ms.size(); ++i) {
+      total[i] += r.covariance_ms[i];
+    }
+    const auto cov = [&](double p) {
+      return r.covariance_ms.empty() ? std::nan("") : Percentile(r.covariance_ms, p);
+    };
+    std::printf("| %s | %d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %.4f |\n",
+                chain ? "chain Gauss-Newton" : "Ceres", n, r.update_ms.size(),
+                Percentile(r.update_ms, 0.5), Percentile(r.update_ms, 0.99), cov(0.5), cov(0.99),
+                Percentile(total, 0.5), Percentile(total, 0.99), r.chain_fallbacks,
+                VelocityRmse(sim.log, r));
   }
   return 0;
 }
@@ -146,13 +172,20 @@ int main(int argc, char** argv) {
   }
   if (argc >= 2 && std::strcmp(argv[1], "window") == 0) {
     std::vector<int> iterations;
-    for (int i = 2; i < argc; ++i) iterations.push_back(std::atoi(argv[i]));
+    bool chain = true;
+    for (int i = 2; i < argc; ++i) {
+      if (std::strcmp(argv[i], "--ceres") == 0) {
+        chain = false;
+      } else {
+        iterations.push_back(std::atoi(argv[i]));
+      }
+    }
     if (iterations.empty()) iterations = {1, 2, 5};
-    return slipgraph::Window(iterations);
+    return slipgraph::Window(iterations, chain);
   }
   std::fprintf(
       stderr,
-      "usage: smoother_bench batch MINUTES [--no-covariance] | window [ITERATIONS...] | "
+      "usage: smoother_bench batch MINUTES [--no-covariance] | window [--ceres] [ITERATIONS...] | "
       "chunked MINUTES CHUNK_MINUTES\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"

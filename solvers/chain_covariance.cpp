@@ -4,119 +4,230 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 
 namespace slipgraph {
 
 using Eigen::MatrixXd;
 
-ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
-                                       const std::vector<double*>& globals) {
-  ChainCovariance out;
-  const int n = static_cast<int>(states.size());
-  if (n == 0) {
-    out.error = "no states";
-    return out;
-  }
-  const int m = problem->ParameterBlockSize(states[0]);
-  int g = 0;
-  for (double* p : globals) g += problem->ParameterBlockTangentSize(p);
-  for (double* x : states) {
-    if (problem->ParameterBlockSize(x) != m) {
-      out.error = "the states differ in size";
-      return out;
-    }
-  }
+namespace {
 
-  ceres::Problem::EvaluateOptions options;
-  options.parameter_blocks = states;
-  options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
-  options.apply_loss_function = true;
-  ceres::CRSMatrix J;
-  if (!problem->Evaluate(options, nullptr, nullptr, nullptr, &J)) {
-    out.error = "the Jacobian could not be evaluated";
-    return out;
-  }
+// The block LDL' of H = [T B; B' C] with T block tridiagonal (see the header).
+struct ChainFactorization {
+  int n = 0, m = 0, g = 0;
+  std::vector<MatrixXd> N, D_inv, B, X;  // N_k = T_{k+1,k} D_k^-1; X = T^-1 B
+  Eigen::LLT<MatrixXd> S;                // S = C - B' X
+  std::string error;
+};
 
-  // Assemble the blocks of H = J' J: D[k] = T_kk, U[k] = T_{k,k+1}, B[k] = H_{k,globals}, C.
-  std::vector<MatrixXd> D(n, MatrixXd::Zero(m, m)), U(n, MatrixXd::Zero(m, m)),
-      B(n, MatrixXd::Zero(m, g));
-  MatrixXd C = MatrixXd::Zero(g, g);
+// T^-1 rhs (one block of rows per state) by forward and back substitution through the LDL'.
+std::vector<MatrixXd> SolveT(const ChainFactorization& f, const std::vector<MatrixXd>& rhs) {
+  const int n = f.n;
+  std::vector<MatrixXd> x(n);
+  for (int k = 0; k < n; ++k) x[k] = k > 0 ? MatrixXd(rhs[k] - f.N[k - 1] * x[k - 1]) : rhs[0];
+  for (int k = 0; k < n; ++k) x[k] = f.D_inv[k] * x[k];
+  for (int k = n - 2; k >= 0; --k) x[k] -= f.N[k].transpose() * x[k + 1];
+  return x;
+}
+
+// Assembles H from the Jacobian and factors it; false (with f->error) when the problem is not a
+// chain or H is not positive definite.
+bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization* f) {
+  f->n = n, f->m = m, f->g = g;
+  // Assemble the blocks of H = J' J into flat column-major buffers: D[k] = T_kk (upper
+  // triangle), U[k] = T_{k,k+1}, B[k] = H_{k,globals}, C (upper triangle), one residual block's
+  // rows at a time (a small dense product, then one scatter).
+  const int mm = m * m;
+  std::vector<double> Dbuf(static_cast<size_t>(n) * mm, 0.0), Ubuf(Dbuf.size(), 0.0);
+  std::vector<double> Bbuf(static_cast<size_t>(n) * m * g, 0.0),
+      Cbuf(static_cast<size_t>(g) * g, 0.0);
   const int state_columns = n * m;
-  for (int row = 0; row < J.num_rows; ++row) {
-    const int begin = J.rows[row], end = J.rows[row + 1];
-    for (int a = begin; a < end; ++a) {
-      const int ca = J.cols[a];
-      const double va = J.values[a];
-      for (int b = begin; b < end; ++b) {
-        const int cb = J.cols[b];
-        if (cb < ca) continue;  // upper triangle of H only
-        const double v = va * J.values[b];
-        if (ca >= state_columns) {
-          C(ca - state_columns, cb - state_columns) += v;
-          if (ca != cb) C(cb - state_columns, ca - state_columns) += v;
-          continue;
-        }
-        const int ka = ca / m, ia = ca % m;
-        if (cb >= state_columns) {
-          B[ka](ia, cb - state_columns) += v;
-          continue;
-        }
-        const int kb = cb / m, ib = cb % m;
-        if (kb == ka) {
-          D[ka](ia, ib) += v;
-          if (ia != ib) D[ka](ib, ia) += v;
+  std::vector<int> block, index;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  MatrixXd Hb;
+  for (int row = 0; row < J.num_rows;) {
+    // Rows of one residual block share their columns: take them together, Hb = Jb' Jb.
+    const int begin = J.rows[row], count = J.rows[row + 1] - begin;
+    int last = row + 1;
+    while (last < J.num_rows && J.rows[last + 1] - J.rows[last] == count &&
+           std::equal(J.cols.begin() + begin, J.cols.begin() + begin + count,
+                      J.cols.begin() + J.rows[last])) {
+      ++last;
+    }
+    const Eigen::Map<const RowMajor> Jb(J.values.data() + begin, last - row, count);
+    Hb.noalias() = Jb.transpose() * Jb;
+    row = last;
+    block.resize(count);
+    index.resize(count);
+    for (int a = 0; a < count; ++a) {
+      const int c = J.cols[begin + a];
+      block[a] = c >= state_columns ? -1 : c / m;
+      index[a] = c >= state_columns ? c - state_columns : c % m;
+    }
+    for (int a = 0; a < count; ++a) {
+      const int ka = block[a], ia = index[a];
+      for (int b = a; b < count; ++b) {
+        const double v = Hb(a, b);
+        const int kb = block[b], ib = index[b];
+        if (ka < 0 || kb < 0) {  // a global: C, or a state's border B
+          if (ka < 0 && kb < 0) {
+            Cbuf[std::min(ia, ib) + g * std::max(ia, ib)] += v;
+          } else if (ka < 0) {
+            Bbuf[static_cast<size_t>(kb) * m * g + ib + m * ia] += v;
+          } else {
+            Bbuf[static_cast<size_t>(ka) * m * g + ia + m * ib] += v;
+          }
+        } else if (kb == ka) {
+          Dbuf[static_cast<size_t>(ka) * mm + std::min(ia, ib) + m * std::max(ia, ib)] += v;
         } else if (kb == ka + 1) {
-          U[ka](ia, ib) += v;
+          Ubuf[static_cast<size_t>(ka) * mm + ia + m * ib] += v;
+        } else if (ka == kb + 1) {
+          Ubuf[static_cast<size_t>(kb) * mm + ib + m * ia] += v;
         } else {
-          out.error = "a residual block links states " + std::to_string(ka) + " and " +
-                      std::to_string(kb) + ": not a chain";
-          return out;
+          f->error = "a residual block links states " + std::to_string(std::min(ka, kb)) + " and " +
+                     std::to_string(std::max(ka, kb)) + ": not a chain";
+          return false;
         }
       }
     }
   }
-
-  // Block LDL' of T: D_k <- pivots, N_k = T_{k+1,k} D_k^-1.
-  std::vector<MatrixXd> N(n), D_inv(n);
+  std::vector<MatrixXd> D(n), U(n);
+  f->B.assign(n, MatrixXd());
   for (int k = 0; k < n; ++k) {
-    if (k > 0) D[k] -= N[k - 1] * U[k - 1];
+    D[k] = Eigen::Map<const MatrixXd>(Dbuf.data() + static_cast<size_t>(k) * mm, m, m)
+               .selfadjointView<Eigen::Upper>();
+    U[k] = Eigen::Map<const MatrixXd>(Ubuf.data() + static_cast<size_t>(k) * mm, m, m);
+    f->B[k] = Eigen::Map<const MatrixXd>(Bbuf.data() + static_cast<size_t>(k) * m * g, m, g);
+  }
+  const MatrixXd C =
+      g > 0
+          ? MatrixXd(Eigen::Map<const MatrixXd>(Cbuf.data(), g, g).selfadjointView<Eigen::Upper>())
+          : MatrixXd(0, 0);
+  // Block LDL' of T: D_k <- pivots, N_k = T_{k+1,k} D_k^-1.
+  f->N.assign(n, MatrixXd());
+  f->D_inv.assign(n, MatrixXd());
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) D[k] -= f->N[k - 1] * U[k - 1];
     Eigen::LLT<MatrixXd> llt(D[k]);
     if (llt.info() != Eigen::Success) {
-      out.error = "the information of state " + std::to_string(k) +
-                  " is not positive definite (a direction no factor constrains)";
-      return out;
+      f->error = "the information of state " + std::to_string(k) +
+                 " is not positive definite (a direction no factor constrains)";
+      return false;
     }
-    D_inv[k] = llt.solve(MatrixXd::Identity(m, m));
-    if (k + 1 < n) N[k] = U[k].transpose() * D_inv[k];
+    f->D_inv[k] = llt.solve(MatrixXd::Identity(m, m));
+    if (k + 1 < n) f->N[k] = U[k].transpose() * f->D_inv[k];
   }
-  // Takahashi: diagonal (and first sub-diagonal) blocks of T^-1, from the last state back.
+  if (g == 0) return true;
+  // The border: X = T^-1 B, S = C - B' X.
+  f->X = SolveT(*f, f->B);
+  MatrixXd S = C;
+  for (int k = 0; k < n; ++k) S -= f->B[k].transpose() * f->X[k];
+  f->S.compute(S);
+  if (f->S.info() != Eigen::Success) {
+    f->error = "the global parameters' information is not positive definite";
+    return false;
+  }
+  return true;
+}
+
+// Diagonal and first sub-diagonal blocks of H^-1 from the factorization: Takahashi's recursion
+// on T, corrected for the border.
+ChainCovariance Marginals(const ChainFactorization& f) {
+  ChainCovariance out;
+  const int n = f.n;
   out.states.assign(n, MatrixXd());
   out.next.assign(n > 0 ? n - 1 : 0, MatrixXd());
-  out.states[n - 1] = D_inv[n - 1];
+  out.states[n - 1] = f.D_inv[n - 1];
   for (int k = n - 2; k >= 0; --k) {
-    const MatrixXd sub = -out.states[k + 1] * N[k];  // Sigma_{k+1,k}
+    const MatrixXd sub = -out.states[k + 1] * f.N[k];  // Sigma_{k+1,k}
     out.next[k] = sub;
-    out.states[k] = D_inv[k] - N[k].transpose() * sub;
+    out.states[k] = f.D_inv[k] - f.N[k].transpose() * sub;
   }
-  if (g == 0) {
-    out.ok = true;
+  if (f.g > 0) {
+    out.globals = f.S.solve(MatrixXd::Identity(f.g, f.g));
+    for (int k = 0; k < n; ++k) out.states[k] += f.X[k] * out.globals * f.X[k].transpose();
+    for (int k = 0; k + 1 < n; ++k) out.next[k] += f.X[k + 1] * out.globals * f.X[k].transpose();
+  }
+  out.ok = true;
+  return out;
+}
+
+// Checks the blocks and evaluates what the factorization needs; false with *error.
+bool Prepare(ceres::Problem* problem, const std::vector<double*>& states,
+             const std::vector<double*>& globals, int* m, int* g, double* cost,
+             std::vector<double>* gradient, ceres::CRSMatrix* J, std::string* error) {
+  if (states.empty()) {
+    *error = "no states";
+    return false;
+  }
+  *m = problem->ParameterBlockSize(states[0]);
+  *g = 0;
+  for (double* p : globals) *g += problem->ParameterBlockTangentSize(p);
+  for (double* x : states) {
+    if (problem->ParameterBlockSize(x) != *m) {
+      *error = "the states differ in size";
+      return false;
+    }
+  }
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = states;
+  options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
+  options.apply_loss_function = true;
+  if (!problem->Evaluate(options, cost, nullptr, gradient, J)) {
+    *error = "the Jacobian could not be evaluated";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
+                                       const std::vector<double*>& globals) {
+  ChainCovariance out;
+  int m = 0, g = 0;
+  ceres::CRSMatrix J;
+  if (!Prepare(problem, states, globals, &m, &g, nullptr, nullptr, &J, &out.error)) return out;
+  ChainFactorization f;
+  if (!Factor(J, static_cast<int>(states.size()), m, g, &f)) {
+    out.error = f.error;
     return out;
   }
-  // The border: X = T^-1 B by forward and back substitution, S = C - B' X.
-  std::vector<MatrixXd> X(n);
-  for (int k = 0; k < n; ++k) X[k] = k > 0 ? MatrixXd(B[k] - N[k - 1] * X[k - 1]) : B[0];
-  for (int k = 0; k < n; ++k) X[k] = D_inv[k] * X[k];
-  for (int k = n - 2; k >= 0; --k) X[k] -= N[k].transpose() * X[k + 1];
-  MatrixXd S = C;
-  for (int k = 0; k < n; ++k) S -= B[k].transpose() * X[k];
-  Eigen::LLT<MatrixXd> llt(S);
-  if (llt.info() != Eigen::Success) {
-    out.error = "the global parameters' information is not positive definite";
+  return Marginals(f);
+}
+
+ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
+                           const std::vector<double*>& globals, bool with_covariance) {
+  ChainStep out;
+  int m = 0, g = 0;
+  ceres::CRSMatrix J;
+  std::vector<double> gradient;
+  if (!Prepare(problem, states, globals, &m, &g, &out.cost, &gradient, &J, &out.error)) {
     return out;
   }
-  out.globals = llt.solve(MatrixXd::Identity(g, g));
-  for (int k = 0; k < n; ++k) out.states[k] += X[k] * out.globals * X[k].transpose();
-  for (int k = 0; k + 1 < n; ++k) out.next[k] += X[k + 1] * out.globals * X[k].transpose();
+  const int n = static_cast<int>(states.size());
+  ChainFactorization f;
+  if (!Factor(J, n, m, g, &f)) {
+    out.error = f.error;
+    return out;
+  }
+  // H [dx; dg] = -[g_x; g_g]: y = T^-1 (-g_x), S dg = -g_g - B' y, dx = y - X dg.
+  std::vector<MatrixXd> minus_gx(n);
+  for (int k = 0; k < n; ++k) {
+    minus_gx[k] = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + k * m, m);
+  }
+  std::vector<MatrixXd> y = SolveT(f, minus_gx);
+  out.states.assign(n, Eigen::VectorXd());
+  if (g > 0) {
+    Eigen::VectorXd rhs = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + n * m, g);
+    for (int k = 0; k < n; ++k) rhs -= f.B[k].transpose() * y[k];
+    out.globals = f.S.solve(rhs);
+    for (int k = 0; k < n; ++k) out.states[k] = y[k] - f.X[k] * out.globals;
+  } else {
+    out.globals.resize(0);
+    for (int k = 0; k < n; ++k) out.states[k] = y[k];
+  }
+  if (with_covariance) out.covariance = Marginals(f);
   out.ok = true;
   return out;
 }

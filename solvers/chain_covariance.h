@@ -37,4 +37,21 @@ struct ChainCovariance {
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
                                        const std::vector<double*>& globals);
 
+// One Gauss-Newton step on the same structure: the same factorization of H = J'J solves
+// H dx = -J'r (the residuals and Jacobian loss-corrected, as Ceres' own step sees them), and the
+// marginal covariances at the linearization point come with it when asked for. The sliding
+// window's low-latency solver (solvers/window_smoother.h, WindowSolver::kChainGaussNewton):
+// Ceres rebuilds the program, the Jacobian's structure, J'J's structure and the sparse
+// Cholesky's symbolic analysis on every Solve; a chain needs none of them.
+struct ChainStep {
+  bool ok = false;
+  std::string error;
+  double cost = 0.0;                    // 0.5 |r|^2 at the linearization point (loss-corrected)
+  std::vector<Eigen::VectorXd> states;  // dx_k
+  Eigen::VectorXd globals;              // dx of the globals, stacked
+  ChainCovariance covariance;           // filled when asked for
+};
+ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
+                           const std::vector<double*>& globals, bool with_covariance);
+
 }  // namespace slipgraph

@@ -65,28 +65,42 @@ class Window {
     const Clock::time_point start = Clock::now();
     const std::deque<std::array<double, kStateSize>> before = states_;
     const std::array<double, 2> offsets_before = offsets_;
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver_options_, &problem_, &summary);
-    ++result_->updates;
-    bool failed = !summary.IsSolutionUsable();
-    if (failed) {
-      states_ = before;  // same addresses: the deque's elements are assigned in place
-      offsets_ = offsets_before;
-      ++result_->failed_updates;
-      Note("window ending at t=" + std::to_string(NewestTime()) + " s failed (" + summary.message +
-           "): its leaving states are the EKF's");
-    } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
-      ++result_->unconverged_updates;
-    }
     const double newest = NewestTime();
     size_t leaving = 0;
     while (leaving < states_.size() &&
            (final || source_.time(first_ + leaving) < newest - options_.window_s)) {
       ++leaving;
     }
-    double update_ms = MillisecondsSince(start);
     std::vector<std::array<double, kStateSize>> sd(leaving);
-    const bool have_sd = !failed && leaving > 0 && options_.covariance && Covariance(leaving, &sd);
+    bool have_sd = false, solved = false, failed = false;
+    ++result_->updates;
+    if (options_.solver == WindowSolver::kChainGaussNewton) {
+      solved = SolveOnTheChain(leaving, &sd, &have_sd);
+      if (!solved) {
+        states_ = before;  // same addresses: the deque's elements are assigned in place
+        offsets_ = offsets_before;
+        have_sd = false;
+        ++result_->chain_fallbacks;
+      }
+    }
+    if (!solved) {
+      ceres::Solver::Summary summary;
+      ceres::Solve(solver_options_, &problem_, &summary);
+      failed = !summary.IsSolutionUsable();
+      if (failed) {
+        states_ = before;
+        offsets_ = offsets_before;
+        ++result_->failed_updates;
+        Note("window ending at t=" + std::to_string(newest) + " s failed (" + summary.message +
+             "): its leaving states are the EKF's");
+      } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+        ++result_->unconverged_updates;
+      }
+    }
+    double update_ms = MillisecondsSince(start);
+    if (!solved) {
+      have_sd = !failed && leaving > 0 && options_.covariance && Covariance(leaving, &sd);
+    }
 
     const Clock::time_point marginalization_start = Clock::now();
     for (size_t i = 0; i < leaving; ++i) {
@@ -139,6 +153,45 @@ class Window {
   }
 
   double NewestTime() const { return source_.time(first_ + states_.size() - 1); }
+
+  // Gauss-Newton on the window's chain structure (WindowSolver::kChainGaussNewton), at most
+  // max_iterations steps, each from one evaluation and one block-tridiagonal factorization that
+  // also gives the leaving states' sd. False (values partly moved: the caller restores them)
+  // when the problem is not a chain, the information is singular or a step raises the cost.
+  bool SolveOnTheChain(size_t leaving, std::vector<std::array<double, kStateSize>>* sd,
+                       bool* have_sd) {
+    std::vector<double*> states;
+    for (auto& x : states_) states.push_back(x.data());
+    const bool want_sd = options_.covariance && leaving > 0;
+    const int iterations = std::max(1, options_.max_iterations);
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+      const ChainStep step = ComputeChainStep(&problem_, states, {offsets_.data()}, want_sd);
+      if (!step.ok) {
+        if (result_->chain_fallbacks == 0) Note("chain Gauss-Newton: " + step.error + "; Ceres");
+        return false;
+      }
+      if (want_sd) {  // at this step's linearization point (the last one's, after the loop)
+        for (size_t i = 0; i < leaving; ++i) {
+          for (int j = 0; j < kStateSize; ++j) {
+            (*sd)[i][j] = std::sqrt(std::max(0.0, step.covariance.states[i](j, j)));
+          }
+        }
+        *have_sd = true;
+      }
+      for (size_t k = 0; k < states_.size(); ++k) {
+        for (int j = 0; j < kStateSize; ++j) states_[k][j] += step.states[k][j];
+      }
+      offsets_[0] += step.globals[0];
+      offsets_[1] += step.globals[1];
+      double cost = 0.0;
+      if (!problem_.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr) ||
+          !std::isfinite(cost) || cost > step.cost * (1.0 + 1e-9) + 1e-12) {
+        return false;  // the step made it worse: a nonlinearity Levenberg-Marquardt handles
+      }
+      if (step.cost - cost <= 1e-10 * step.cost) break;  // converged
+    }
+    return true;
+  }
 
   // Marginal sd of the `leaving` oldest states, from the window's information.
   bool Covariance(size_t leaving, std::vector<std::array<double, kStateSize>>* sd) {
@@ -218,6 +271,7 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.window_s = overlap_s;
   options.update_every = std::max(1, static_cast<int>(chunk_min * 60.0 * wheel_rate_hz));
   options.max_iterations = batch.max_iterations;
+  options.solver = WindowSolver::kCeres;  // chunks of minutes from the EKF: Levenberg-Marquardt
   options.covariance = batch.covariance;
   options.filter = batch.filter;
   options.problem = batch.problem;
@@ -243,10 +297,20 @@ std::string DescribeWindowRun(const WindowSmootherResult& result) {
       << " failed, " << result.unconverged_updates << " at the iteration bound, "
       << result.failed_marginalizations << " failed marginalizations; " << from_filter
       << " samples carry the EKF's estimate\n";
-  out << "  update latency (solve + marginalization): p50 " << Percentile(result.update_ms, 0.5)
-      << " ms, p99 " << Percentile(result.update_ms, 0.99) << " ms; covariance p50 "
-      << Percentile(result.covariance_ms, 0.5) << " ms, p99 "
-      << Percentile(result.covariance_ms, 0.99) << " ms\n";
+  if (result.chain_fallbacks > 0) {
+    out << "  chain Gauss-Newton: " << result.chain_fallbacks
+        << " updates solved by Ceres instead (a step raised the cost)\n";
+  }
+  if (result.covariance_ms.empty()) {
+    out << "  update latency (solve, covariance and marginalization): p50 "
+        << Percentile(result.update_ms, 0.5) << " ms, p99 " << Percentile(result.update_ms, 0.99)
+        << " ms\n";
+  } else {
+    out << "  update latency (solve + marginalization): p50 " << Percentile(result.update_ms, 0.5)
+        << " ms, p99 " << Percentile(result.update_ms, 0.99) << " ms; covariance p50 "
+        << Percentile(result.covariance_ms, 0.5) << " ms, p99 "
+        << Percentile(result.covariance_ms, 0.99) << " ms\n";
+  }
   if (!result.lag_s.empty()) {
     out << "  lag of the refined estimate: median " << Percentile(result.lag_s, 0.5) << " s\n";
   }

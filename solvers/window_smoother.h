@@ -25,11 +25,19 @@
 
 namespace slipgraph {
 
+// How each window update is solved. kCeres: ceres::Solve (Levenberg-Marquardt, sparse normal
+// Cholesky). kChainGaussNewton: Gauss-Newton steps on the window's own structure (a chain of
+// states with the IMU offsets as a border, solvers/chain_covariance.h), the residuals and
+// Jacobians still Ceres' (Problem::Evaluate); the marginal covariances come from the same
+// factorization. A step that raises the cost is undone and that update falls back to Ceres.
+enum class WindowSolver { kCeres, kChainGaussNewton };
+
 struct WindowSmootherOptions {
   double window_s = 2.0;   // states further than this behind the newest are marginalized
   int update_every = 10;   // wheel samples between window solves (10 Hz at 100 Hz wheels)
   int max_iterations = 5;  // bounded work per update
   bool covariance = true;  // marginal sd of each state as it leaves (else the EKF's sd)
+  WindowSolver solver = WindowSolver::kChainGaussNewton;
   FilterRunOptions filter;
   WardProblemOptions problem;
   double min_immobilized_s = 0.1;  // as the batch smoother's post-processing detection
@@ -43,7 +51,10 @@ struct WindowSmootherResult {
   FilterResult ekf;               // the streaming front end, at every sample
   long updates = 0, failed_updates = 0, unconverged_updates = 0, failed_marginalizations = 0;
   long covariance_failures = 0;
-  std::vector<double> update_ms;      // per update: solve and marginalization, wall time
+  long chain_fallbacks = 0;  // kChainGaussNewton updates that Ceres had to solve
+  // Per update: solve and marginalization, wall time (with kChainGaussNewton the leaving states'
+  // covariance too: it comes from the solve's factorization).
+  std::vector<double> update_ms;
   std::vector<double> covariance_ms;  // per update: marginal covariance of the leaving states
   FactorCounts counts;                // the factors that went in (and measurements too late)
   std::vector<std::string> notes;

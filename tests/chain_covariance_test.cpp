@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 
 #include "problems/ward_batch_problem.h"
 #include "sim/scenarios.h"
@@ -123,6 +124,85 @@ TEST(ChainCovariance, RandomWalkVariancesByHand) {
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(chain.states[k](0, 0), k + 1.0, 1e-12);
   // cov(x_{k+1}, x_k) = var(x_k) = k + 1 for a random walk.
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(chain.next[k](0, 0), k + 1.0, 1e-12);
+}
+
+// The Gauss-Newton step of the chain: a linear chain of 2-vectors with a shared offset (the
+// border) is solved in one step to Ceres' own solution, and the step's covariance is the
+// covariance's.
+struct OffsetMeasurement {
+  double z0, z1;
+  template <typename T>
+  bool operator()(const T* x, const T* c, T* r) const {
+    r[0] = (x[0] + c[0] - z0) / 0.5;
+    r[1] = (x[1] - 2.0 * c[0] - z1) / 0.3;
+    return true;
+  }
+};
+struct PairLink {
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* r) const {
+    r[0] = (b[0] - a[0] - 0.1) / 0.2;
+    r[1] = (b[1] - a[1] + 0.05 * a[0]) / 0.4;
+    return true;
+  }
+};
+struct PairAnchor {
+  template <typename T>
+  bool operator()(const T* a, T* r) const {
+    r[0] = a[0] / 2.0;
+    r[1] = a[1] / 2.0;
+    return true;
+  }
+};
+struct OffsetPrior {
+  template <typename T>
+  bool operator()(const T* c, T* r) const {
+    r[0] = (c[0] - 0.3) / 1.0;
+    return true;
+  }
+};
+
+TEST(ChainCovariance, GaussNewtonStepSolvesALinearChainWithABorder) {
+  const int n = 6;
+  const auto build = [&](std::vector<std::array<double, 2>>* x, double* c, ceres::Problem* p) {
+    p->AddResidualBlock(new ceres::AutoDiffCostFunction<PairAnchor, 2, 2>(new PairAnchor), nullptr,
+                        (*x)[0].data());
+    p->AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 1, 1>(new OffsetPrior),
+                        nullptr, c);
+    for (int k = 0; k < n; ++k) {
+      p->AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetMeasurement, 2, 2, 1>(
+                              new OffsetMeasurement{0.1 * k + 0.2, -0.3 + 0.05 * k * k}),
+                          nullptr, (*x)[k].data(), c);
+      if (k > 0) {
+        p->AddResidualBlock(new ceres::AutoDiffCostFunction<PairLink, 2, 2, 2>(new PairLink),
+                            nullptr, (*x)[k - 1].data(), (*x)[k].data());
+      }
+    }
+  };
+  std::vector<std::array<double, 2>> x(n, {1.0, -1.0}), x_ceres = x;
+  double c = 0.0, c_ceres = 0.0;
+  ceres::Problem problem, reference;
+  build(&x, &c, &problem);
+  build(&x_ceres, &c_ceres, &reference);
+  ceres::Solver::Options options;
+  options.function_tolerance = options.gradient_tolerance = options.parameter_tolerance = 1e-14;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &reference, &summary);
+
+  std::vector<double*> states;
+  for (auto& s : x) states.push_back(s.data());
+  const ChainStep step = ComputeChainStep(&problem, states, {&c}, true);
+  ASSERT_TRUE(step.ok) << step.error;
+  EXPECT_GT(step.cost, summary.final_cost);
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < 2; ++i) EXPECT_NEAR(x[k][i] + step.states[k][i], x_ceres[k][i], 1e-7);
+  }
+  EXPECT_NEAR(c + step.globals[0], c_ceres, 1e-7);  // Ceres stops within its tolerances
+  const ChainCovariance covariance = ComputeChainCovariance(&problem, states, {&c});
+  ASSERT_TRUE(step.covariance.ok);
+  for (int k = 0; k < n; ++k) {
+    EXPECT_LT((step.covariance.states[k] - covariance.states[k]).norm(), 1e-12);
+  }
 }
 
 }  // namespace
