@@ -12,19 +12,26 @@ using Eigen::MatrixXd;
 
 namespace {
 
-// The block LDL' of H = [T B; B' C] with T block tridiagonal (see the header).
+// The block LDL' of H = [T B; B' C] with T block tridiagonal (see the header). M: the state
+// size when known at compile time (7 for the Ward window: fixed-size Eigen blocks, no
+// allocations per block), else Eigen::Dynamic.
+template <int M>
 struct ChainFactorization {
+  using Block = Eigen::Matrix<double, M, M>;
+  using Border = Eigen::Matrix<double, M, Eigen::Dynamic>;
   int n = 0, m = 0, g = 0;
-  std::vector<MatrixXd> N, D_inv, B, X;  // N_k = T_{k+1,k} D_k^-1; X = T^-1 B
-  Eigen::LLT<MatrixXd> S;                // S = C - B' X
+  std::vector<Block> N, D_inv;  // N_k = T_{k+1,k} D_k^-1
+  std::vector<Border> B, X;     // X = T^-1 B
+  Eigen::LLT<MatrixXd> S;       // S = C - B' X
   std::string error;
 };
 
 // T^-1 rhs (one block of rows per state) by forward and back substitution through the LDL'.
-std::vector<MatrixXd> SolveT(const ChainFactorization& f, const std::vector<MatrixXd>& rhs) {
+template <int M, typename Rhs>
+std::vector<Rhs> SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& rhs) {
   const int n = f.n;
-  std::vector<MatrixXd> x(n);
-  for (int k = 0; k < n; ++k) x[k] = k > 0 ? MatrixXd(rhs[k] - f.N[k - 1] * x[k - 1]) : rhs[0];
+  std::vector<Rhs> x(n);
+  for (int k = 0; k < n; ++k) x[k] = k > 0 ? Rhs(rhs[k] - f.N[k - 1] * x[k - 1]) : rhs[0];
   for (int k = 0; k < n; ++k) x[k] = f.D_inv[k] * x[k];
   for (int k = n - 2; k >= 0; --k) x[k] -= f.N[k].transpose() * x[k + 1];
   return x;
@@ -32,7 +39,9 @@ std::vector<MatrixXd> SolveT(const ChainFactorization& f, const std::vector<Matr
 
 // Assembles H from the Jacobian and factors it; false (with f->error) when the problem is not a
 // chain or H is not positive definite.
-bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization* f) {
+template <int M>
+bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M>* f) {
+  using Block = typename ChainFactorization<M>::Block;
   f->n = n, f->m = m, f->g = g;
   // Assemble the blocks of H = J' J into flat column-major buffers: D[k] = T_kk (upper
   // triangle), U[k] = T_{k,k+1}, B[k] = H_{k,globals}, C (upper triangle), one residual block's
@@ -91,36 +100,32 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization* 
       }
     }
   }
-  std::vector<MatrixXd> D(n), U(n);
-  f->B.assign(n, MatrixXd());
+  f->B.resize(n);
   for (int k = 0; k < n; ++k) {
-    D[k] = Eigen::Map<const MatrixXd>(Dbuf.data() + static_cast<size_t>(k) * mm, m, m)
-               .selfadjointView<Eigen::Upper>();
-    U[k] = Eigen::Map<const MatrixXd>(Ubuf.data() + static_cast<size_t>(k) * mm, m, m);
     f->B[k] = Eigen::Map<const MatrixXd>(Bbuf.data() + static_cast<size_t>(k) * m * g, m, g);
   }
-  const MatrixXd C =
-      g > 0
-          ? MatrixXd(Eigen::Map<const MatrixXd>(Cbuf.data(), g, g).selfadjointView<Eigen::Upper>())
-          : MatrixXd(0, 0);
   // Block LDL' of T: D_k <- pivots, N_k = T_{k+1,k} D_k^-1.
-  f->N.assign(n, MatrixXd());
-  f->D_inv.assign(n, MatrixXd());
+  f->N.resize(n);
+  f->D_inv.resize(n);
+  Block D, U_previous;
   for (int k = 0; k < n; ++k) {
-    if (k > 0) D[k] -= f->N[k - 1] * U[k - 1];
-    Eigen::LLT<MatrixXd> llt(D[k]);
+    D = Eigen::Map<const MatrixXd>(Dbuf.data() + static_cast<size_t>(k) * mm, m, m)
+            .template selfadjointView<Eigen::Upper>();
+    if (k > 0) D -= f->N[k - 1] * U_previous;
+    Eigen::LLT<Block> llt(D);
     if (llt.info() != Eigen::Success) {
       f->error = "the information of state " + std::to_string(k) +
                  " is not positive definite (a direction no factor constrains)";
       return false;
     }
-    f->D_inv[k] = llt.solve(MatrixXd::Identity(m, m));
-    if (k + 1 < n) f->N[k] = U[k].transpose() * f->D_inv[k];
+    f->D_inv[k] = llt.solve(Block::Identity(m, m));
+    U_previous = Eigen::Map<const MatrixXd>(Ubuf.data() + static_cast<size_t>(k) * mm, m, m);
+    if (k + 1 < n) f->N[k] = U_previous.transpose() * f->D_inv[k];
   }
   if (g == 0) return true;
   // The border: X = T^-1 B, S = C - B' X.
   f->X = SolveT(*f, f->B);
-  MatrixXd S = C;
+  MatrixXd S = Eigen::Map<const MatrixXd>(Cbuf.data(), g, g).selfadjointView<Eigen::Upper>();
   for (int k = 0; k < n; ++k) S -= f->B[k].transpose() * f->X[k];
   f->S.compute(S);
   if (f->S.info() != Eigen::Success) {
@@ -132,16 +137,20 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization* 
 
 // Diagonal and first sub-diagonal blocks of H^-1 from the factorization: Takahashi's recursion
 // on T, corrected for the border.
-ChainCovariance Marginals(const ChainFactorization& f) {
+template <int M>
+ChainCovariance Marginals(const ChainFactorization<M>& f) {
+  using Block = typename ChainFactorization<M>::Block;
   ChainCovariance out;
   const int n = f.n;
   out.states.assign(n, MatrixXd());
   out.next.assign(n > 0 ? n - 1 : 0, MatrixXd());
-  out.states[n - 1] = f.D_inv[n - 1];
+  Block state = f.D_inv[n - 1];
+  out.states[n - 1] = state;
   for (int k = n - 2; k >= 0; --k) {
-    const MatrixXd sub = -out.states[k + 1] * f.N[k];  // Sigma_{k+1,k}
+    const Block sub = -state * f.N[k];  // Sigma_{k+1,k}
     out.next[k] = sub;
-    out.states[k] = f.D_inv[k] - f.N[k].transpose() * sub;
+    state = f.D_inv[k] - f.N[k].transpose() * sub;
+    out.states[k] = state;
   }
   if (f.g > 0) {
     out.globals = f.S.solve(MatrixXd::Identity(f.g, f.g));
@@ -180,6 +189,46 @@ bool Prepare(ceres::Problem* problem, const std::vector<double*>& states,
   return true;
 }
 
+template <int M>
+ChainCovariance CovarianceFrom(const ceres::CRSMatrix& J, int n, int m, int g) {
+  ChainFactorization<M> f;
+  if (!Factor(J, n, m, g, &f)) {
+    ChainCovariance out;
+    out.error = f.error;
+    return out;
+  }
+  return Marginals(f);
+}
+
+template <int M>
+void StepFrom(const ceres::CRSMatrix& J, const std::vector<double>& gradient, int n, int m, int g,
+              bool with_covariance, ChainStep* out) {
+  using Vector = Eigen::Matrix<double, M, 1>;
+  ChainFactorization<M> f;
+  if (!Factor(J, n, m, g, &f)) {
+    out->error = f.error;
+    return;
+  }
+  // H [dx; dg] = -[g_x; g_g]: y = T^-1 (-g_x), S dg = -g_g - B' y, dx = y - X dg.
+  std::vector<Vector> minus_gx(n);
+  for (int k = 0; k < n; ++k) {
+    minus_gx[k] = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + k * m, m);
+  }
+  const std::vector<Vector> y = SolveT(f, minus_gx);
+  out->states.assign(n, Eigen::VectorXd());
+  if (g > 0) {
+    Eigen::VectorXd rhs = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + n * m, g);
+    for (int k = 0; k < n; ++k) rhs -= f.B[k].transpose() * y[k];
+    out->globals = f.S.solve(rhs);
+    for (int k = 0; k < n; ++k) out->states[k] = y[k] - f.X[k] * out->globals;
+  } else {
+    out->globals.resize(0);
+    for (int k = 0; k < n; ++k) out->states[k] = y[k];
+  }
+  if (with_covariance) out->covariance = Marginals(f);
+  out->ok = true;
+}
+
 }  // namespace
 
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
@@ -188,12 +237,8 @@ ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vecto
   int m = 0, g = 0;
   ceres::CRSMatrix J;
   if (!Prepare(problem, states, globals, &m, &g, nullptr, nullptr, &J, &out.error)) return out;
-  ChainFactorization f;
-  if (!Factor(J, static_cast<int>(states.size()), m, g, &f)) {
-    out.error = f.error;
-    return out;
-  }
-  return Marginals(f);
+  const int n = static_cast<int>(states.size());
+  return m == 7 ? CovarianceFrom<7>(J, n, m, g) : CovarianceFrom<Eigen::Dynamic>(J, n, m, g);
 }
 
 ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
@@ -206,29 +251,11 @@ ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& 
     return out;
   }
   const int n = static_cast<int>(states.size());
-  ChainFactorization f;
-  if (!Factor(J, n, m, g, &f)) {
-    out.error = f.error;
-    return out;
-  }
-  // H [dx; dg] = -[g_x; g_g]: y = T^-1 (-g_x), S dg = -g_g - B' y, dx = y - X dg.
-  std::vector<MatrixXd> minus_gx(n);
-  for (int k = 0; k < n; ++k) {
-    minus_gx[k] = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + k * m, m);
-  }
-  std::vector<MatrixXd> y = SolveT(f, minus_gx);
-  out.states.assign(n, Eigen::VectorXd());
-  if (g > 0) {
-    Eigen::VectorXd rhs = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + n * m, g);
-    for (int k = 0; k < n; ++k) rhs -= f.B[k].transpose() * y[k];
-    out.globals = f.S.solve(rhs);
-    for (int k = 0; k < n; ++k) out.states[k] = y[k] - f.X[k] * out.globals;
+  if (m == 7) {
+    StepFrom<7>(J, gradient, n, m, g, with_covariance, &out);
   } else {
-    out.globals.resize(0);
-    for (int k = 0; k < n; ++k) out.states[k] = y[k];
+    StepFrom<Eigen::Dynamic>(J, gradient, n, m, g, with_covariance, &out);
   }
-  if (with_covariance) out.covariance = Marginals(f);
-  out.ok = true;
   return out;
 }
 
