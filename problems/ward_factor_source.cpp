@@ -326,7 +326,9 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   }
   // Slip is meaningless on (nearly) stopped wheels: there the prior stays on.
   const double surface_mps = 0.5 * params_.wheel_radius_m * std::abs(w[0] + w[1]);
-  const bool slipping = ekf_.estimates[k].slip.slip_ema >= wc.slip_threshold &&
+  const double gate_slip = options_.decay_gate_slip.size() == n ? options_.decay_gate_slip[k]
+                                                                  : ekf_.estimates[k].slip.slip_ema;
+  const bool slipping = gate_slip >= wc.slip_threshold &&
                         surface_mps > model_.immobilization.min_wheel_speed_mps;
   if (!slipping) {
     Add("act_quickly", DisturbanceDecayPrior::Create(options_.decay_sd_density / root_dt),

@@ -59,6 +59,9 @@ struct WardProblemOptions {
   // hold-backs and the velocity absorbs the difference (ward21 seed 1/2: 19/20 and 16/20
   // detected, v RMSE 0.023/0.020 m/s; with it 20/20 and 19/20, 0.019/0.017).
   double decay_sd_density = 0.1;
+  // The slip that gates that prior, one per state (empty: the EKF's slip EMA). The batch smoother
+  // re-gates with its own first solution's slip (BatchSmootherOptions::regate_decay_prior).
+  std::vector<double> decay_gate_slip;
   // Correlation time (s) of the tire law's error as the smoother weighs its accelerometer
   // factors (NaN: the model's TireLawUncertainty::correlation_time_s, which the EKF uses). The
   // smoother sees every sample of a stretch at once, so treating a terrain's persistent error as

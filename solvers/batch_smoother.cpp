@@ -13,8 +13,10 @@ namespace slipgraph {
 
 using namespace ward;  // NOLINT: state indices
 
-SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
-                           const BatchSmootherOptions& options) {
+namespace {
+
+SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
+                               const BatchSmootherOptions& options) {
   SmootherResult result;
   result.ekf = RunEkf(log, model, options.filter);
   result.estimates = result.ekf.estimates;
@@ -126,6 +128,42 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
                                        &result.estimates);
   result.notes.insert(result.notes.begin(), problem->counts.Describe());
   return result;
+}
+
+}  // namespace
+
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
+                           const BatchSmootherOptions& options) {
+  if (!options.regate_decay_prior || !options.problem.decay_gate_slip.empty()) {
+    return SmoothBatchOnce(log, model, options);
+  }
+  BatchSmootherOptions first_options = options;
+  first_options.covariance = false;
+  const SmootherResult first = SmoothBatchOnce(log, model, first_options);
+  if (first.used_fallback) return SmoothBatchOnce(log, model, options);
+  // The smoothed slip (DetectImmobilizationOnSmoothedStates leaves the mean of the two sides in
+  // slip_ema) gates the second solve, which starts from the first.
+  BatchSmootherOptions second_options = options;
+  std::vector<double>& gate = second_options.problem.decay_gate_slip;
+  const double threshold = model.weak_constraints.slip_threshold;
+  long changed = 0;
+  for (size_t k = 0; k < first.estimates.size(); ++k) {
+    gate.push_back(first.estimates[k].slip.slip_ema);
+    changed += (gate.back() >= threshold) != (first.ekf.estimates[k].slip.slip_ema >= threshold);
+  }
+  second_options.start = &first.estimates;
+  SmootherResult second = SmoothBatchOnce(log, model, second_options);
+  if (second.used_fallback) {
+    SmootherResult result = SmoothBatchOnce(log, model, options);
+    result.notes.push_back(
+        "weak constraint 2 re-gated by the smoother's own slip: that solve failed, the EKF-gated "
+        "solution is reported");
+    return result;
+  }
+  second.notes.push_back("weak constraint 2 gated by a first solve's slip, not the EKF's EMA (" +
+                         std::to_string(changed) + " of " + std::to_string(gate.size()) +
+                         " states changed side of thresh_i)");
+  return second;
 }
 
 std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,

@@ -32,6 +32,16 @@ struct BatchSmootherOptions {
   // a SmootherResult's estimates on the same log): a model refitted with one more term converges
   // from the previous solution in a few iterations. Ignored when the sizes differ.
   const std::vector<EkfEstimate>* start = nullptr;
+  // Weak constraint 2 (the disturbance decays while the wheels do not slip) is gated by a slip.
+  // First solve: the EKF's slip EMA, which lags each hold-back's onset and, when the EKF's
+  // velocity is biased by a tire law that is not the terrain's, stays below the gate through a
+  // whole hold-back; the prior then pulls a_dist toward zero and the velocity up with it (seed 2
+  // of ward21, run 19: +2.5 cm/s through a 3 s hold-back). With this on, a second solve, started
+  // from the first, is gated by the first solve's own slip (WardProblemOptions::decay_gate_slip):
+  // ward21 disturbance RMSE -10 to -11 %, velocity within +-3 %, onset delays shorter
+  // (docs/smoother.md). Off for fit-and-compare (workbench/): its likelihood-ratio tests compare
+  // two solves of one fixed problem.
+  bool regate_decay_prior = true;
 };
 
 // A model effect's estimated magnitude (factors/model_effects.h), in the catalogue's unit.

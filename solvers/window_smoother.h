@@ -66,7 +66,8 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
 // Chunked batch mode for logs too long for one problem: the window machinery with chunks of
 // `chunk_min` minutes solved to convergence, each state final once `overlap_s` of later data has
 // been seen (its lag), older states marginalized into the prior that joins the chunks. Memory is
-// bounded by one chunk plus the overlap.
+// bounded by one chunk plus the overlap. Weak constraint 2 keeps the EKF's gate here (the batch's
+// re-gating, BatchSmootherOptions::regate_decay_prior, needs a whole first solution).
 // wheel_rate_hz: the log's wheel-sample rate (states per second).
 WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double wheel_rate_hz,
                                      const BatchSmootherOptions& batch);

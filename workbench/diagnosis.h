@@ -23,7 +23,13 @@
 namespace slipgraph {
 
 struct DiagnosisOptions {
-  BatchSmootherOptions smoother;
+  // One fixed problem per model (no re-gating of weak constraint 2 by the solution's own slip):
+  // the fit-and-compare tests difference the costs of two solves of the same problem.
+  BatchSmootherOptions smoother = [] {
+    BatchSmootherOptions o;
+    o.regate_decay_prior = false;
+    return o;
+  }();
   double alpha = 0.01;      // family-wise level of the candidate tests and the segment tests
   double window_s = 2.0;    // segment test window
   int whiteness_lags = 20;  // Ljung-Box lags
