@@ -140,16 +140,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
   cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->add_option("--window", options->window.window_s, "Window length, s")->capture_default_str();
-  cmd->add_option_function<std::string>(
-         "--solver",
-         [options](const std::string& name) {
-           options->window.solver =
-               name == "ceres" ? WindowSolver::kCeres : WindowSolver::kChainGaussNewton;
-         },
-         "Window solver: chain (Gauss-Newton on the window's chain structure, the low-latency "
-         "one) or ceres (ceres::Solve, Levenberg-Marquardt)")
-      ->check(CLI::IsMember({"chain", "ceres"}))
-      ->default_str(options->window.solver == WindowSolver::kCeres ? "ceres" : "chain");
+  AddWindowSolverOption(cmd, &options->window.solver);
   cmd->add_option("--report,--html", options->html,
                   "Report page (default ./<log>_compare.html); plots of every log in it");
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");

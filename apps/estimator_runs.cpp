@@ -65,4 +65,16 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
   }
 }
 
+void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver) {
+  cmd->add_option_function<std::string>(
+         "--solver",
+         [solver](const std::string& name) {
+           *solver = name == "ceres" ? WindowSolver::kCeres : WindowSolver::kChainGaussNewton;
+         },
+         "Window solver: chain (Gauss-Newton on the window's chain structure, the low-latency "
+         "one) or ceres (ceres::Solve, Levenberg-Marquardt)")
+      ->check(CLI::IsMember({"chain", "ceres"}))
+      ->default_str(*solver == WindowSolver::kCeres ? "ceres" : "chain");
+}
+
 }  // namespace slipgraph

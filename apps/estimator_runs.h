@@ -13,6 +13,7 @@
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "solvers/ekf_runner.h"
+#include "solvers/window_smoother.h"
 
 namespace slipgraph {
 
@@ -47,5 +48,8 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               bool* no_gps);
 
 void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate);
+
+// --solver chain|ceres: how the sliding window solves (online, compare).
+void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver);
 
 }  // namespace slipgraph

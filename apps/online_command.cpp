@@ -34,16 +34,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
                   "Gauss-Newton iterations per window solve")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option_function<std::string>(
-         "--solver",
-         [options](const std::string& name) {
-           options->window.solver =
-               name == "ceres" ? WindowSolver::kCeres : WindowSolver::kChainGaussNewton;
-         },
-         "Window solver: chain (Gauss-Newton on the window's chain structure, the low-latency "
-         "one) or ceres (ceres::Solve, Levenberg-Marquardt)")
-      ->check(CLI::IsMember({"chain", "ceres"}))
-      ->default_str(options->window.solver == WindowSolver::kCeres ? "ceres" : "chain");
+  AddWindowSolverOption(cmd, &options->window.solver);
   cmd->add_flag("!--no-covariance", options->window.covariance,
                 "Skip the window's marginal covariance (report the EKF's sd)");
   cmd->add_flag("--advance-velocity", options->advance_velocity,
