@@ -299,7 +299,8 @@ std::string DescribeWindowRun(const WindowSmootherResult& result) {
       << " samples carry the EKF's estimate\n";
   if (result.chain_fallbacks > 0) {
     out << "  chain Gauss-Newton: " << result.chain_fallbacks
-        << " updates solved by Ceres instead (a step raised the cost)\n";
+        << " updates solved by Ceres instead (a step raised the cost, or the window was not a "
+           "chain)\n";
   }
   if (result.covariance_ms.empty()) {
     out << "  update latency (solve, covariance and marginalization): p50 "
