@@ -34,13 +34,24 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Signed distance along the course at each truth sample, as the simulator advances it (the
+// integral of the forward speed).
+std::vector<double> SignedTravel(const DriveLog& log) {
+  std::vector<double> s;
+  double distance = 0.0;
+  for (size_t k = 0; k < log.truth.size(); ++k) {
+    if (k > 0) distance += log.truth[k].vx * (log.truth[k].t - log.truth[k - 1].t);
+    s.push_back(distance);
+  }
+  return s;
+}
+
 std::vector<double> BoundaryTimes(const sim::Scenario& sc, const DriveLog& log) {
+  const std::vector<double> s = SignedTravel(log);
   std::vector<double> times;
-  double s = 0.0;
   size_t next = 1;
   for (size_t k = 1; k < log.truth.size() && next < sc.course.patches.size(); ++k) {
-    s += log.truth[k].vx * (log.truth[k].t - log.truth[k - 1].t);  // as the simulator advances it
-    if (s >= sc.course.patches[next].s_start_m) {
+    if (s[k] >= sc.course.patches[next].s_start_m) {
       times.push_back(log.truth[k].t);
       ++next;
     }
@@ -50,14 +61,9 @@ std::vector<double> BoundaryTimes(const sim::Scenario& sc, const DriveLog& log) 
 
 // Predictions with the simulator's slip model of the terrain under each segment's start.
 IpdCalibrationResult TrueAlphaPredictions(const sim::Scenario& sc, const DriveLog& log) {
-  // Signed distance along the course, as the simulator advances it.
-  std::vector<double> t, s;
-  double distance = 0.0;
-  for (size_t k = 0; k < log.truth.size(); ++k) {
-    if (k > 0) distance += log.truth[k].vx * (log.truth[k].t - log.truth[k - 1].t);
-    t.push_back(log.truth[k].t);
-    s.push_back(distance);
-  }
+  const std::vector<double> s = SignedTravel(log);
+  std::vector<double> t;
+  for (const TruthSample& sample : log.truth) t.push_back(sample.t);
   const IpdOptions options;
   IpdCalibrationResult r;
   r.segments = BuildIpdSegments(log, options);

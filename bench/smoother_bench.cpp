@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bench/long_drive.h"
+#include "evaluation/evaluation.h"
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/window_smoother.h"
@@ -118,19 +119,6 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
 }
 
-// The truth velocity RMSE of the window's estimates (the accuracy the latency buys).
-double VelocityRmse(const DriveLog& log, const WindowSmootherResult& r) {
-  double sum = 0.0;
-  size_t n = 0, i = 0;
-  for (const EkfEstimate& e : r.estimates) {
-    while (i + 1 < log.truth.size() && log.truth[i + 1].t <= e.t + 1e-9) ++i;
-    if (log.truth.empty() || std::abs(log.truth[i].t - e.t) > 1e-6) continue;
-    sum += (e.x[0] - log.truth[i].vx) * (e.x[0] - log.truth[i].vx);
-    ++n;
-  }
-  return n > 0 ? std::sqrt(sum / n) : std::nan("");
-}
-
 int Window(const std::vector<int>& iterations, bool chain) {
   const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
   const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
@@ -154,7 +142,7 @@ int Window(const std::vector<int>& iterations, bool chain) {
                 chain ? "chain Gauss-Newton" : "Ceres", n, r.update_ms.size(),
                 Percentile(r.update_ms, 0.5), Percentile(r.update_ms, 0.99), cov(0.5), cov(0.99),
                 Percentile(total, 0.5), Percentile(total, 0.99), r.chain_fallbacks,
-                VelocityRmse(sim.log, r));
+                Evaluate(sim.log, EstimateTable(r.estimates)).velocity_rmse);
   }
   return 0;
 }

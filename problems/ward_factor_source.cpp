@@ -43,6 +43,9 @@ namespace {
 // Stamps within this of a time count as at it (the EKF holds inputs the same way).
 constexpr double kStampToleranceS = 1e-9;
 
+// A body-velocity measurement with a value and a positive sd (others are left out).
+bool Usable(const BodyVelocityMeasurement& m) { return std::isfinite(m.v_mps) && m.sd_mps > 0.0; }
+
 // Index of the state nearest in time to t (ties go to the earlier state).
 size_t NearestState(const std::vector<double>& times, double t) {
   const auto it = std::lower_bound(times.begin(), times.end(), t);
@@ -302,7 +305,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   // only if it already exists; AddLateBodyVelocity adds it when it does).
   for (size_t i = velocity_begin_[k]; i < velocity_begin_[k + 1]; ++i) {
     const BodyVelocityMeasurement& m = options_.body_velocity[i];
-    if (!std::isfinite(m.v_mps) || !(m.sd_mps > 0.0)) continue;
+    if (!Usable(m)) continue;
     if (options_.body_velocity_when_available && m.available_t > times_[k]) continue;
     Add("body_velocity", GnssVelocityFactor::Create(m.v_mps, m.sd_mps), nullptr, x);
     ++counts->body_velocity;
@@ -398,7 +401,7 @@ void WardFactorSource::AddLateBodyVelocity(size_t k, const std::function<double*
   for (; it != velocity_by_availability_.end() && available(*it) <= times_[k]; ++it) {
     const BodyVelocityMeasurement& m = options_.body_velocity[*it];
     if (velocity_state_[*it] >= k) continue;  // on state k or later: AddStep has it
-    if (!std::isfinite(m.v_mps) || !(m.sd_mps > 0.0)) continue;
+    if (!Usable(m)) continue;
     double* x = state_of(velocity_state_[*it]);
     if (x == nullptr) {
       ++counts->body_velocity_too_late;

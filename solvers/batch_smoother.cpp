@@ -140,7 +140,7 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   BatchSmootherOptions first_options = options;
   first_options.covariance = false;
   const SmootherResult first = SmoothBatchOnce(log, model, first_options);
-  if (first.used_fallback) return SmoothBatchOnce(log, model, options);
+  if (first.used_fallback) return first;  // the EKF's estimates, sd included (no covariance ran)
   // The smoothed slip (DetectImmobilizationOnSmoothedStates leaves the mean of the two sides in
   // slip_ema) gates the second solve, which starts from the first.
   BatchSmootherOptions second_options = options;

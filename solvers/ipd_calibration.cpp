@@ -237,15 +237,23 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     last_update_t = std::max(last_update_t, seg.t_end);
     P += AlphaMatrix::Identity() * options.alpha_walk_sd * options.alpha_walk_sd * elapsed;  // (29)
     // h(alpha) and H = dh/dalpha by automatic differentiation (30)-(31).
-    SegmentLinearization l = LinearizeSegment(seg, alpha.data(), options);
-    ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
-        seg.steps, alpha.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
-    Eigen::Matrix3d R = terms.Total(q);
-    Eigen::Matrix3d HPH = l.H * P * l.H.transpose();  // the prior's share of the residual
-    Eigen::LDLT<Eigen::Matrix3d> S_ldlt(HPH + R);
-    double nis = l.residual.dot(S_ldlt.solve(l.residual));
+    SegmentLinearization l;
+    ipd::PredictionCovarianceTerms terms;
+    Eigen::Matrix3d R, HPH;  // HPH: the prior's share of the residual
+    Eigen::LDLT<Eigen::Matrix3d> S_ldlt;
+    SegmentLikelihood score;
+    const auto linearize = [&] {
+      l = LinearizeSegment(seg, alpha.data(), options);
+      terms = ipd::PredictionCovariance(seg.steps, alpha.data(), options.gravity_mps2,
+                                        seg.sigma_start, seg.sigma_end);
+      R = terms.Total(q);
+      HPH = l.H * P * l.H.transpose();
+      S_ldlt.compute(HPH + R);
+      score = Likelihood(l.residual, S_ldlt);
+    };
+    linearize();
     IpdSlipModel stored;
-    if (memory.Score(seg, -0.5 * (nis + S_ldlt.vectorD().array().log().sum()), &stored)) {
+    if (memory.Score(seg, score.log_likelihood, &stored)) {
       // Back on a terrain driven before: its model replaces the current one.
       ++recalled;
       alpha = stored.alpha;
@@ -254,14 +262,9 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
       q = stored.q;
       model_since_t = seg.t_end;
       gated_in_a_row = 0;
-      l = LinearizeSegment(seg, alpha.data(), options);
-      terms = ipd::PredictionCovariance(seg.steps, alpha.data(), options.gravity_mps2,
-                                        seg.sigma_start, seg.sigma_end);
-      R = terms.Total(q);
-      HPH = l.H * P * l.H.transpose();
-      S_ldlt.compute(HPH + R);
-      nis = l.residual.dot(S_ldlt.solve(l.residual));
+      linearize();
     }
+    double nis = score.nis;
     const Eigen::Vector3d& residual = l.residual;
     const Eigen::Matrix<double, 3, kAlphaSize>& H = l.H;
     if (nis > kSegmentGateChi2) {
@@ -320,12 +323,8 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
                            " of them taken with alpha's covariance inflated (a persistent "
                            "misfit: the terrain changed)");
   }
-  if (recalled > 0 || memory.size() > 0) {
-    result.notes.push_back("terrain memory: " + std::to_string(memory.stored()) +
-                           " slip model(s) stored, " + std::to_string(memory.merged()) +
-                           " re-stored as the same terrain, " + std::to_string(recalled) +
-                           " recalled");
-  }
+  const std::string memory_note = memory.Describe(recalled);
+  if (!memory_note.empty()) result.notes.push_back(memory_note);
   return result;
 }
 

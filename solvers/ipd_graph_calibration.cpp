@@ -142,9 +142,9 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       const Eigen::Matrix3d HPH = l.H * latest_covariance * l.H.transpose();
       // A jump: segments failing the gate in a row at the newest alpha free the walk into
       // their block (once per block).
-      const Eigen::LDLT<Eigen::Matrix3d> S(HPH + terms.Total(stochastic.q()));
-      const double nis = l.residual.dot(S.solve(l.residual));
-      const bool gated = nis > kSegmentGateChi2;
+      const SegmentLikelihood score =
+          Likelihood(l.residual, Eigen::LDLT<Eigen::Matrix3d>(HPH + terms.Total(stochastic.q())));
+      const bool gated = score.nis > kSegmentGateChi2;
       gated_in_a_row = gated ? gated_in_a_row + 1 : 0;
       const int block = first_block + index;
       if (graph.jump_sd > 0.0 && options.readmit_after > 0 &&
@@ -164,7 +164,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       // the stored model as its prior instead of the walk from the block before it.
       IpdSlipModel stored;
       const int newest = first_block + static_cast<int>(blocks.size()) - 1;
-      if (memory.Score(seg, -0.5 * (nis + S.vectorD().array().log().sum()), &stored) &&
+      if (memory.Score(seg, score.log_likelihood, &stored) &&
           blocks.size() > 1 && walk_into.count(newest) && !recalled_into.count(newest)) {
         problem.RemoveResidualBlock(walk_into[newest]);
         walk_into.erase(newest);
@@ -227,12 +227,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
                            " block(s) where segments failed the gate in a row: the walk into "
                            "them freed (a jump)");
   }
-  if (recalls > 0 || memory.size() > 0) {
-    result.notes.push_back("terrain memory: " + std::to_string(memory.stored()) +
-                           " slip model(s) stored, " + std::to_string(memory.merged()) +
-                           " re-stored as the same terrain, " + std::to_string(recalls) +
-                           " recalled");
-  }
+  const std::string memory_note = memory.Describe(recalls);
+  if (!memory_note.empty()) result.notes.push_back(memory_note);
   result.final_alpha = latest;
   std::vector<double*> chain;
   for (Alpha& a : blocks) chain.push_back(a.data());

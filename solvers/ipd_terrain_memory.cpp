@@ -1,6 +1,5 @@
 #include "solvers/ipd_terrain_memory.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
@@ -20,16 +19,36 @@ SegmentLikelihood ScoreSegment(const IpdSegment& segment, const IpdSlipModel& mo
   const ipd::PredictionCovarianceTerms terms =
       ipd::PredictionCovariance(segment.steps, model.alpha.data(), options.gravity_mps2,
                                 segment.sigma_start, segment.sigma_end);
-  const Eigen::Matrix3d S = l.H * model.P * l.H.transpose() + terms.Total(model.q);
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt(S);
+  return Likelihood(l.residual, Eigen::LDLT<Eigen::Matrix3d>(l.H * model.P * l.H.transpose() +
+                                                             terms.Total(model.q)));
+}
+
+SegmentLikelihood Likelihood(const Eigen::Vector3d& residual,
+                             const Eigen::LDLT<Eigen::Matrix3d>& S) {
   SegmentLikelihood out;
-  out.nis = l.residual.dot(ldlt.solve(l.residual));
-  out.log_likelihood = -0.5 * (out.nis + ldlt.vectorD().array().log().sum());
+  out.nis = residual.dot(S.solve(residual));
+  out.log_likelihood = -0.5 * (out.nis + S.vectorD().array().log().sum());
   return out;
 }
 
 IpdTerrainMemory::IpdTerrainMemory(const IpdOptions& ipd)
-    : ipd_(ipd), options_(ipd.terrain_memory) {}
+    : ipd_(ipd), options_(ipd.terrain_memory), same_terrain_(ChiSquare99(ipd::kAlphaSize)) {
+  const int window = std::max(2, options_.window);
+  nis_bound_.assign(window + 1, 0.0);
+  for (int n = 1; n <= window; ++n) nis_bound_[n] = ChiSquare99(3.0 * n);
+}
+
+std::string IpdTerrainMemory::Describe(long recalled) const {
+  if (recalled == 0 && models_.empty()) return "";
+  return "terrain memory: " + std::to_string(stored_) + " slip model(s) stored, " +
+         std::to_string(merged_) + " re-stored as the same terrain, " + std::to_string(recalled) +
+         " recalled";
+}
+
+void IpdTerrainMemory::RestartComparison() {
+  current_recent_.clear();
+  for (Stored& s : models_) s.recent.clear();
+}
 
 IpdSlipModel IpdTerrainMemory::Grown(const Stored& s, double t) const {
   IpdSlipModel m = s.model;
@@ -41,18 +60,16 @@ IpdSlipModel IpdTerrainMemory::Grown(const Stored& s, double t) const {
 void IpdTerrainMemory::Misfit(const IpdSlipModel& current, double in_use_since, double t) {
   if (options_.capacity <= 0) return;
   search_until_ = t + options_.search_s;
-  current_recent_.clear();
-  for (Stored& s : models_) s.recent.clear();
+  RestartComparison();
   if (t - in_use_since >= options_.settle_s) Store(current, t);
 }
 
 void IpdTerrainMemory::Store(const IpdSlipModel& current, double t) {
   // The same terrain as a stored model: replace it (the newer one has seen more of it).
-  const double same = ChiSquare99(ipd::kAlphaSize);
   for (Stored& s : models_) {
     const Eigen::Matrix<double, ipd::kAlphaSize, 1> d = current.alpha - s.model.alpha;
     const Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize> C = current.P + Grown(s, t).P;
-    if (d.dot(C.ldlt().solve(d)) < same) {
+    if (d.dot(C.ldlt().solve(d)) < same_terrain_) {
       s.model = current;
       s.stored_t = s.used_t = t;
       ++merged_;
@@ -84,15 +101,14 @@ bool IpdTerrainMemory::Score(const IpdSegment& segment, double current_log_likel
     if (s.recent.size() < 2) continue;
     double ll = 0.0, nis = 0.0;
     for (const SegmentLikelihood& x : s.recent) ll += x.log_likelihood, nis += x.nis;
-    if (nis > ChiSquare99(3.0 * s.recent.size())) continue;
+    if (nis > nis_bound_[s.recent.size()]) continue;
     if (ll > best_sum) best_sum = ll, best = &s;
   }
   if (best == nullptr || best_sum - current_sum < options_.log_bayes_factor) return false;
   *recalled = Grown(*best, segment.t_end);
   best->used_t = segment.t_end;
   // The recalled model is now the current one: the comparison starts afresh.
-  current_recent_.clear();
-  for (Stored& s : models_) s.recent.clear();
+  RestartComparison();
   return true;
 }
 

@@ -26,8 +26,10 @@
 // and re-admission work as before.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <deque>
+#include <string>
 #include <vector>
 
 #include "factors/ipd_kinematics.h"
@@ -48,6 +50,10 @@ struct SegmentLikelihood {
   double log_likelihood = 0.0;  // -(nis + log det S) / 2
   double nis = 0.0;
 };
+// From a residual and the factored covariance S of its prediction (the EKF, the window and
+// ScoreSegment all score this way).
+SegmentLikelihood Likelihood(const Eigen::Vector3d& residual,
+                             const Eigen::LDLT<Eigen::Matrix3d>& S);
 SegmentLikelihood ScoreSegment(const IpdSegment& segment, const IpdSlipModel& model,
                                const IpdOptions& options);
 
@@ -67,6 +73,9 @@ class IpdTerrainMemory {
   size_t size() const { return models_.size(); }
   int stored() const { return stored_; }
   int merged() const { return merged_; }
+  // The run's note ("terrain memory: ..."), given how many recalls the caller applied; empty
+  // when nothing was stored or recalled.
+  std::string Describe(long recalled) const;
 
  private:
   struct Stored {
@@ -80,9 +89,12 @@ class IpdTerrainMemory {
   std::deque<double> current_recent_;  // the current model's log-likelihoods
   double search_until_ = -1e300;
   int stored_ = 0, merged_ = 0;
+  double same_terrain_;            // chi-square 99 % point, 13 dof
+  std::vector<double> nis_bound_;  // chi-square 99 % point of 3 n dof, by n segments
 
   IpdSlipModel Grown(const Stored& s, double t) const;
   void Store(const IpdSlipModel& model, double t);
+  void RestartComparison();
 };
 
 }  // namespace slipgraph
