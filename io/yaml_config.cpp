@@ -194,7 +194,9 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
         {"low_speed", &im.low_speed_mps, false},
         {"min_wheel_speed", &im.min_wheel_speed_mps, false}}},
       {"offsets",
-       {{"init_samples", &init_samples, false}, {"ema_samples", &m.offset_ema_samples, false}}},
+       {{"init_samples", &init_samples, false},
+        {"ema_samples", &m.offset_ema_samples, false},
+        {"rest_guard", &m.offset_rest_guard_s, false}}},
       {"tire_uncertainty",
        {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
         {"slip_relative_sd", &m.tire_uncertainty.slip_relative_sd, false},
@@ -349,7 +351,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                              {"low_speed", im.low_speed_mps},
                              {"min_wheel_speed", im.min_wheel_speed_mps}});
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
-                      {"ema_samples", m.offset_ema_samples}});
+                      {"ema_samples", m.offset_ema_samples},
+                      {"rest_guard", m.offset_rest_guard_s}});
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
                                {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},
                                {"slip_floor", m.tire_uncertainty.slip_floor_mps},

@@ -107,6 +107,10 @@ bool ModelConfig::IsValid(std::string* error) const {
       return false;
     }
   }
+  if (!(offset_rest_guard_s >= 0.0)) {
+    *error = "offsets.rest_guard must be non-negative";
+    return false;
+  }
   if (offset_init_samples < 1) {
     *error = "offset_init_samples must be at least 1";
     return false;

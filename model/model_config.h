@@ -94,6 +94,9 @@ struct ModelConfig {
   ImmobilizationConfig immobilization;
   int offset_init_samples = 100;      // n: IMU samples averaged for the constant offsets
   double offset_ema_samples = 200.0;  // p of eq. (12) for the offsets at rest
+  // An at-rest IMU sample updates the offsets only once the robot has stayed at rest this long
+  // after it (the encoders see a start late; solvers/imu_offsets.h).
+  double offset_rest_guard_s = 0.5;
   std::vector<std::string> effects;   // optional physical effects switched on, by name
   // Where an effect that acts on part of a drive acts (ActsOnWindows): for sinkage_resistance
   // the time spans (log time, s) on soft ground, for terrain_change those on the changed

@@ -2,10 +2,14 @@
 
 namespace slipgraph {
 
-ImuOffsetEstimator::ImuOffsetEstimator(int init_samples, double ema_samples)
-    : init_samples_(init_samples), accel_(ema_samples), gyro_(ema_samples) {}
+ImuOffsetEstimator::ImuOffsetEstimator(int init_samples, double ema_samples, double rest_guard_s)
+    : init_samples_(init_samples),
+      rest_guard_s_(rest_guard_s),
+      accel_(ema_samples),
+      gyro_(ema_samples) {}
 
-void ImuOffsetEstimator::Add(double accel_x, double gyro_z, double gravity_along_x, bool at_rest) {
+void ImuOffsetEstimator::Add(double t, double accel_x, double gyro_z, double gravity_along_x,
+                             bool at_rest) {
   const double accel_offset = accel_x - gravity_along_x;
   if (count_ < init_samples_) {
     sum_accel_ += accel_offset;
@@ -17,9 +21,15 @@ void ImuOffsetEstimator::Add(double accel_x, double gyro_z, double gravity_along
     }
     return;
   }
-  if (at_rest) {
-    accel_.Add(accel_offset);
-    gyro_.Add(gyro_z);
+  if (!at_rest) {
+    pending_.clear();  // the robot was moving, perhaps already during these
+    return;
+  }
+  pending_.push_back({t, accel_offset, gyro_z});
+  while (!pending_.empty() && pending_.front().t <= t - rest_guard_s_) {
+    accel_.Add(pending_.front().accel_offset);
+    gyro_.Add(pending_.front().gyro_z);
+    pending_.pop_front();
   }
 }
 

@@ -73,7 +73,7 @@ WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOpti
     : params_(MakeParams(vehicle, model)),
       model_(model),
       options_(options),
-      offsets_(model.offset_init_samples, model.offset_ema_samples),
+      offsets_(model.offset_init_samples, model.offset_ema_samples, model.offset_rest_guard_s),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m) {
   for (int i = 0; i < kStateSize; ++i) P_(i, i) = options.initial_sd[i] * options.initial_sd[i];
   loads_ = ComputeAttitudeLoads(CurrentAttitude(), params_);
@@ -269,12 +269,12 @@ void WardEkf::AddImu(const ImuSample& imu) {
   const bool ax_ok = IsFinite(imu.ax), gz_ok = IsFinite(imu.gz);
   if (!offsets_.ready()) {
     if (ax_ok && gz_ok) {
-      offsets_.Add(imu.ax, imu.gz, GravityAlongX(), at_rest);
+      offsets_.Add(imu.t, imu.ax, imu.gz, GravityAlongX(), at_rest);
       ++stats_.offset_init_samples;
     }
     return;
   }
-  if (ax_ok && gz_ok) offsets_.Add(imu.ax, imu.gz, GravityAlongX(), at_rest);
+  if (ax_ok && gz_ok) offsets_.Add(imu.t, imu.ax, imu.gz, GravityAlongX(), at_rest);
   stats_.imu.dropped_components += (ax_ok ? 0 : 1) + (gz_ok ? 0 : 1);
 
   using Jet = ceres::Jet<double, kStateSize>;
