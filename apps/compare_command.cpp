@@ -130,7 +130,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::string log, model, html;
     bool no_gps = false, skip_bad = false, no_plots = false;
     WindowSmootherOptions window;
-    double stiffness_sd = 0.0;
+    double stiffness_sd = kPostProcessingStiffnessPriorSd;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -146,7 +146,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
   cmd->add_option("--stiffness-sd", options->stiffness_sd,
                   "Batch: estimate the tire law's slip stiffness (the terrain is not the law's), "
-                  "with a prior of this relative sd around the law's; 0: the law's as given")
+                  "with a prior of this relative sd around the law's; 0: the law's as given. Not "
+                  "with model effects")
       ->capture_default_str();
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
@@ -204,8 +205,16 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       for (const std::string& estimator : names) {
         rows.push_back(Row(estimator, Combine(by_estimator[estimator], name), seconds[estimator]));
       }
+      char prior[32];
+      std::snprintf(prior, sizeof(prior), "%g", options->stiffness_sd);
+      const std::string batch_law =
+          options->stiffness_sd > 0.0
+              ? std::string("the batch estimates the tire law's slip stiffness (prior sd ") +
+                    prior + "; --stiffness-sd 0: the law as given)"
+              : "the batch keeps the tire law as given";
       std::cout << name << " (" << by_estimator["EKF"].size()
-                << " log(s)) against truth; window and batch times include their EKF run\n";
+                << " log(s)) against truth; window and batch times include their EKF run; "
+                << batch_law << "\n";
       PrintTable(rows, std::cout);
       HtmlReport summary = html;  // the summary goes first on the page
       HtmlReport page("slipgraph compare: " + name);
@@ -213,7 +222,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       page.Paragraph(std::to_string(by_estimator["EKF"].size()) +
                      " log(s). Window and batch times include their own EKF run. The window "
                      "smoother's estimates are each state's value as it left the window "
-                     "(lag = window length).");
+                     "(lag = window length). The window keeps the tire law as given; " +
+                     batch_law + ".");
       page.Table(kHeader, rows);
       page.Append(summary);
       page.Write(html_path);

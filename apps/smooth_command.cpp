@@ -16,7 +16,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     double overlap_s = 60.0;
     bool advance_velocity = false;
     double advance_sd_m = 0.003;
-    double stiffness_sd = 0.0;
+    double stiffness_sd = kPostProcessingStiffnessPriorSd;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
@@ -40,8 +40,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
       ->capture_default_str();
   cmd->add_option("--stiffness-sd", options->stiffness_sd,
                   "Estimate the tire law's slip stiffness (the terrain is not the law's), with a "
-                  "prior of this relative sd around the law's (0.15 measured best on ward21); 0: "
-                  "the law's as given. Not with model effects")
+                  "prior of this relative sd around the law's; 0: the law's as given. Not with "
+                  "model effects or --chunk")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->callback([options, status]() {
@@ -69,8 +69,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
             log, model,
             ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
         if (options->stiffness_sd > 0.0) {
-          report << "note: --stiffness-sd is for the whole-log solve; the chunks keep the law's "
-                    "slip stiffness\n";
+          report << "note: the chunks keep the law's slip stiffness (--stiffness-sd is for the "
+                    "whole-log solve)\n";
         }
         report << DescribeWindowRun(result);
         return EstimatorOutput{result.estimates, {}};

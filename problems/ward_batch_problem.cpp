@@ -98,6 +98,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     const double walk = options.stiffness_walk_sd * std::sqrt(options.stiffness_node_s);
     for (size_t j = 0; j < out->stiffness.size(); ++j) {
       problem.AddParameterBlock(&stiffness[j], 1);
+      problem.SetParameterLowerBound(&stiffness[j], 0, options.stiffness_min);
       if (j == 0) {
         added.push_back({"stiffness_prior",
                          problem.AddResidualBlock(

@@ -1,6 +1,7 @@
 #include "solvers/batch_smoother.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <sstream>
 
@@ -83,6 +84,16 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
         "effects");
   }
   result.stiffness = problem->stiffness;
+  if (std::any_of(result.stiffness.begin(), result.stiffness.end(), [&](double theta) {
+        return theta <= options.problem.stiffness_min + 1e-6;
+      })) {
+    char bound[32];
+    std::snprintf(bound, sizeof(bound), "%.2f", options.problem.stiffness_min);
+    result.notes.push_back(std::string("the slip stiffness reached its lower bound (theta = ") +
+                           bound +
+                           "): the terrain wants a far flatter tire law than the model's; the "
+                           "law does not fit this log");
+  }
   const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
     EkfEstimate& e = result.estimates[k];

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -103,6 +104,30 @@ TEST(BatchSmoother, EstimatedSlipStiffnessFollowsTheTerrain) {
   EXPECT_LT(free.velocity_rmse, 0.85 * ekf.velocity_rmse);
   EXPECT_GT(free.nees_within_95_fraction(), law.nees_within_95_fraction() + 0.15);
   EXPECT_EQ(free.detected(), 6);
+}
+
+// The scale 1 + theta is bounded below (WardProblemOptions::stiffness_min): on ward21/01 (mulch,
+// then mud) the stiffness settles near -0.5; with the bound moved to -0.2 it stops there and the
+// run says the law does not fit.
+TEST(BatchSmoother, SlipStiffnessStopsAtItsBoundAndSaysSo) {
+  const DriveLog log = Simulated("ward21/01");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  BatchSmootherOptions options;
+  options.problem.stiffness_prior_sd = 0.15;
+  const auto said = [](const SmootherResult& r) {
+    return std::any_of(r.notes.begin(), r.notes.end(), [](const std::string& note) {
+      return note.find("lower bound") != std::string::npos;
+    });
+  };
+  const SmootherResult free = SmoothBatch(log, model, options);
+  ASSERT_FALSE(free.stiffness.empty());
+  EXPECT_LT(*std::min_element(free.stiffness.begin(), free.stiffness.end()), -0.3);
+  EXPECT_FALSE(said(free));
+  options.problem.stiffness_min = -0.2;
+  const SmootherResult bounded = SmoothBatch(log, model, options);
+  ASSERT_FALSE(bounded.used_fallback);
+  for (double theta : bounded.stiffness) EXPECT_GE(theta, -0.2 - 1e-9);
+  EXPECT_TRUE(said(bounded));
 }
 
 TEST(BatchSmoother, FallsBackToTheEkfAndSaysSo) {
