@@ -1,8 +1,8 @@
 #include "solvers/batch_smoother.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "factors/force_term.h"
