@@ -41,8 +41,8 @@ struct WeakConstraintInputs {
   double slip_ema = 0.0;              // i_EMA
   double slip_ema_rate_per_s = 0.0;   // d(i_EMA)/dt
   double wheels_stopped_s = 0.0;      // how long both wheels have read zero
-  double f_tire_mps2 = 0.0;           // f_tire at the a priori state (read when
-                                      // MovingAgainstTheWheels)
+  double f_tire_mps2 = 0.0;           // f_tire at the a priori wheel speeds, body held still
+                                      // (v_bx = 0); read when MovingAgainstTheWheels
   double gravity_along_x_mps2 = 0.0;  // g sin(phi), phi uphill positive
 };
 

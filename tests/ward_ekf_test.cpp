@@ -34,16 +34,16 @@ TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) 
     EXPECT_LT(ev.events[0].delay_s, 0.4);  // the paper's mean detection time
     EXPECT_EQ(ev.false_immobilized_samples, 0);
     EXPECT_LT(ev.velocity_rmse, 0.04);  // measured 0.027 m/s
-    // Settled disturbance over the last second of the hold: the target is within 10 % of
-    // the tether's -2.78 m/s^2; measured -3.14 (13 %), because v_bx settles 3-6 cm/s below zero
-    // and the stiff rolling law near v = 0 adds to a_dist (docs/ekf.md). This bound guards the
-    // measured level until that is fixed; it is not the target.
+    // Settled disturbance over the last second of the hold: the target, within 10 % of
+    // the tether's -2.78 m/s^2. Measured -2.88 (4 %; seeds 2-5 -2.66 to -2.84); -3.14 (13 %)
+    // while weak constraint 3 balanced the tires at the a priori v_bx, 2-6 cm/s below zero,
+    // where the steep rolling law near v = 0 had turned round (docs/ekf.md).
     double sum = 0.0;
     int n = 0;
     for (const EkfEstimate& e : result.estimates) {
       if (e.t > 12.9 && e.t < 13.9) sum += e.x[ward::kAdist], ++n;
     }
-    EXPECT_NEAR(sum / n, -2.78, 0.42) << "gps=" << gps;
+    EXPECT_NEAR(sum / n, -2.78, 0.278) << "gps=" << gps;
   }
 }
 
