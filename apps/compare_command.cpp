@@ -144,11 +144,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
   cmd->add_option("--report,--html", options->html,
                   "Report page (default ./<log>_compare.html); plots of every log in it");
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
-  cmd->add_option("--stiffness-sd", options->stiffness_sd,
-                  "Batch: estimate the tire law's slip stiffness (the terrain is not the law's), "
-                  "with a prior of this relative sd around the law's; 0: the law's as given. Not "
-                  "with model effects")
-      ->capture_default_str();
+  AddStiffnessOption(cmd, &options->stiffness_sd);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     const std::string path = options->log.empty() ? DefaultLogPath() : options->log;

@@ -77,4 +77,13 @@ void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver) {
       ->default_str(*solver == WindowSolver::kCeres ? "ceres" : "chain");
 }
 
+void AddStiffnessOption(CLI::App* cmd, double* prior_sd) {
+  cmd->add_option("--stiffness-sd", *prior_sd,
+                  "Batch smoother: estimate the tire law's slip stiffness (the terrain is not the "
+                  "law's), with a prior of this relative sd around the law's; 0: the law as "
+                  "given. Not with model effects, nor in smooth's --chunk mode")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
 }  // namespace slipgraph

@@ -52,4 +52,8 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
 // --solver chain|ceres: how the sliding window solves (online, compare).
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver);
 
+// --stiffness-sd SD: the batch smoother's prior on the tire law's slip stiffness (smooth,
+// compare); *prior_sd holds the default.
+void AddStiffnessOption(CLI::App* cmd, double* prior_sd);
+
 }  // namespace slipgraph

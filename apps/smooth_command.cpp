@@ -38,12 +38,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
                   "sd of one cycle's advance for --advance-velocity where the graph gives none, m")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--stiffness-sd", options->stiffness_sd,
-                  "Estimate the tire law's slip stiffness (the terrain is not the law's), with a "
-                  "prior of this relative sd around the law's; 0: the law's as given. Not with "
-                  "model effects or --chunk")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  AddStiffnessOption(cmd, &options->stiffness_sd);
   cmd->callback([options, status]() {
     BatchSmootherOptions base_options;
     base_options.problem.stiffness_prior_sd = options->stiffness_sd;
