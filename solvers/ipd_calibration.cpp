@@ -18,6 +18,7 @@ using ipd::kAlphaSize;
 using AlphaVector = Eigen::Matrix<double, kAlphaSize, 1>;
 using AlphaMatrix = Eigen::Matrix<double, kAlphaSize, kAlphaSize>;
 
+
 double PoseSd(double stated, double floor) {
   return std::isfinite(stated) && stated > floor ? stated : floor;
 }
@@ -214,6 +215,15 @@ void StochasticCalibrator::Update(const Eigen::Vector3d& residual,
   q_ = q_.cwiseMax(1e-9);  // densities stay positive
 }
 
+JumpDetectorOptions IpdJumpDetectorOptions(const IpdOptions& options) {
+  JumpDetectorOptions o;
+  o.jump_sd = options.jump.jump_sd;
+  o.log_bayes_factor = options.jump.log_bayes_factor;
+  o.window = std::max(1, static_cast<int>(std::lround(options.jump.window_s / options.spacing_s)));
+  o.overlap = std::max(1.0, options.segment_s / options.spacing_s);
+  return o;
+}
+
 IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options) {
   IpdCalibrationResult result;
   result.segments = BuildIpdSegments(log, options);
@@ -228,9 +238,17 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
   IpdCovarianceMatching matching(options.match_covariance_segments);
   IpdTerrainMemory memory(options);
   double model_since_t = last_update_t;  // the current model's start: the last misfit or recall
-  long rejected = 0, readmitted = 0, recalled = 0;
+  long rejected = 0, readmitted = 0, recalled = 0, jumps = 0;
   int gated_in_a_row = 0;
+  JumpDetector<kAlphaSize, 3> detector(IpdJumpDetectorOptions(options));
 
+  const auto record = [&](double t) {
+    std::array<double, kAlphaSize> a;
+    for (int i = 0; i < kAlphaSize; ++i) a[i] = alpha[i];
+    result.update_t.push_back(t);
+    result.alpha.push_back(a);
+    result.q.push_back(q);
+  };
   // Segment j's update, applied once its end pose is measured.
   const auto update = [&](const IpdSegment& seg) {
     const double elapsed = std::max(0.0, seg.t_end - last_update_t);
@@ -262,7 +280,23 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
       q = stored.q;
       model_since_t = seg.t_end;
       gated_in_a_row = 0;
+      detector.Restart();
       linearize();
+    }
+    JumpDetector<kAlphaSize, 3>::Jump jump;
+    if (options.jump.enabled &&
+        detector.Measure(seg.t_end, l.residual, l.H, HPH + R, &jump)) {
+      // A jump in alpha before jump.t: the model before it is remembered, alpha corrected by the
+      // jump's estimate (which already holds this segment).
+      ++jumps;
+      memory.Misfit({alpha, P, q}, model_since_t, seg.t_end);
+      model_since_t = seg.t_end;
+      alpha += jump.correction;
+      P += jump.covariance;
+      detector.Restart();
+      gated_in_a_row = 0;
+      record(seg.t_end);
+      return;
     }
     double nis = score.nis;
     const Eigen::Vector3d& residual = l.residual;
@@ -288,14 +322,11 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
     alpha += K * residual;  // (33)
     const AlphaMatrix I_KH = AlphaMatrix::Identity() - K * H;
     P = I_KH * P * I_KH.transpose() + K * R * K.transpose();  // (34), Joseph form
+    detector.Updated(K, H);
 
     if (options.calibrate_q) stochastic.Update(residual, terms, HPH, elapsed);
     q = stochastic.q();
-    result.update_t.push_back(seg.t_end);
-    std::array<double, kAlphaSize> a;
-    for (int i = 0; i < kAlphaSize; ++i) a[i] = alpha[i];
-    result.alpha.push_back(a);
-    result.q.push_back(q);
+    record(seg.t_end);
   };
 
   for (size_t i = 0; i < segments.size(); ++i) {
@@ -322,6 +353,11 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
                            std::to_string(readmitted) +
                            " of them taken with alpha's covariance inflated (a persistent "
                            "misfit: the terrain changed)");
+  }
+  if (jumps > 0) {
+    result.notes.push_back(std::to_string(jumps) +
+                           " jump(s) in the slip model detected from the segments' innovations "
+                           "(a terrain change); alpha corrected by each jump's estimate");
   }
   const std::string memory_note = memory.Describe(recalled);
   if (!memory_note.empty()) result.notes.push_back(memory_note);

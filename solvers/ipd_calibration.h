@@ -23,6 +23,7 @@
 
 #include "factors/ipd_segment.h"
 #include "io/drive_log.h"
+#include "solvers/jump_detector.h"
 
 namespace slipgraph {
 
@@ -34,6 +35,16 @@ struct IpdTerrainMemoryOptions {
   double search_s = 20.0;  // stored models are scored this long after a misfit
   int window = 4;          // segments in the likelihood comparison
   double log_bayes_factor = 4.605;  // ln(100)
+};
+
+// Jump detection on the segments' innovations (solvers/jump_detector.h): a terrain change is a
+// jump in alpha that the slow walk follows in tens of seconds and that seldom fails the gate of
+// one segment; the detector tests "alpha jumped before segment k" for the recent segments.
+struct IpdJumpOptions {
+  bool enabled = true;
+  double jump_sd = 0.05;           // prior sd of a jump in each alpha
+  double log_bayes_factor = 6.9;   // ln 1000
+  double window_s = 20.0;          // jumps this far back are tested
 };
 
 struct IpdOptions {
@@ -55,6 +66,7 @@ struct IpdOptions {
   // (solvers/ipd_covariance_matching.h), with a memory of this many predictions; 0: off.
   double match_covariance_segments = 20.0;
   IpdTerrainMemoryOptions terrain_memory;
+  IpdJumpOptions jump;
 };
 
 // The segments' innovation gate: chi-square with 3 dof at 99.99 % (a pose glitch must not wreck
@@ -127,6 +139,10 @@ struct IpdCalibrationResult {
 };
 
 IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options = {});
+
+// The jump detector's options from the IPD options (one hypothesis per segment over
+// jump.window_s; each stretch of odometry is in segment_s / spacing_s segments).
+JumpDetectorOptions IpdJumpDetectorOptions(const IpdOptions& options);
 
 // The stochastic calibration of eqs. (18)-(27): a linear Kalman filter on the diagonal of Q whose
 // observation is the scatter matrix of a segment's residual. Shared by the EKF and the Ceres

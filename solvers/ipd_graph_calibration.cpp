@@ -103,6 +103,32 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
   int gated_in_a_row = 0, jumps = 0, recalls = 0;
   IpdTerrainMemory memory(options);
   double model_since_t = t0;  // the current model's start: the last jump or recall
+  // Jumps found from the innovations (solvers/jump_detector.h, as the EKF): hypotheses only as
+  // far back as the window still holds the block to free.
+  JumpDetectorOptions jump_options = IpdJumpDetectorOptions(options);
+  jump_options.window = std::max(
+      1, std::min(jump_options.window,
+                  static_cast<int>((graph.window_s - 2.0 * block_s) / options.spacing_s)));
+  JumpDetector<ipd::kAlphaSize, 3> detector(jump_options);
+  // Frees the walk into `block` (a jump: the terrain changed), once per block; false when the
+  // block has no walk in the window or has jumped already.
+  const auto free_walk = [&](int block, double t) {
+    const int index = block - first_block;
+    if (index <= 0 || index >= static_cast<int>(blocks.size()) || !walk_into.count(block) ||
+        jumped.count(block)) {
+      return false;
+    }
+    memory.Misfit({Eigen::Map<const Eigen::Matrix<double, ipd::kAlphaSize, 1>>(latest.data()),
+                   latest_covariance, stochastic.q()},
+                  model_since_t, t);
+    model_since_t = t;
+    problem.RemoveResidualBlock(walk_into[block]);
+    walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(),
+                               blocks[index].data());
+    jumped.insert(block);
+    ++jumps;
+    return true;
+  };
   for (int j = 0; j <= last_block + 1; ++j) {
     const double block_end = t0 + (j + 1) * block_s;
     // Predictions of segments starting before this block's solve use the newest solved alpha.
@@ -140,25 +166,28 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       const ipd::PredictionCovarianceTerms terms = ipd::PredictionCovariance(
           seg.steps, latest.data(), options.gravity_mps2, seg.sigma_start, seg.sigma_end);
       const Eigen::Matrix3d HPH = l.H * latest_covariance * l.H.transpose();
-      // A jump: segments failing the gate in a row at the newest alpha free the walk into
-      // their block (once per block).
+      // A jump frees the walk into a block (once per block): the detector's jump (into the
+      // block of the first segment after it), or segments failing the gate in a row at the
+      // newest alpha (into theirs).
       const SegmentLikelihood score =
           Likelihood(l.residual, Eigen::LDLT<Eigen::Matrix3d>(HPH + terms.Total(stochastic.q())));
       const bool gated = score.nis > kSegmentGateChi2;
       gated_in_a_row = gated ? gated_in_a_row + 1 : 0;
       const int block = first_block + index;
+      JumpDetector<ipd::kAlphaSize, 3>::Jump jump;
+      if (graph.jump_sd > 0.0 && options.jump.enabled &&
+          detector.Measure(0.5 * (seg.t_start + seg.t_end), l.residual, l.H,
+                           HPH + terms.Total(stochastic.q()), &jump)) {
+        free_walk(BlockOf(jump.t, t0, block_s), seg.t_end);
+        detector.Restart();
+      } else {
+        // The window's update on this segment, as the detector's filter sees it.
+        const Eigen::Matrix3d S = HPH + terms.Total(stochastic.q());
+        detector.Updated(latest_covariance * l.H.transpose() * S.inverse(), l.H);
+      }
       if (graph.jump_sd > 0.0 && options.readmit_after > 0 &&
-          gated_in_a_row > options.readmit_after && index > 0 && walk_into.count(block) &&
-          !jumped.count(block)) {
-        memory.Misfit({Eigen::Map<const Eigen::Matrix<double, ipd::kAlphaSize, 1>>(latest.data()),
-                       latest_covariance, stochastic.q()},
-                      model_since_t, seg.t_end);
-        model_since_t = seg.t_end;
-        problem.RemoveResidualBlock(walk_into[block]);
-        walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(),
-                                   blocks[index].data());
-        jumped.insert(block);
-        ++jumps;
+          gated_in_a_row > options.readmit_after) {
+        free_walk(block, seg.t_end);
       }
       // Back on a terrain driven before (solvers/ipd_terrain_memory.h): the newest block takes
       // the stored model as its prior instead of the walk from the block before it.
@@ -174,6 +203,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
             nullptr, blocks.back().data());
         for (int i = 0; i < ipd::kAlphaSize; ++i) latest[i] = blocks.back()[i] = stored.alpha[i];
         latest_covariance = stored.P;
+        detector.Restart();
         stochastic.Recall(stored.q);
         model_since_t = seg.t_end;
         recalled_into.insert(newest);
@@ -224,8 +254,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
   }
   if (jumps > 0) {
     result.notes.push_back(std::to_string(jumps) +
-                           " block(s) where segments failed the gate in a row: the walk into "
-                           "them freed (a jump)");
+                           " block(s) where the slip model jumped (segments failed the gate in "
+                           "a row, or the jump detector found one): the walk into them freed");
   }
   const std::string memory_note = memory.Describe(recalls);
   if (!memory_note.empty()) result.notes.push_back(memory_note);
