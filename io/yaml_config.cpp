@@ -95,7 +95,8 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
       {"cg_height", &v.cg_height_m, true},
       {"axle_spacing", &v.axle_spacing_m, rocker},
   };
-  ReadNumbers(path, root, "", top, false, warnings, {"name", "type", "tire", "rolling", "sensors"});
+  ReadNumbers(path, root, "", top, false, warnings,
+              {"name", "type", "tire", "rolling", "tire_sd", "rolling_sd", "sensors"});
   for (const NumberField& field : top) {
     if (root[field.key] && *field.target <= 0.0) {
       Fail(path, root[field.key], field.key, root[field.key].Scalar(), "must be positive");
@@ -114,6 +115,31 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
                {"A_roll", &v.rolling.A_roll, true},
                {"R2", &v.rolling.R2, true}},
               false, warnings);
+  // Optional (an extension): the coefficients' sd when the law is a fit the terrain may not
+  // follow.
+  const struct {
+    const char* key;
+    std::vector<NumberField> fields;
+  } law_sd[] = {
+      {"tire_sd",
+       {{"C1", &v.tire_sd.C1, false}, {"At", &v.tire_sd.At, false}, {"C2", &v.tire_sd.C2, false}}},
+      {"rolling_sd",
+       {{"R1", &v.rolling_sd.R1, false},
+        {"A_roll", &v.rolling_sd.A_roll, false},
+        {"R2", &v.rolling_sd.R2, false}}},
+  };
+  for (const auto& section : law_sd) {
+    const YAML::Node node = root[section.key];
+    if (!node) continue;
+    const std::string prefix = std::string(section.key) + ".";
+    ReadNumbers(path, node, prefix, section.fields, false, warnings);
+    for (const NumberField& field : section.fields) {
+      if (node[field.key] && *field.target < 0.0) {
+        Fail(path, node[field.key], prefix + field.key, node[field.key].Scalar(),
+             "must be non-negative");
+      }
+    }
+  }
 
   const YAML::Node sensors = root["sensors"];
   const struct {
@@ -154,6 +180,12 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
        {{"R1", &m.rolling.R1, false},
         {"A_roll", &m.rolling.A_roll, false},
         {"R2", &m.rolling.R2, false}}},
+      {"tire_sd",
+       {{"C1", &m.tire_sd.C1, false}, {"At", &m.tire_sd.At, false}, {"C2", &m.tire_sd.C2, false}}},
+      {"rolling_sd",
+       {{"R1", &m.rolling_sd.R1, false},
+        {"A_roll", &m.rolling_sd.A_roll, false},
+        {"R2", &m.rolling_sd.R2, false}}},
       {"process_noise",
        {{"v_bx", &q.v_bx_mps2_per_sqrt_hz, false},
         {"a_dist", &q.a_dist_mps3_per_sqrt_hz, false},
@@ -288,6 +320,17 @@ void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {
   e << YAML::Key << "rolling" << YAML::Value << YAML::Flow << YAML::BeginMap;
   e << YAML::Key << "R1" << YAML::Value << v.rolling.R1 << YAML::Key << "A_roll" << YAML::Value
     << v.rolling.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling.R2 << YAML::EndMap;
+  if (v.tire_sd.C1 > 0.0 || v.tire_sd.At > 0.0 || v.tire_sd.C2 > 0.0) {
+    e << YAML::Key << "tire_sd" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    e << YAML::Key << "C1" << YAML::Value << v.tire_sd.C1 << YAML::Key << "At" << YAML::Value
+      << v.tire_sd.At << YAML::Key << "C2" << YAML::Value << v.tire_sd.C2 << YAML::EndMap;
+  }
+  if (v.rolling_sd.R1 > 0.0 || v.rolling_sd.A_roll > 0.0 || v.rolling_sd.R2 > 0.0) {
+    e << YAML::Key << "rolling_sd" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    e << YAML::Key << "R1" << YAML::Value << v.rolling_sd.R1 << YAML::Key << "A_roll"
+      << YAML::Value << v.rolling_sd.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling_sd.R2
+      << YAML::EndMap;
+  }
   e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
   e << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "sd_accel"
     << YAML::Value << v.sensors.imu_sd_accel_mps2 << YAML::Key << "sd_gyro" << YAML::Value
@@ -315,6 +358,9 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   };
   section("tire", {{"C1", m.tire.C1}, {"At", m.tire.At}, {"C2", m.tire.C2}});
   section("rolling", {{"R1", m.rolling.R1}, {"A_roll", m.rolling.A_roll}, {"R2", m.rolling.R2}});
+  section("tire_sd", {{"C1", m.tire_sd.C1}, {"At", m.tire_sd.At}, {"C2", m.tire_sd.C2}});
+  section("rolling_sd",
+          {{"R1", m.rolling_sd.R1}, {"A_roll", m.rolling_sd.A_roll}, {"R2", m.rolling_sd.R2}});
   section("process_noise", {{"v_bx", q.v_bx_mps2_per_sqrt_hz},
                             {"a_dist", q.a_dist_mps3_per_sqrt_hz},
                             {"a_dist_max", q.a_dist_max_mps3_per_sqrt_hz},

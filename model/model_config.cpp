@@ -71,6 +71,13 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "tire_uncertainty.slip_relative_sd and slip_floor must be non-negative";
     return false;
   }
+  for (double sd : {tire_sd.C1, tire_sd.At, tire_sd.C2, rolling_sd.R1, rolling_sd.A_roll,
+                    rolling_sd.R2}) {
+    if (!(sd >= 0.0)) {
+      *error = "tire_sd and rolling_sd must be non-negative";
+      return false;
+    }
+  }
   if (rolling.R1 < 0.0 || rolling.R2 < 0.0) {
     *error = "rolling.R1 and rolling.R2 must be non-negative";
     return false;
@@ -148,6 +155,8 @@ ModelConfig DefaultModelConfig(const Vehicle& vehicle) {
   ModelConfig config;
   config.tire = vehicle.tire;
   config.rolling = vehicle.rolling;
+  config.tire_sd = vehicle.tire_sd;
+  config.rolling_sd = vehicle.rolling_sd;
   config.measurement = vehicle.sensors;
   return config;
 }

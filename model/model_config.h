@@ -88,6 +88,11 @@ struct ModelConfig {
   TireLawUncertainty tire_uncertainty;
   TireParams tire;        // from vehicle.yaml unless the model file overrides it
   RollingParams rolling;  // from vehicle.yaml unless the model file overrides it
+  // The uncertainty (sd) of those coefficients, when the law is a fit that the terrain may not
+  // follow (e.g. a mean over soils): the batch smoother's sd then include how far its estimate
+  // would move with each coefficient one sd off (solvers/batch_smoother.h). 0: exact.
+  TireParams tire_sd{0.0, 0.0, 0.0};
+  RollingParams rolling_sd{0.0, 0.0, 0.0};
   ProcessNoiseConfig process;
   SensorNoise measurement;  // from vehicle.yaml sensors unless the model file overrides it
   WeakConstraintConfig weak_constraints;

@@ -55,6 +55,10 @@ struct Vehicle {
   double axle_spacing_m = 0.0;    // A, rocker_bogie6 only
   TireParams tire;
   RollingParams rolling;
+  // Optional (vehicle.yaml `tire_sd`, `rolling_sd`, an extension of the format): the sd of those
+  // coefficients when they are a fit the terrain may not follow; 0 when not stated.
+  TireParams tire_sd{0.0, 0.0, 0.0};
+  RollingParams rolling_sd{0.0, 0.0, 0.0};
   SensorNoise sensors;
   // Sensor sections that vehicle.yaml did not give (defaults above were used), e.g. "sensors.gps".
   std::vector<std::string> defaulted_keys;

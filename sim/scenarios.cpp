@@ -1,6 +1,7 @@
 #include "sim/scenarios.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <stdexcept>
@@ -17,6 +18,25 @@ TerrainType NominalTerrain(const Vehicle& vehicle, bool soft) {
 
 uint64_t RunSeed(uint64_t seed, uint64_t run) { return seed * 1000003ULL + run; }
 
+// The sample sd (n - 1) of each tire and rolling coefficient over `terrains`: what a user who
+// fitted one law over those soils knows about how far a soil may be from it.
+void SetLawSpread(const std::vector<std::string>& terrains, Vehicle* vehicle) {
+  double sum[6] = {}, sum_sq[6] = {};
+  const double n = static_cast<double>(terrains.size());
+  for (const std::string& name : terrains) {
+    const TerrainType& t = FindTerrain(name);
+    const double v[6] = {t.tire.C1,    t.tire.At,         t.tire.C2,
+                         t.rolling.R1, t.rolling.A_roll, t.rolling.R2};
+    for (int i = 0; i < 6; ++i) sum[i] += v[i], sum_sq[i] += v[i] * v[i];
+  }
+  double sd[6];
+  for (int i = 0; i < 6; ++i) {
+    sd[i] = std::sqrt(std::max(0.0, (sum_sq[i] - sum[i] * sum[i] / n) / (n - 1.0)));
+  }
+  vehicle->tire_sd = {sd[0], sd[1], sd[2]};
+  vehicle->rolling_sd = {sd[3], sd[4], sd[5]};
+}
+
 // One Ward & Iagnemma style run: rest, drive (with a gentle turn), get held back with the wheels
 // spinning, released, drive on, stop, rest.
 Scenario Ward21Run(int run, uint64_t seed) {
@@ -28,6 +48,8 @@ Scenario Ward21Run(int run, uint64_t seed) {
   std::snprintf(name, sizeof(name), "ward21/%02d", run);
   sc.name = name;
   sc.vehicle = LagrVehicle();
+  // The user's law is the mean over these soils (LagrVehicle); vehicle.yaml states their spread.
+  SetLawSpread({kTerrains, kTerrains + 4}, &sc.vehicle);
   const std::string first = kTerrains[(run - 1) % 4];
   const std::string second = kTerrains[(run + 1) % 4];
   const double speed = 0.1 + 0.9 * u(rng);

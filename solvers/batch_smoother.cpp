@@ -16,6 +16,86 @@ using namespace ward;  // NOLINT: state indices
 
 namespace {
 
+// The law's coefficients with a stated sd, each as a model one sd off (ModelConfig::tire_sd,
+// rolling_sd).
+std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelConfig& model) {
+  std::vector<std::pair<std::string, ModelConfig>> out;
+  const auto add = [&](const char* name, double sd, auto apply) {
+    if (!(sd > 0.0)) return;
+    ModelConfig m = model;
+    apply(m, sd);
+    out.emplace_back(name, m);
+  };
+  add("C1", model.tire_sd.C1, [](ModelConfig& m, double sd) { m.tire.C1 += sd; });
+  add("At", model.tire_sd.At, [](ModelConfig& m, double sd) { m.tire.At += sd; });
+  add("C2", model.tire_sd.C2, [](ModelConfig& m, double sd) { m.tire.C2 += sd; });
+  add("R1", model.rolling_sd.R1, [](ModelConfig& m, double sd) { m.rolling.R1 += sd; });
+  add("A_roll", model.rolling_sd.A_roll, [](ModelConfig& m, double sd) { m.rolling.A_roll += sd; });
+  add("R2", model.rolling_sd.R2, [](ModelConfig& m, double sd) { m.rolling.R2 += sd; });
+  return out;
+}
+
+Eigen::VectorXd Residuals(ceres::Problem* problem) {
+  std::vector<double> r;
+  ceres::Problem::EvaluateOptions options;
+  options.apply_loss_function = true;
+  problem->Evaluate(options, nullptr, &r, nullptr, nullptr);
+  return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
+}
+
+// The consider covariance of the law's stated uncertainty (BatchSmootherOptions::
+// consider_law_uncertainty): per state, the diagonal of sum_j dx_j dx_j'. Empty with a note when
+// it cannot be computed.
+std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
+    const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
+    const WardProblemOptions& problem_options, WardProblem* problem,
+    const std::vector<double*>& states, const std::vector<double*>& globals,
+    std::vector<std::string>* notes) {
+  std::vector<Eigen::Matrix<double, kStateSize, 1>> variance;
+  const auto perturbations = LawPerturbations(model);
+  if (perturbations.empty()) return variance;
+  const Eigen::VectorXd base = Residuals(problem->problem.get());
+  std::vector<Eigen::VectorXd> shifts;
+  std::string names;
+  for (const auto& [name, perturbed] : perturbations) {
+    std::unique_ptr<WardProblem> other = BuildWardBatchProblem(log, perturbed, ekf, problem_options);
+    if (other->states.size() != problem->states.size() ||
+        other->stiffness.size() != problem->stiffness.size() ||
+        other->force_term_values.size() != problem->force_term_values.size()) {
+      notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
+                       " one sd off has another structure");
+      return {};
+    }
+    std::copy(problem->states.begin(), problem->states.end(), other->states.begin());
+    other->offsets = problem->offsets;
+    other->effects = problem->effects;
+    std::copy(problem->force_term_values.begin(), problem->force_term_values.end(),
+              other->force_term_values.begin());
+    std::copy(problem->stiffness.begin(), problem->stiffness.end(), other->stiffness.begin());
+    const Eigen::VectorXd r = Residuals(other->problem.get());
+    if (r.size() != base.size()) {
+      notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
+                       " one sd off has other residuals");
+      return {};
+    }
+    shifts.push_back(r - base);
+    names += (names.empty() ? "" : ", ") + name;
+  }
+  const ChainSensitivity sensitivity =
+      ComputeChainSensitivity(problem->problem.get(), states, globals, shifts);
+  if (!sensitivity.ok) {
+    notes->push_back("the law's uncertainty is not in the sd (" + sensitivity.error + ")");
+    return {};
+  }
+  variance.assign(states.size(), Eigen::Matrix<double, kStateSize, 1>::Zero());
+  for (const std::vector<Eigen::VectorXd>& dx : sensitivity.states) {
+    for (size_t k = 0; k < dx.size(); ++k) variance[k] += dx[k].head<kStateSize>().cwiseAbs2();
+  }
+  notes->push_back("the sd include the tire law's stated uncertainty (" + names +
+                   ": the estimate's shift with each one sd off)");
+  return variance;
+}
+
 SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
                                const BatchSmootherOptions& options) {
   SmootherResult result;
@@ -119,9 +199,16 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
       for (size_t e = 0; e < result.effects.size(); ++e) {
         result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));
       }
+      std::vector<Eigen::Matrix<double, kStateSize, 1>> law;
+      if (options.consider_law_uncertainty) {
+        law = LawConsiderVariance(log, model, result.ekf, problem_options, problem.get(), states,
+                                  globals, &result.notes);
+      }
       for (size_t k = 0; k < n; ++k) {
         for (int i = 0; i < kStateSize; ++i) {
-          result.estimates[k].sd[i] = std::sqrt(std::max(0.0, covariance.states[k](i, i)));
+          const double consider = law.empty() ? 0.0 : law[k](i);
+          result.estimates[k].sd[i] =
+              std::sqrt(std::max(0.0, covariance.states[k](i, i)) + consider);
         }
       }
       result.velocity_next_correlation.assign(n, 0.0);

@@ -200,36 +200,92 @@ ChainCovariance CovarianceFrom(const ceres::CRSMatrix& J, int n, int m, int g) {
   return Marginals(f);
 }
 
+// H [dx; dg] = -[g_x; g_g] on a factorization: y = T^-1 (-g_x), S dg = -g_g - B' y,
+// dx = y - X dg.
 template <int M>
-void StepFrom(const ceres::CRSMatrix& J, const std::vector<double>& gradient, int n, int m, int g,
-              bool with_covariance, ChainStep* out) {
+void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
+           std::vector<Eigen::VectorXd>* dx, Eigen::VectorXd* dg) {
   using Vector = Eigen::Matrix<double, M, 1>;
-  ChainFactorization<M> f;
-  if (!Factor(J, n, m, g, &f)) {
-    out->error = f.error;
-    return;
-  }
-  // H [dx; dg] = -[g_x; g_g]: y = T^-1 (-g_x), S dg = -g_g - B' y, dx = y - X dg.
+  const int n = f.n, m = f.m, g = f.g;
   std::vector<Vector> minus_gx(n);
   for (int k = 0; k < n; ++k) {
     minus_gx[k] = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + k * m, m);
   }
   const std::vector<Vector> y = SolveT(f, minus_gx);
-  out->states.assign(n, Eigen::VectorXd());
+  dx->assign(n, Eigen::VectorXd());
   if (g > 0) {
     Eigen::VectorXd rhs = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + n * m, g);
     for (int k = 0; k < n; ++k) rhs -= f.B[k].transpose() * y[k];
-    out->globals = f.S.solve(rhs);
-    for (int k = 0; k < n; ++k) out->states[k] = y[k] - f.X[k] * out->globals;
+    *dg = f.S.solve(rhs);
+    for (int k = 0; k < n; ++k) (*dx)[k] = y[k] - f.X[k] * *dg;
   } else {
-    out->globals.resize(0);
-    for (int k = 0; k < n; ++k) out->states[k] = y[k];
+    dg->resize(0);
+    for (int k = 0; k < n; ++k) (*dx)[k] = y[k];
   }
+}
+
+template <int M>
+void StepFrom(const ceres::CRSMatrix& J, const std::vector<double>& gradient, int n, int m, int g,
+              bool with_covariance, ChainStep* out) {
+  ChainFactorization<M> f;
+  if (!Factor(J, n, m, g, &f)) {
+    out->error = f.error;
+    return;
+  }
+  Solve(f, gradient, &out->states, &out->globals);
   if (with_covariance) out->covariance = Marginals(f);
   out->ok = true;
 }
 
+template <int M>
+void SensitivityFrom(const ceres::CRSMatrix& J, int n, int m, int g,
+                     const std::vector<Eigen::VectorXd>& shifts, ChainSensitivity* out) {
+  ChainFactorization<M> f;
+  if (!Factor(J, n, m, g, &f)) {
+    out->error = f.error;
+    return;
+  }
+  out->states.resize(shifts.size());
+  out->globals.resize(shifts.size());
+  std::vector<double> gradient(static_cast<size_t>(J.num_cols));
+  for (size_t j = 0; j < shifts.size(); ++j) {
+    // J' t over the CRS rows.
+    std::fill(gradient.begin(), gradient.end(), 0.0);
+    for (int row = 0; row < J.num_rows; ++row) {
+      const double t = shifts[j][row];
+      if (t == 0.0) continue;
+      for (int e = J.rows[row]; e < J.rows[row + 1]; ++e) gradient[J.cols[e]] += J.values[e] * t;
+    }
+    Solve(f, gradient, &out->states[j], &out->globals[j]);
+  }
+  out->ok = true;
+}
+
 }  // namespace
+
+ChainSensitivity ComputeChainSensitivity(ceres::Problem* problem,
+                                         const std::vector<double*>& states,
+                                         const std::vector<double*>& globals,
+                                         const std::vector<Eigen::VectorXd>& residual_shifts) {
+  ChainSensitivity out;
+  int m = 0, g = 0;
+  ceres::CRSMatrix J;
+  if (!Prepare(problem, states, globals, &m, &g, nullptr, nullptr, &J, &out.error)) return out;
+  for (const Eigen::VectorXd& t : residual_shifts) {
+    if (t.size() != J.num_rows) {
+      out.error = "a residual shift has " + std::to_string(t.size()) + " rows, the problem " +
+                  std::to_string(J.num_rows);
+      return out;
+    }
+  }
+  const int n = static_cast<int>(states.size());
+  if (m == 7) {
+    SensitivityFrom<7>(J, n, m, g, residual_shifts, &out);
+  } else {
+    SensitivityFrom<Eigen::Dynamic>(J, n, m, g, residual_shifts, &out);
+  }
+  return out;
+}
 
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
                                        const std::vector<double*>& globals) {

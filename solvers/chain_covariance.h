@@ -54,4 +54,21 @@ struct ChainStep {
 ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
                            const std::vector<double*>& globals, bool with_covariance);
 
+// How the solution would move if the residuals moved by t (one column per perturbation, over all
+// the problem's residuals in the order Problem::Evaluate returns them): at a minimum, where
+// J'r = 0, the first-order shift is dx = -H^-1 J' t. With t the change a model constant's error
+// of one sd makes to the residuals, dx dx' is that constant's share of the estimate's error
+// covariance (a Schmidt "consider" covariance: the constant is not estimated, its uncertainty is
+// accounted for).
+struct ChainSensitivity {
+  bool ok = false;
+  std::string error;
+  std::vector<std::vector<Eigen::VectorXd>> states;  // [column][state]: dx_k
+  std::vector<Eigen::VectorXd> globals;              // [column]: dx of the globals, stacked
+};
+ChainSensitivity ComputeChainSensitivity(ceres::Problem* problem,
+                                         const std::vector<double*>& states,
+                                         const std::vector<double*>& globals,
+                                         const std::vector<Eigen::VectorXd>& residual_shifts);
+
 }  // namespace slipgraph

@@ -205,5 +205,66 @@ TEST(ChainCovariance, GaussNewtonStepSolvesALinearChainWithABorder) {
   }
 }
 
+// The sensitivity of the solution to a model constant: on the linear chain, one measurement's
+// value moved by delta changes the residuals by t at the solution, and -H^-1 J' t is exactly
+// how far the solution moves (a linear problem: the re-solve agrees to Ceres' tolerance).
+TEST(ChainCovariance, SensitivityIsTheSolutionsShiftWhenAConstantMoves) {
+  const int n = 6;
+  const auto build = [&](double shift, std::vector<std::array<double, 2>>* x, double* c,
+                         ceres::Problem* p) {
+    p->AddResidualBlock(new ceres::AutoDiffCostFunction<PairAnchor, 2, 2>(new PairAnchor), nullptr,
+                        (*x)[0].data());
+    p->AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 1, 1>(new OffsetPrior),
+                        nullptr, c);
+    for (int k = 0; k < n; ++k) {
+      const double z0 = 0.1 * k + 0.2 + (k == 2 ? shift : 0.0);
+      p->AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetMeasurement, 2, 2, 1>(
+                              new OffsetMeasurement{z0, -0.3 + 0.05 * k * k}),
+                          nullptr, (*x)[k].data(), c);
+      if (k > 0) {
+        p->AddResidualBlock(new ceres::AutoDiffCostFunction<PairLink, 2, 2, 2>(new PairLink),
+                            nullptr, (*x)[k - 1].data(), (*x)[k].data());
+      }
+    }
+  };
+  constexpr double kShift = 0.4;
+  std::vector<std::array<double, 2>> x(n, {1.0, -1.0}), x_moved = x, x_eval = x;
+  double c = 0.0, c_moved = 0.0, c_eval = 0.0;
+  ceres::Problem problem, moved, evaluated;
+  build(0.0, &x, &c, &problem);
+  build(kShift, &x_moved, &c_moved, &moved);
+  build(kShift, &x_eval, &c_eval, &evaluated);
+  ceres::Solver::Options options;
+  options.function_tolerance = options.gradient_tolerance = options.parameter_tolerance = 1e-15;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  ceres::Solve(options, &moved, &summary);
+  // t: the moved problem's residuals minus the original's, both at the original solution.
+  x_eval = x;
+  c_eval = c;
+  std::vector<double> r0, r1;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &r0, nullptr, nullptr);
+  evaluated.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &r1, nullptr, nullptr);
+  ASSERT_EQ(r0.size(), r1.size());
+  Eigen::VectorXd t(static_cast<Eigen::Index>(r0.size()));
+  for (size_t i = 0; i < r0.size(); ++i) t[static_cast<Eigen::Index>(i)] = r1[i] - r0[i];
+  std::vector<double*> states;
+  for (auto& s : x) states.push_back(s.data());
+  const ChainSensitivity sensitivity = ComputeChainSensitivity(&problem, states, {&c}, {t, -t});
+  ASSERT_TRUE(sensitivity.ok) << sensitivity.error;
+  ASSERT_EQ(sensitivity.states.size(), 2u);
+  for (int k = 0; k < n; ++k) {
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_NEAR(sensitivity.states[0][k][i], x_moved[k][i] - x[k][i], 1e-9) << k << " " << i;
+      EXPECT_NEAR(sensitivity.states[1][k][i], -(x_moved[k][i] - x[k][i]), 1e-9);
+    }
+  }
+  EXPECT_NEAR(sensitivity.globals[0][0], c_moved - c, 1e-9);
+  // The measured state moves most; the shift is not trivially zero anywhere near it.
+  EXPECT_GT(std::abs(sensitivity.states[0][2][0]), 0.05);
+  // A shift of the wrong length is refused.
+  EXPECT_FALSE(ComputeChainSensitivity(&problem, states, {&c}, {Eigen::VectorXd::Ones(3)}).ok);
+}
+
 }  // namespace
 }  // namespace slipgraph

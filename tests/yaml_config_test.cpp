@@ -133,6 +133,45 @@ TEST(YamlConfig, NonPositiveDimensionIsRejected) {
   EXPECT_THROW(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings), InputError);
 }
 
+// The law's optional uncertainty (tire_sd, rolling_sd, an extension of vehicle.yaml): read,
+// written back only when stated, into the model by default; a negative sd names its key.
+TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
+  const std::string dir = testing::FreshDirectory("vehicle");
+  testing::WriteText(dir, "vehicle.yaml",
+                     std::string(testing::kLagrVehicleYaml) +
+                         "tire_sd: {C1: 0.1, At: 5}\nrolling_sd: {R1: 0.02, R2: 0.007}\n");
+  std::vector<std::string> warnings;
+  const Vehicle v = ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+  EXPECT_TRUE(warnings.empty());
+  EXPECT_DOUBLE_EQ(v.tire_sd.C1, 0.1);
+  EXPECT_DOUBLE_EQ(v.tire_sd.At, 5.0);
+  EXPECT_DOUBLE_EQ(v.tire_sd.C2, 0.0);  // not stated: exact
+  EXPECT_DOUBLE_EQ(v.rolling_sd.R2, 0.007);
+  const ModelConfig m = DefaultModelConfig(v);
+  EXPECT_DOUBLE_EQ(m.rolling_sd.R1, 0.02);
+  std::ostringstream out;
+  WriteVehicleYaml(v, out);
+  EXPECT_NE(out.str().find("tire_sd"), std::string::npos);
+  std::ostringstream plain;
+  WriteVehicleYaml(LagrVehicle(), plain);
+  EXPECT_EQ(plain.str().find("tire_sd"), std::string::npos);
+  // The model file may state or override it.
+  EXPECT_DOUBLE_EQ(ReadModelYaml(WriteModel("rolling_sd: {R1: 0.05}\n"), v).rolling_sd.R1, 0.05);
+  testing::WriteText(dir, "vehicle.yaml",
+                     std::string(testing::kLagrVehicleYaml) + "tire_sd: {C1: -0.1}\n");
+  try {
+    ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+    FAIL() << "a negative sd was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tire_sd.C1"), std::string::npos) << e.what();
+  }
+  std::string error;
+  ModelConfig bad = m;
+  bad.tire_sd.At = -1.0;
+  EXPECT_FALSE(bad.IsValid(&error));
+  EXPECT_NE(error.find("tire_sd"), std::string::npos);
+}
+
 TEST(YamlConfig, SyntaxErrorNamesTheLine) {
   const std::string dir = testing::FreshDirectory("vehicle");
   testing::WriteText(dir, "vehicle.yaml", "type: skid_steer\nmass: [1, 2\n");
