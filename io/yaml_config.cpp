@@ -96,7 +96,7 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
       {"axle_spacing", &v.axle_spacing_m, rocker},
   };
   ReadNumbers(path, root, "", top, false, warnings,
-              {"name", "type", "tire", "rolling", "tire_sd", "rolling_sd", "sensors"});
+              {"name", "type", "tire", "rolling", "tire_sd", "rolling_sd", "law_samples", "sensors"});
   for (const NumberField& field : top) {
     if (root[field.key] && *field.target <= 0.0) {
       Fail(path, root[field.key], field.key, root[field.key].Scalar(), "must be positive");
@@ -138,6 +138,38 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
         Fail(path, node[field.key], prefix + field.key, node[field.key].Scalar(),
              "must be non-negative");
       }
+    }
+  }
+  // Optional: the laws of the soils the law was fitted over, every coefficient of each.
+  if (const YAML::Node samples = root["law_samples"]) {
+    if (!samples.IsSequence()) Fail(path, samples, "law_samples", "", "expected a sequence");
+    for (size_t i = 0; i < samples.size(); ++i) {
+      LawSample soil;
+      const std::string prefix = "law_samples[" + std::to_string(i) + "].";
+      ReadNumbers(path, samples[i], prefix,
+                  {{"C1", &soil.tire.C1, true},
+                   {"At", &soil.tire.At, true},
+                   {"C2", &soil.tire.C2, true},
+                   {"R1", &soil.rolling.R1, true},
+                   {"A_roll", &soil.rolling.A_roll, true},
+                   {"R2", &soil.rolling.R2, true}},
+                  false, warnings);
+      const struct {
+        const char* key;
+        double value;
+        bool zero_allowed;
+      } checks[] = {{"C1", soil.tire.C1, false},
+                    {"At", soil.tire.At, false},
+                    {"A_roll", soil.rolling.A_roll, false},
+                    {"R1", soil.rolling.R1, true},
+                    {"R2", soil.rolling.R2, true}};
+      for (const auto& check : checks) {
+        if (check.value < 0.0 || (!check.zero_allowed && check.value == 0.0)) {
+          Fail(path, samples[i][check.key], prefix + check.key, samples[i][check.key].Scalar(),
+               check.zero_allowed ? "must be non-negative" : "must be positive");
+        }
+      }
+      v.law_samples.push_back(soil);
     }
   }
 
@@ -330,6 +362,17 @@ void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {
     e << YAML::Key << "R1" << YAML::Value << v.rolling_sd.R1 << YAML::Key << "A_roll"
       << YAML::Value << v.rolling_sd.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling_sd.R2
       << YAML::EndMap;
+  }
+  if (!v.law_samples.empty()) {
+    e << YAML::Key << "law_samples" << YAML::Value << YAML::BeginSeq;
+    for (const LawSample& soil : v.law_samples) {
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "C1" << YAML::Value << soil.tire.C1
+        << YAML::Key << "At" << YAML::Value << soil.tire.At << YAML::Key << "C2" << YAML::Value
+        << soil.tire.C2 << YAML::Key << "R1" << YAML::Value << soil.rolling.R1 << YAML::Key
+        << "A_roll" << YAML::Value << soil.rolling.A_roll << YAML::Key << "R2" << YAML::Value
+        << soil.rolling.R2 << YAML::EndMap;
+    }
+    e << YAML::EndSeq;
   }
   e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
   e << YAML::Key << "imu" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "sd_accel"

@@ -78,6 +78,15 @@ bool ModelConfig::IsValid(std::string* error) const {
       return false;
     }
   }
+  for (size_t i = 0; i < law_samples.size(); ++i) {
+    const LawSample& soil = law_samples[i];
+    if (!(soil.tire.C1 > 0.0 && soil.tire.At > 0.0 && soil.rolling.A_roll > 0.0 &&
+          soil.rolling.R1 >= 0.0 && soil.rolling.R2 >= 0.0)) {
+      *error = "law_samples[" + std::to_string(i) +
+               "]: C1, At and A_roll must be positive, R1 and R2 non-negative";
+      return false;
+    }
+  }
   if (rolling.R1 < 0.0 || rolling.R2 < 0.0) {
     *error = "rolling.R1 and rolling.R2 must be non-negative";
     return false;
@@ -157,6 +166,7 @@ ModelConfig DefaultModelConfig(const Vehicle& vehicle) {
   config.rolling = vehicle.rolling;
   config.tire_sd = vehicle.tire_sd;
   config.rolling_sd = vehicle.rolling_sd;
+  config.law_samples = vehicle.law_samples;
   config.measurement = vehicle.sensors;
   return config;
 }

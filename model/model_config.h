@@ -93,6 +93,9 @@ struct ModelConfig {
   // would move with each coefficient one sd off (solvers/batch_smoother.h). 0: exact.
   TireParams tire_sd{0.0, 0.0, 0.0};
   RollingParams rolling_sd{0.0, 0.0, 0.0};
+  // Or the laws of the soils it was fitted over (from vehicle.yaml `law_samples`): with two or
+  // more, their spread around the law (correlations included) replaces the sd above.
+  std::vector<LawSample> law_samples;
   ProcessNoiseConfig process;
   SensorNoise measurement;  // from vehicle.yaml sensors unless the model file overrides it
   WeakConstraintConfig weak_constraints;

@@ -33,6 +33,12 @@ struct RollingParams {
   double R2 = 0.01;      // viscous rolling-resistance coefficient, s/m
 };
 
+// One soil's tire and rolling law (Vehicle::law_samples).
+struct LawSample {
+  TireParams tire;
+  RollingParams rolling;
+};
+
 // Nominal sensor noise, standard deviations (per sample).
 struct SensorNoise {
   double imu_sd_accel_mps2 = 0.05;
@@ -59,6 +65,10 @@ struct Vehicle {
   // coefficients when they are a fit the terrain may not follow; 0 when not stated.
   TireParams tire_sd{0.0, 0.0, 0.0};
   RollingParams rolling_sd{0.0, 0.0, 0.0};
+  // Optional (vehicle.yaml `law_samples`): the laws of the soils the law above was fitted over;
+  // their spread around it, correlations included, is the law's uncertainty (used instead of
+  // the sd when there are two or more).
+  std::vector<LawSample> law_samples;
   SensorNoise sensors;
   // Sensor sections that vehicle.yaml did not give (defaults above were used), e.g. "sensors.gps".
   std::vector<std::string> defaulted_keys;

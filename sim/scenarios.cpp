@@ -18,23 +18,14 @@ TerrainType NominalTerrain(const Vehicle& vehicle, bool soft) {
 
 uint64_t RunSeed(uint64_t seed, uint64_t run) { return seed * 1000003ULL + run; }
 
-// The sample sd (n - 1) of each tire and rolling coefficient over `terrains`: what a user who
-// fitted one law over those soils knows about how far a soil may be from it.
-void SetLawSpread(const std::vector<std::string>& terrains, Vehicle* vehicle) {
-  double sum[6] = {}, sum_sq[6] = {};
-  const double n = static_cast<double>(terrains.size());
+// The laws of the soils a user fitted one law over (LagrVehicle's is their mean): written to
+// vehicle.yaml as `law_samples`, their spread is what the user knows about the law's error.
+void SetLawSamples(const std::vector<std::string>& terrains, Vehicle* vehicle) {
+  vehicle->law_samples.clear();
   for (const std::string& name : terrains) {
     const TerrainType& t = FindTerrain(name);
-    const double v[6] = {t.tire.C1,    t.tire.At,         t.tire.C2,
-                         t.rolling.R1, t.rolling.A_roll, t.rolling.R2};
-    for (int i = 0; i < 6; ++i) sum[i] += v[i], sum_sq[i] += v[i] * v[i];
+    vehicle->law_samples.push_back({t.tire, t.rolling});
   }
-  double sd[6];
-  for (int i = 0; i < 6; ++i) {
-    sd[i] = std::sqrt(std::max(0.0, (sum_sq[i] - sum[i] * sum[i] / n) / (n - 1.0)));
-  }
-  vehicle->tire_sd = {sd[0], sd[1], sd[2]};
-  vehicle->rolling_sd = {sd[3], sd[4], sd[5]};
 }
 
 // One Ward & Iagnemma style run: rest, drive (with a gentle turn), get held back with the wheels
@@ -48,8 +39,8 @@ Scenario Ward21Run(int run, uint64_t seed) {
   std::snprintf(name, sizeof(name), "ward21/%02d", run);
   sc.name = name;
   sc.vehicle = LagrVehicle();
-  // The user's law is the mean over these soils (LagrVehicle); vehicle.yaml states their spread.
-  SetLawSpread({kTerrains, kTerrains + 4}, &sc.vehicle);
+  // The user's law is the mean over these soils (LagrVehicle); vehicle.yaml states them.
+  SetLawSamples({kTerrains, kTerrains + 4}, &sc.vehicle);
   const std::string first = kTerrains[(run - 1) % 4];
   const std::string second = kTerrains[(run + 1) % 4];
   const double speed = 0.1 + 0.9 * u(rng);

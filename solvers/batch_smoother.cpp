@@ -16,10 +16,28 @@ using namespace ward;  // NOLINT: state indices
 
 namespace {
 
-// The law's coefficients with a stated sd, each as a model one sd off (ModelConfig::tire_sd,
-// rolling_sd).
+// The law's stated uncertainty as perturbed models whose shifts' outer products sum to it:
+// with soil laws (ModelConfig::law_samples, n >= 2) each soil's deviation from the law over
+// sqrt(n - 1) (their sample covariance, correlations included); else each coefficient with a
+// stated sd, one sd off (ModelConfig::tire_sd, rolling_sd).
 std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelConfig& model) {
   std::vector<std::pair<std::string, ModelConfig>> out;
+  const size_t n = model.law_samples.size();
+  if (n >= 2) {
+    const double scale = 1.0 / std::sqrt(static_cast<double>(n - 1));
+    for (size_t i = 0; i < n; ++i) {
+      const LawSample& soil = model.law_samples[i];
+      ModelConfig m = model;
+      m.tire.C1 += scale * (soil.tire.C1 - model.tire.C1);
+      m.tire.At += scale * (soil.tire.At - model.tire.At);
+      m.tire.C2 += scale * (soil.tire.C2 - model.tire.C2);
+      m.rolling.R1 += scale * (soil.rolling.R1 - model.rolling.R1);
+      m.rolling.A_roll += scale * (soil.rolling.A_roll - model.rolling.A_roll);
+      m.rolling.R2 += scale * (soil.rolling.R2 - model.rolling.R2);
+      out.emplace_back("soil " + std::to_string(i + 1), m);
+    }
+    return out;
+  }
   const auto add = [&](const char* name, double sd, auto apply) {
     if (!(sd > 0.0)) return;
     ModelConfig m = model;
@@ -63,7 +81,7 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
         other->stiffness.size() != problem->stiffness.size() ||
         other->force_term_values.size() != problem->force_term_values.size()) {
       notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
-                       " one sd off has another structure");
+                       " has another structure");
       return {};
     }
     std::copy(problem->states.begin(), problem->states.end(), other->states.begin());
@@ -75,7 +93,7 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     const Eigen::VectorXd r = Residuals(other->problem.get());
     if (r.size() != base.size()) {
       notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
-                       " one sd off has other residuals");
+                       " has other residuals");
       return {};
     }
     shifts.push_back(r - base);
@@ -92,7 +110,7 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     for (size_t k = 0; k < dx.size(); ++k) variance[k] += dx[k].head<kStateSize>().cwiseAbs2();
   }
   notes->push_back("the sd include the tire law's stated uncertainty (" + names +
-                   ": the estimate's shift with each one sd off)");
+                   ": the estimate's shift with the law moved by each)");
   return variance;
 }
 

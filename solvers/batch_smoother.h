@@ -42,11 +42,12 @@ struct BatchSmootherOptions {
   // (docs/smoother.md). Off for fit-and-compare (workbench/): its likelihood-ratio tests compare
   // two solves of one fixed problem.
   bool regate_decay_prior = true;
-  // The tire law's stated uncertainty (ModelConfig::tire_sd, rolling_sd) in every sd: for each
-  // coefficient with an sd, the problem is built again with that coefficient one sd off and
-  // evaluated at the solution; the residuals' change, through the same factorization as the
-  // covariance, gives the estimate's first-order shift dx, and dx dx' is added to the states'
-  // covariance (a Schmidt consider covariance: the law is not refitted, its error is counted).
+  // The tire law's stated uncertainty (ModelConfig::law_samples, else tire_sd and rolling_sd) in
+  // every sd: for each soil law (its deviation over sqrt(n - 1)), or each coefficient with an sd
+  // (one sd off), the problem is built again with the law so moved and evaluated at the
+  // solution; the residuals' change, through the same factorization as the covariance, gives the
+  // estimate's first-order shift dx, and the sum of dx dx' is added to the states' covariance (a
+  // Schmidt consider covariance: the law is not refitted, its error is counted).
   bool consider_law_uncertainty = true;
 };
 

@@ -133,8 +133,8 @@ TEST(YamlConfig, NonPositiveDimensionIsRejected) {
   EXPECT_THROW(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings), InputError);
 }
 
-// The law's optional uncertainty (tire_sd, rolling_sd, an extension of vehicle.yaml): read,
-// written back only when stated, into the model by default; a negative sd names its key.
+// The law's optional uncertainty (tire_sd, rolling_sd, law_samples: extensions of vehicle.yaml):
+// read, written back only when stated, into the model by default; a bad value names its key.
 TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
   const std::string dir = testing::FreshDirectory("vehicle");
   testing::WriteText(dir, "vehicle.yaml",
@@ -165,11 +165,40 @@ TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("tire_sd.C1"), std::string::npos) << e.what();
   }
+  // law_samples: every coefficient of each soil, written back, a missing one named.
+  testing::WriteText(dir, "vehicle.yaml",
+                     std::string(testing::kLagrVehicleYaml) +
+                         "law_samples:\n  - {C1: 0.5, At: 10, C2: 0.08, R1: 0.07, A_roll: 15, "
+                         "R2: 0.02}\n  - {C1: 0.6, At: 15, C2: 0.05, R1: 0.04, A_roll: 20, "
+                         "R2: 0.01}\n");
+  const Vehicle with_samples = ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+  ASSERT_EQ(with_samples.law_samples.size(), 2u);
+  EXPECT_DOUBLE_EQ(with_samples.law_samples[1].rolling.A_roll, 20.0);
+  EXPECT_EQ(DefaultModelConfig(with_samples).law_samples.size(), 2u);
+  std::ostringstream samples_out;
+  WriteVehicleYaml(with_samples, samples_out);
+  testing::WriteText(dir, "vehicle.yaml", samples_out.str());
+  EXPECT_DOUBLE_EQ(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings).law_samples[0].tire.C2,
+                   0.08);
+  testing::WriteText(dir, "vehicle.yaml",
+                     std::string(testing::kLagrVehicleYaml) +
+                         "law_samples:\n  - {C1: 0.5, At: 10, C2: 0.08, R1: 0.07, A_roll: 15}\n");
+  try {
+    ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+    FAIL() << "a soil without R2 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("law_samples[0].R2"), std::string::npos) << e.what();
+  }
   std::string error;
   ModelConfig bad = m;
   bad.tire_sd.At = -1.0;
   EXPECT_FALSE(bad.IsValid(&error));
   EXPECT_NE(error.find("tire_sd"), std::string::npos);
+  ModelConfig bad_soil = DefaultModelConfig(with_samples);
+  EXPECT_TRUE(bad_soil.IsValid(&error)) << error;
+  bad_soil.law_samples[1].tire.At = 0.0;
+  EXPECT_FALSE(bad_soil.IsValid(&error));
+  EXPECT_NE(error.find("law_samples[1]"), std::string::npos) << error;
 }
 
 TEST(YamlConfig, SyntaxErrorNamesTheLine) {
