@@ -16,6 +16,17 @@ struct NumberField {
   bool needed;
 };
 
+// The tire and rolling laws' keys, onto `tire` and `rolling` (vehicle.yaml, the model file, the
+// law's sd and soils).
+std::vector<NumberField> TireFields(TireParams* tire, bool needed) {
+  return {{"C1", &tire->C1, needed}, {"At", &tire->At, needed}, {"C2", &tire->C2, needed}};
+}
+std::vector<NumberField> RollingFields(RollingParams* rolling, bool needed) {
+  return {{"R1", &rolling->R1, needed},
+          {"A_roll", &rolling->A_roll, needed},
+          {"R2", &rolling->R2, needed}};
+}
+
 [[noreturn]] void Fail(const std::string& path, const YAML::Node& node, const std::string& key,
                        const std::string& value, const std::string& what) {
   const YAML::Mark mark = node.Mark();
@@ -105,29 +116,17 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
 
   const YAML::Node tire = root["tire"];
   if (!tire) Fail(path, root, "tire", "", "missing key");
-  ReadNumbers(path, tire, "tire.",
-              {{"C1", &v.tire.C1, true}, {"At", &v.tire.At, true}, {"C2", &v.tire.C2, true}}, false,
-              warnings);
+  ReadNumbers(path, tire, "tire.", TireFields(&v.tire, true), false, warnings);
   const YAML::Node rolling = root["rolling"];
   if (!rolling) Fail(path, root, "rolling", "", "missing key");
-  ReadNumbers(path, rolling, "rolling.",
-              {{"R1", &v.rolling.R1, true},
-               {"A_roll", &v.rolling.A_roll, true},
-               {"R2", &v.rolling.R2, true}},
-              false, warnings);
+  ReadNumbers(path, rolling, "rolling.", RollingFields(&v.rolling, true), false, warnings);
   // Optional (an extension): the coefficients' sd when the law is a fit the terrain may not
   // follow.
   const struct {
     const char* key;
     std::vector<NumberField> fields;
-  } law_sd[] = {
-      {"tire_sd",
-       {{"C1", &v.tire_sd.C1, false}, {"At", &v.tire_sd.At, false}, {"C2", &v.tire_sd.C2, false}}},
-      {"rolling_sd",
-       {{"R1", &v.rolling_sd.R1, false},
-        {"A_roll", &v.rolling_sd.A_roll, false},
-        {"R2", &v.rolling_sd.R2, false}}},
-  };
+  } law_sd[] = {{"tire_sd", TireFields(&v.tire_sd, false)},
+                 {"rolling_sd", RollingFields(&v.rolling_sd, false)}};
   for (const auto& section : law_sd) {
     const YAML::Node node = root[section.key];
     if (!node) continue;
@@ -146,14 +145,9 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
     for (size_t i = 0; i < samples.size(); ++i) {
       LawSample soil;
       const std::string prefix = "law_samples[" + std::to_string(i) + "].";
-      ReadNumbers(path, samples[i], prefix,
-                  {{"C1", &soil.tire.C1, true},
-                   {"At", &soil.tire.At, true},
-                   {"C2", &soil.tire.C2, true},
-                   {"R1", &soil.rolling.R1, true},
-                   {"A_roll", &soil.rolling.A_roll, true},
-                   {"R2", &soil.rolling.R2, true}},
-                  false, warnings);
+      std::vector<NumberField> fields = TireFields(&soil.tire, true);
+      for (const NumberField& field : RollingFields(&soil.rolling, true)) fields.push_back(field);
+      ReadNumbers(path, samples[i], prefix, fields, false, warnings);
       const struct {
         const char* key;
         double value;
@@ -207,17 +201,10 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
   ImmobilizationConfig& im = m.immobilization;
   double init_samples = m.offset_init_samples;
   const std::vector<std::pair<std::string, std::vector<NumberField>>> sections = {
-      {"tire", {{"C1", &m.tire.C1, false}, {"At", &m.tire.At, false}, {"C2", &m.tire.C2, false}}},
-      {"rolling",
-       {{"R1", &m.rolling.R1, false},
-        {"A_roll", &m.rolling.A_roll, false},
-        {"R2", &m.rolling.R2, false}}},
-      {"tire_sd",
-       {{"C1", &m.tire_sd.C1, false}, {"At", &m.tire_sd.At, false}, {"C2", &m.tire_sd.C2, false}}},
-      {"rolling_sd",
-       {{"R1", &m.rolling_sd.R1, false},
-        {"A_roll", &m.rolling_sd.A_roll, false},
-        {"R2", &m.rolling_sd.R2, false}}},
+      {"tire", TireFields(&m.tire, false)},
+      {"rolling", RollingFields(&m.rolling, false)},
+      {"tire_sd", TireFields(&m.tire_sd, false)},
+      {"rolling_sd", RollingFields(&m.rolling_sd, false)},
       {"process_noise",
        {{"v_bx", &q.v_bx_mps2_per_sqrt_hz, false},
         {"a_dist", &q.a_dist_mps3_per_sqrt_hz, false},
