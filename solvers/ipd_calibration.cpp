@@ -18,7 +18,6 @@ using ipd::kAlphaSize;
 using AlphaVector = Eigen::Matrix<double, kAlphaSize, 1>;
 using AlphaMatrix = Eigen::Matrix<double, kAlphaSize, kAlphaSize>;
 
-
 double PoseSd(double stated, double floor) {
   return std::isfinite(stated) && stated > floor ? stated : floor;
 }

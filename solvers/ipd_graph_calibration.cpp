@@ -110,13 +110,13 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       1, std::min(jump_options.window,
                   static_cast<int>((graph.window_s - 2.0 * block_s) / options.spacing_s)));
   JumpDetector<ipd::kAlphaSize, 3> detector(jump_options);
-  // Frees the walk into `block` (a jump: the terrain changed), once per block; false when the
+  // Frees the walk into `block` (a jump: the terrain changed), once per block; nothing when the
   // block has no walk in the window or has jumped already.
   const auto free_walk = [&](int block, double t) {
     const int index = block - first_block;
     if (index <= 0 || index >= static_cast<int>(blocks.size()) || !walk_into.count(block) ||
         jumped.count(block)) {
-      return false;
+      return;
     }
     memory.Misfit({Eigen::Map<const Eigen::Matrix<double, ipd::kAlphaSize, 1>>(latest.data()),
                    latest_covariance, stochastic.q()},
@@ -127,7 +127,6 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
                                blocks[index].data());
     jumped.insert(block);
     ++jumps;
-    return true;
   };
   for (int j = 0; j <= last_block + 1; ++j) {
     const double block_end = t0 + (j + 1) * block_s;
@@ -169,20 +168,18 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       // A jump frees the walk into a block (once per block): the detector's jump (into the
       // block of the first segment after it), or segments failing the gate in a row at the
       // newest alpha (into theirs).
-      const SegmentLikelihood score =
-          Likelihood(l.residual, Eigen::LDLT<Eigen::Matrix3d>(HPH + terms.Total(stochastic.q())));
+      const Eigen::Matrix3d S = HPH + terms.Total(stochastic.q());
+      const SegmentLikelihood score = Likelihood(l.residual, Eigen::LDLT<Eigen::Matrix3d>(S));
       const bool gated = score.nis > kSegmentGateChi2;
       gated_in_a_row = gated ? gated_in_a_row + 1 : 0;
       const int block = first_block + index;
       JumpDetector<ipd::kAlphaSize, 3>::Jump jump;
       if (graph.jump_sd > 0.0 && options.jump.enabled &&
-          detector.Measure(0.5 * (seg.t_start + seg.t_end), l.residual, l.H,
-                           HPH + terms.Total(stochastic.q()), &jump)) {
+          detector.Measure(0.5 * (seg.t_start + seg.t_end), l.residual, l.H, S, &jump)) {
         free_walk(BlockOf(jump.t, t0, block_s), seg.t_end);
         detector.Restart();
       } else {
         // The window's update on this segment, as the detector's filter sees it.
-        const Eigen::Matrix3d S = HPH + terms.Total(stochastic.q());
         detector.Updated(latest_covariance * l.H.transpose() * S.inverse(), l.H);
       }
       if (graph.jump_sd > 0.0 && options.readmit_after > 0 &&

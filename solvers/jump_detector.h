@@ -65,7 +65,7 @@ class JumpDetector {
   // A measurement at time t before the filter uses it: residual r, Jacobian H and innovation
   // covariance S (with the filter's prior). Opens the hypothesis "a jump just before t". Returns
   // true and fills *jump when the best hypothesis passes the threshold (the caller applies the
-  // correction and calls Restart(); it should not also update on this measurement as before: the
+  // correction and calls Restart(); it should not also update on this measurement: the
   // measurement is already in the jump's estimate).
   bool Measure(double t, const Residual& r, const Jacobian& H,
                const Eigen::Matrix<double, M, M>& S, Jump* jump) {
@@ -103,8 +103,6 @@ class JumpDetector {
 
   // After a jump has been applied (or the filter was reset otherwise): no open hypotheses.
   void Restart() { hypotheses_.clear(); }
-
-  size_t open() const { return hypotheses_.size(); }
 
  private:
   struct Hypothesis {
