@@ -7,6 +7,7 @@
 
 #include "factors/frames.h"
 #include "factors/tire_law_uncertainty.h"
+#include "factors/ward_accel_driven_step.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_measurement.h"
 
@@ -95,28 +96,26 @@ void WardEkf::Begin(double t) {
 void WardEkf::PredictTo(double t) {
   const double dt = t - t_;
   if (dt <= 0.0) return;
-  using Jet = ceres::Jet<double, kStateSize>;
-  Jet x_jet[kStateSize], next[kStateSize];
-  for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
   const bool accel_driven =
       options_.velocity_model == VelocityModel::kAccelerometerDriven && have_accel_input_;
-  if (accel_driven) {
-    const double gravity_along_x = GravityAlongX();
-    const double specific_force = accel_input_mps2_ - offsets_.accel_x_mps2();
-    PropagateWith(
-        x_jet,
-        [&](const Jet* state, Jet* x_dot) {
-          StateDerivative(state, loads_, params_, x_dot);
-          x_dot[kVbx] = specific_force - state[kAccelBias] - gravity_along_x;
-        },
-        dt, next);
-  } else {
-    Propagate(x_jet, loads_, params_, dt, next);
-  }
   StateMatrix A;
-  for (int r = 0; r < kStateSize; ++r) {
-    x_(r) = next[r].a;
-    A.row(r) = next[r].v.transpose();
+  if (accel_driven) {
+    // The state and its transition matrix by the chain rule through the RK4 stages
+    // (factors/ward_accel_driven_step.h): the same state as a 7-wide Jet pass, at a third of
+    // the cost.
+    StateVector next;
+    PropagateAccelerometerDriven(x_.data(), accel_input_mps2_ - offsets_.accel_x_mps2(), loads_,
+                                 params_, dt, next.data(), &A);
+    x_ = next;
+  } else {
+    using Jet = ceres::Jet<double, kStateSize>;
+    Jet x_jet[kStateSize], next[kStateSize];
+    for (int i = 0; i < kStateSize; ++i) x_jet[i] = Jet(x_(i), i);
+    Propagate(x_jet, loads_, params_, dt, next);
+    for (int r = 0; r < kStateSize; ++r) {
+      x_(r) = next[r].a;
+      A.row(r) = next[r].v.transpose();
+    }
   }
   // Discrete process noise of eq. (10): white-noise densities times dt, Gauss-Markov biases
   // with their exact discrete variance.
@@ -130,8 +129,8 @@ void WardEkf::PredictTo(double t) {
   // The biases' exact Gauss-Markov variances, recomputed only when the step changes.
   if (dt != bias_noise_dt_) {
     bias_noise_dt_ = dt;
-    accel_bias_q_ = q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 *
-                    -std::expm1(-2.0 * dt / q.accel_bias_tau_s);
+    accel_bias_q_ =
+        q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 * -std::expm1(-2.0 * dt / q.accel_bias_tau_s);
     gyro_bias_q_ =
         q.gyro_bias_sd_radps * q.gyro_bias_sd_radps * -std::expm1(-2.0 * dt / q.gyro_bias_tau_s);
   }
@@ -230,9 +229,7 @@ void WardEkf::GuardDivergence() {
   P_ = last_good_P_ * 100.0;
 }
 
-double WardEkf::GravityAlongX() const {
-  return loads_.gravity_along_x_mps2;
-}
+double WardEkf::GravityAlongX() const { return loads_.gravity_along_x_mps2; }
 
 void WardEkf::AddAttitude(const AttitudeSample& attitude) {
   if (!IsFinite(attitude.roll) || !IsFinite(attitude.pitch)) {
@@ -302,9 +299,9 @@ void WardEkf::AddImu(const ImuSample& imu) {
       // Eq. (11) as the tie between a_dist and the tire law: its noise is the tire law's,
       // persistent over correlation_time (a per-sample variance scaled by correlation_time/dt).
       // From the row's own forces (their Jets carry d/d w): no second tire-force evaluation.
-      variance += TireLawVarianceOf(forces, kOmegaLeft, kOmegaRight, params_,
-                                    model_.tire_uncertainty) *
-                  TireLawSampleScale(model_.tire_uncertainty, imu_period_s_);
+      variance +=
+          TireLawVarianceOf(forces, kOmegaLeft, kOmegaRight, params_, model_.tire_uncertainty) *
+          TireLawSampleScale(model_.tire_uncertainty, imu_period_s_);
     }
     add_row(kZAccelX, imu.ax, variance);
     // Normalized innovation squared of the accelerometer alone, for the adaptive w3.
