@@ -101,8 +101,7 @@ void WardEkf::PredictTo(double t) {
   StateMatrix A;
   if (accel_driven) {
     // The state and its transition matrix by the chain rule through the RK4 stages
-    // (factors/ward_accel_driven_step.h): the same state as a 7-wide Jet pass, at a third of
-    // the cost.
+    // (factors/ward_accel_driven_step.h): the same state as a 7-wide Jet pass, cheaper.
     StateVector next;
     PropagateAccelerometerDriven(x_.data(), accel_input_mps2_ - offsets_.accel_x_mps2(), loads_,
                                  params_, dt, next.data(), &A);
