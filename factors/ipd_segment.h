@@ -55,7 +55,8 @@ inline void PredictSegment(const std::vector<OdometryStep>& steps, const T* alph
 // predicted with alpha. q_i: the diagonal of Q, the white-noise densities of (V_x, V_y, V_yaw).
 struct PredictionCovarianceTerms {
   Eigen::Matrix3d measurement = Eigen::Matrix3d::Zero();
-  std::array<Eigen::Matrix3d, 3> input{};
+  std::array<Eigen::Matrix3d, 3> input{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(),
+                                       Eigen::Matrix3d::Zero()};
   Eigen::Matrix3d Total(const Eigen::Vector3d& q) const {
     return measurement + q[0] * input[0] + q[1] * input[1] + q[2] * input[2];
   }

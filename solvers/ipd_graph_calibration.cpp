@@ -17,6 +17,7 @@
 #include "problems/marginalization.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/ipd_covariance_matching.h"
+#include "solvers/ipd_noise_likelihood.h"
 #include "solvers/ipd_terrain_memory.h"
 
 namespace slipgraph {
@@ -106,9 +107,9 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
   // Jumps found from the innovations (solvers/jump_detector.h, as the EKF): hypotheses only as
   // far back as the window still holds the block to free.
   JumpDetectorOptions jump_options = IpdJumpDetectorOptions(options);
-  jump_options.window = std::max(
-      1, std::min(jump_options.window,
-                  static_cast<int>((graph.window_s - 2.0 * block_s) / options.spacing_s)));
+  jump_options.window =
+      std::max(1, std::min(jump_options.window,
+                           static_cast<int>((graph.window_s - 2.0 * block_s) / options.spacing_s)));
   JumpDetector<ipd::kAlphaSize, 3> detector(jump_options);
   // Frees the walk into `block` (a jump: the terrain changed), once per block; nothing when the
   // block has no walk in the window or has jumped already.
@@ -123,8 +124,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
                   model_since_t, t);
     model_since_t = t;
     problem.RemoveResidualBlock(walk_into[block]);
-    walk_into[block] = AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(),
-                               blocks[index].data());
+    walk_into[block] =
+        AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(), blocks[index].data());
     jumped.insert(block);
     ++jumps;
   };
@@ -190,13 +191,13 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       // the stored model as its prior instead of the walk from the block before it.
       IpdSlipModel stored;
       const int newest = first_block + static_cast<int>(blocks.size()) - 1;
-      if (memory.Score(seg, score.log_likelihood, &stored) &&
-          blocks.size() > 1 && walk_into.count(newest) && !recalled_into.count(newest)) {
+      if (memory.Score(seg, score.log_likelihood, &stored) && blocks.size() > 1 &&
+          walk_into.count(newest) && !recalled_into.count(newest)) {
         problem.RemoveResidualBlock(walk_into[newest]);
         walk_into.erase(newest);
         problem.AddResidualBlock(
-            new MarginalPrior({ipd::kAlphaSize}, stored.alpha,
-                              stored.P.inverse(), Eigen::VectorXd::Zero(ipd::kAlphaSize)),
+            new MarginalPrior({ipd::kAlphaSize}, stored.alpha, stored.P.inverse(),
+                              Eigen::VectorXd::Zero(ipd::kAlphaSize)),
             nullptr, blocks.back().data());
         for (int i = 0; i < ipd::kAlphaSize; ++i) latest[i] = blocks.back()[i] = stored.alpha[i];
         latest_covariance = stored.P;
@@ -231,8 +232,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
     result.alpha.push_back(latest);
     result.q.push_back(stochastic.q());
     // Marginalize blocks older than the window.
-    while (static_cast<double>(blocks.size()) * block_s > graph.window_s &&
-           blocks.size() > 1) {
+    while (static_cast<double>(blocks.size()) * block_s > graph.window_s && blocks.size() > 1) {
       Marginalization m = Marginalize(problem, {blocks.front().data()});
       problem.RemoveParameterBlock(blocks.front().data());
       blocks.pop_front();
@@ -279,41 +279,79 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   if (segments.empty()) return result;
   const double t0 = segments.front().t_start;
   const int n_blocks = BlockOf(segments.back().t_end, t0, graph.block_s) + 1;
+  const auto block_of = [&](const IpdSegment& seg) {
+    return std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
+  };
   std::vector<Alpha> blocks(n_blocks, Alpha{});
-  ceres::Problem problem;
+  // Q per block: the EKF's final Q everywhere to start; then, by maximum likelihood from the
+  // residuals the solved alpha leaves (solvers/ipd_noise_likelihood.h), and alpha solved again
+  // with the segments weighed by it.
+  std::vector<Eigen::Vector3d> q(n_blocks, ekf.final_q);
   const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
-  problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
-                           nullptr, blocks[0].data());
-  for (int j = 1; j < n_blocks; ++j) {
-    AddWalk(&problem, walk_inverse_sd, graph.walk_huber_sd, blocks[j - 1].data(), blocks[j].data());
-  }
-  for (const IpdSegment& seg : segments) {
-    const int b =
-        std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
-    problem.AddResidualBlock(SegmentFactor(seg, Alpha{}, options, ekf.final_q), nullptr,
-                             blocks[b].data());
-  }
-  ceres::Solver::Summary summary;
-  ceres::Solve(SolverOptions(50), &problem, &summary);
-  if (!summary.IsSolutionUsable()) {
-    result = ekf;
-    result.notes.push_back("batch solve failed (" + summary.message + "): the EKF's result");
-    return result;
+  const int rounds = 1 + (graph.q_by_likelihood ? graph.q_likelihood_rounds : 0);
+  for (int round = 0; round < rounds; ++round) {
+    if (round > 0) {
+      std::vector<NoiseLikelihoodSegment> fit_segments;
+      fit_segments.reserve(segments.size());
+      for (const IpdSegment& seg : segments) {
+        const int b = block_of(seg);
+        NoiseLikelihoodSegment f;
+        f.residual = LinearizeSegment(seg, blocks[b].data(), options).residual;
+        f.terms = ipd::PredictionCovariance(seg.steps, blocks[b].data(), options.gravity_mps2,
+                                            seg.sigma_start, seg.sigma_end);
+        f.block = b;
+        fit_segments.push_back(f);
+      }
+      NoiseLikelihoodOptions noise = graph.q_likelihood;
+      noise.block_s = graph.block_s;
+      noise.segment_weight = options.spacing_s / options.segment_s;
+      noise.q_prior = ekf.final_q;
+      const NoiseLikelihoodResult fit = FitNoiseByLikelihood(fit_segments, n_blocks, noise, q);
+      if (!fit.ok) {
+        result.notes.push_back("Q by maximum likelihood failed (" + fit.message +
+                               "): the EKF's final Q kept");
+        break;
+      }
+      q = fit.q;
+    }
+    ceres::Problem problem;
+    problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
+                             nullptr, blocks[0].data());
+    for (int j = 1; j < n_blocks; ++j) {
+      AddWalk(&problem, walk_inverse_sd, graph.walk_huber_sd, blocks[j - 1].data(),
+              blocks[j].data());
+    }
+    for (const IpdSegment& seg : segments) {
+      const int b = block_of(seg);
+      problem.AddResidualBlock(SegmentFactor(seg, blocks[b], options, q[b]), nullptr,
+                               blocks[b].data());
+    }
+    ceres::Solver::Summary summary;
+    ceres::Solve(SolverOptions(50), &problem, &summary);
+    if (!summary.IsSolutionUsable()) {
+      if (round == 0) {
+        result = ekf;
+        result.notes.push_back("batch solve failed (" + summary.message + "): the EKF's result");
+        return result;
+      }
+      result.notes.push_back("batch re-solve with Q by maximum likelihood failed (" +
+                             summary.message + ")");
+      break;
+    }
   }
   const Alpha zero{};
   for (const IpdSegment& seg : segments) {
-    const int b =
-        std::min(n_blocks - 1, BlockOf(0.5 * (seg.t_start + seg.t_end), t0, graph.block_s));
-    result.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, ekf.final_q));
-    result.calibrated.push_back(EvaluatePrediction(seg, blocks[b].data(), options, ekf.final_q));
+    const int b = block_of(seg);
+    result.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, q[b]));
+    result.calibrated.push_back(EvaluatePrediction(seg, blocks[b].data(), options, q[b]));
   }
   for (int j = 0; j < n_blocks; ++j) {
     result.update_t.push_back(t0 + (j + 1) * graph.block_s);
     result.alpha.push_back(blocks[j]);
-    result.q.push_back(ekf.final_q);
+    result.q.push_back(q[j]);
   }
   result.final_alpha = blocks.back();
-  result.final_q = ekf.final_q;
+  result.final_q = q.back();
   result.notes.push_back(
       "batch: each segment predicted with the alpha of its own block "
       "(post-processing, not causal)");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "solvers/ipd_calibration.h"
+#include "solvers/ipd_noise_likelihood.h"
 
 namespace slipgraph {
 
@@ -13,7 +14,8 @@ namespace slipgraph {
 // into a prior
 // (problems/marginalization); a segment is predicted with the newest solved block. "batch"
 // solves the whole log at once and predicts each segment with its own block (post-processing,
-// not causal). Q comes from StochasticCalibrator in both.
+// not causal). Q: in the window from StochasticCalibrator (the paper's online method); in the batch
+// by maximum likelihood per block (q_by_likelihood), starting from the EKF's.
 struct IpdGraphOptions {
   // The batch's alpha blocks (5 s: 0.0611 m on ipd35 seed 1, 0.0621 with 0.5 s blocks).
   double block_s = 5.0;
@@ -35,6 +37,13 @@ struct IpdGraphOptions {
   // that many segments in a row fail the 99.99 % gate at the newest alpha, the walk into their
   // block is replaced by one of this sd (a jump: the terrain changed). 0: never.
   double jump_sd = 0.05;
+  // The batch's Q: by maximum likelihood per block from the residuals its alpha leaves
+  // (solvers/ipd_noise_likelihood.h), alpha solved again with it, this many rounds; false: the
+  // online EKF's final Q for the whole log. q_likelihood's block_s, segment_weight and q_prior
+  // are set from the batch (block_s, spacing / segment length, the EKF's final Q).
+  bool q_by_likelihood = true;
+  int q_likelihood_rounds = 2;
+  NoiseLikelihoodOptions q_likelihood;
 };
 IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options = {},
                                         const IpdGraphOptions& graph = {});

@@ -3,7 +3,8 @@
 // (factors/ward_dynamics.h), measurement model eq. (11), Joseph-form covariance update, constant
 // IMU offsets by mean-then-EMA (eq. 12), the six weak constraints of Table I as pseudo-
 // measurements, and the slip-EMA immobilization detector. Jacobians by automatic differentiation
-// of the same templated physics.
+// of the same templated physics (in the accelerometer-driven prediction, its yaw acceleration's,
+// carried through the RK4 stages by the chain rule: factors/ward_accel_driven_step.h).
 //
 // Streaming: push measurements in time order (AddImu, AddWheels, ...); each does constant work.
 // Any subset of streams works. A NaN component is dropped alone (as robot_localization does);

@@ -5,9 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
-
 #include <cmath>
+#include <cstdio>
 
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
@@ -65,6 +64,44 @@ TwoTerrainLog SimulateTwoTerrains(const std::string& before, const std::string& 
     if (s >= 150.0) r.t_boundary = r.log.truth[k].t;
   }
   return r;
+}
+
+// The batch's Q by maximum likelihood (solvers/ipd_noise_likelihood.h) on one soil: the same Q
+// as the paper's online stochastic calibration (the EKF's, eqs. 18-27) within 20 % on every
+// axis (measured 0.98 / 0.99 / 0.86 of it; both put the forward noise at 0.68 of the simulator's
+// stated density on this soil, so neither is compared with that). And from asphalt to mud it
+// follows the soil: the simulator's mud is 4 x as noisy on every axis.
+TEST(IpdCalibration, BatchNoiseByLikelihoodFollowsTheSoil) {
+  const DriveLog log = SimulateIpd(8.0, "loose_rock");
+  const IpdCalibrationResult batch = CalibrateIpdBatch(log);
+  const IpdCalibrationResult ekf = CalibrateIpdEkf(log);
+  ASSERT_FALSE(batch.q.empty());
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& q : batch.q) mean += q;
+  mean /= static_cast<double>(batch.q.size());
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(mean[j] / ekf.final_q[j], 1.0, 0.2) << "q " << j << ": " << mean[j];
+  }
+
+  const TwoTerrainLog two = SimulateTwoTerrains("asphalt", "mud");
+  const IpdCalibrationResult changed = CalibrateIpdBatch(two.log);
+  Eigen::Vector3d before = Eigen::Vector3d::Zero(), after = Eigen::Vector3d::Zero();
+  int n_before = 0, n_after = 0;
+  for (size_t b = 0; b < changed.q.size(); ++b) {
+    // Blocks 30 s or more from the change (the walk on log q spreads it over about that).
+    if (changed.update_t[b] < two.t_boundary - 30.0) {
+      before += changed.q[b];
+      ++n_before;
+    } else if (changed.update_t[b] > two.t_boundary + 30.0) {
+      after += changed.q[b];
+      ++n_after;
+    }
+  }
+  ASSERT_GT(n_before, 0);
+  ASSERT_GT(n_after, 0);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_GT(after[j] / n_after, 2.0 * before[j] / n_before) << "q " << j;
+  }
 }
 
 // Mean position error of the predictions starting within `seconds` after t.
@@ -139,7 +176,8 @@ TEST(IpdCalibration, FindsATerrainChangeTheGateMisses) {
   }
   // Measured: 10 s after, EKF 0.114 against 0.126 m, window 0.113 against 0.122; 30 s after,
   // 0.076 against 0.083 and 0.075 against 0.079.
-  EXPECT_LT(ErrorAfter(with, two.t_boundary, 10.0), 0.95 * ErrorAfter(without, two.t_boundary, 10.0));
+  EXPECT_LT(ErrorAfter(with, two.t_boundary, 10.0),
+            0.95 * ErrorAfter(without, two.t_boundary, 10.0));
   EXPECT_LT(ErrorAfter(window, two.t_boundary, 10.0),
             0.95 * ErrorAfter(window_without, two.t_boundary, 10.0));
   bool noted = false;
@@ -177,9 +215,14 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
     EXPECT_GT(late.predicted_over_sample[i], 0.8);
     EXPECT_LT(late.predicted_over_sample[i], 1.2);
   }
-  for (int i = 0; i < 2; ++i) {
+  // The batch's Q by maximum likelihood per block (solvers/ipd_noise_likelihood.h): its
+  // predicted covariance within the 20 % on every axis (the EKF's final Q for the whole
+  // log gave 1.09 / 1.28 along / cross here, 0.67 / 0.59 / 0.46 on seed 4).
+  std::printf("batch: %.2f %.2f %.2f\n", batch.predicted_over_sample[0],
+              batch.predicted_over_sample[1], batch.predicted_over_sample[2]);
+  for (int i = 0; i < 3; ++i) {
     EXPECT_GT(batch.predicted_over_sample[i], 0.8);
-    EXPECT_LT(batch.predicted_over_sample[i], 1.35);  // 1.09, 1.28
+    EXPECT_LT(batch.predicted_over_sample[i], 1.2);
   }
   std::printf("mean position error EKF %.4f window %.4f batch %.4f m; heading %.4f %.4f rad\n",
               calibrated.mean_position_error_m, window.mean_position_error_m,
