@@ -8,14 +8,20 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
   struct Options {
     EstimatorRunOptions run;
     bool no_gps = false;
+    bool single_law = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
       app, "filter", "Run the streaming EKF (Ward & Iagnemma) and write its estimates",
       &options->run, &options->no_gps);
+  cmd->add_flag("--single-law", options->single_law,
+                "One filter on the user's tire law (the paper's), also when vehicle.yaml lists the "
+                "soils it was fitted over (law_samples: by default a bank of filters, one per law, "
+                "weighed by their GNSS likelihood)");
   cmd->callback([options, status]() {
     FilterRunOptions run_options;
     run_options.use_gps = !options->no_gps;
+    run_options.multiple_model = !options->single_law;
     RunEstimatorOverLogs(options->run,
                          [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
                            const FilterResult result = RunEkf(log, model, run_options);

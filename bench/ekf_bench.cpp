@@ -1,6 +1,6 @@
 // EKF steps per second on one core: one step = one IMU update and one wheel cycle (prediction,
 // updates, weak constraints, detector) plus an attitude sample, at 100 Hz, on the fig5 drive,
-// through RunEkf (the stream merge included).
+// through RunEkf (the stream merge included); and the bank of filters over a law's soils.
 // Run: build/bench/ekf_bench
 #include <benchmark/benchmark.h>
 
@@ -25,6 +25,23 @@ void BM_EkfStep(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_EkfStep)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+// The front end on a log whose vehicle.yaml lists the four soils its law was fitted over: the bank
+// of five filters (solvers/multiple_model_ekf.h), the same step counted once.
+void BM_BankStep(benchmark::State& state) {
+  const sim::ScenarioRun run = sim::ExpandScenario("ward21/13", 1).at(0);
+  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  size_t cycles = 0;
+  for (auto _ : state) {
+    const FilterResult result = RunEkf(log, model);
+    cycles += result.estimates.size();
+    benchmark::DoNotOptimize(result.estimates.back());
+  }
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_BankStep)->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace
 }  // namespace slipgraph

@@ -8,10 +8,43 @@
 
 namespace slipgraph {
 
+namespace {
+
+// The streams merged in time order into any filter with the WardEkf interface.
+template <typename Filter>
+void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
+          FilterResult* result) {
+  result->estimates.reserve(log.wheels.size());
+  for (const StreamEntry& entry : MergeStreams(log, selection)) {
+    switch (entry.stream) {
+      case Stream::kImu:
+        filter->AddImu(log.imu[entry.index]);
+        break;
+      case Stream::kAttitude:
+        filter->AddAttitude(log.attitude[entry.index]);
+        break;
+      case Stream::kGps:
+        filter->AddGps(log.gps[entry.index]);
+        break;
+      case Stream::kWheels: {
+        const WheelSample& w = log.wheels[entry.index];
+        const SideSpeeds sides = DrivenSideSpeeds(w, log.vehicle.type);
+        filter->AddWheels(w.t, sides.left_radps, sides.right_radps);
+        result->estimates.push_back(filter->Estimate());
+        break;
+      }
+      default:
+        break;
+    }
+  }
+  result->stats = filter->stats();
+}
+
+}  // namespace
+
 FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
                     const FilterRunOptions& options) {
   FilterResult result;
-  WardEkf ekf(log.vehicle, model, options.ekf);
   StreamSelection selection;
   selection.Set(Stream::kGps, options.use_gps);
   selection.Set(Stream::kAttitude, options.use_attitude);
@@ -34,30 +67,17 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   for (Stream s : {Stream::kPose, Stream::kArticulation, Stream::kRange, Stream::kCommands}) {
     selection.Set(s, false);
   }
-  result.estimates.reserve(log.wheels.size());
-  for (const StreamEntry& entry : MergeStreams(log, selection)) {
-    switch (entry.stream) {
-      case Stream::kImu:
-        ekf.AddImu(log.imu[entry.index]);
-        break;
-      case Stream::kAttitude:
-        ekf.AddAttitude(log.attitude[entry.index]);
-        break;
-      case Stream::kGps:
-        ekf.AddGps(log.gps[entry.index]);
-        break;
-      case Stream::kWheels: {
-        const WheelSample& w = log.wheels[entry.index];
-        const SideSpeeds sides = DrivenSideSpeeds(w, log.vehicle.type);
-        ekf.AddWheels(w.t, sides.left_radps, sides.right_radps);
-        result.estimates.push_back(ekf.Estimate());
-        break;
-      }
-      default:
-        break;
-    }
+  if (options.multiple_model && model.law_samples.size() >= 2) {
+    MultipleModelEkf bank(log.vehicle, model, options.ekf, options.multiple_model_options);
+    Feed(log, selection, &bank, &result);
+    result.notes.push_back("a bank of " + std::to_string(bank.size()) +
+                           " filters: the user's tire law and the " +
+                           std::to_string(model.law_samples.size()) +
+                           " it was fitted over, weighed by their likelihood");
+  } else {
+    WardEkf ekf(log.vehicle, model, options.ekf);
+    Feed(log, selection, &ekf, &result);
   }
-  result.stats = ekf.stats();
   if (result.stats.gps.used == 0 && result.stats.gps.rejected > 0) {
     result.notes.push_back("every GNSS fix was rejected by the gate");
   }

@@ -8,6 +8,7 @@
 #include "io/drive_log.h"
 #include "io/estimate_file.h"
 #include "model/model_config.h"
+#include "solvers/multiple_model_ekf.h"
 #include "solvers/ward_ekf.h"
 
 namespace slipgraph {
@@ -16,6 +17,11 @@ struct FilterRunOptions {
   bool use_gps = true;       // --no-gps clears it
   bool use_attitude = true;  // without attitude.csv the ground is taken as flat (and said so)
   EkfOptions ekf;
+  // With the law's soils in the model (vehicle.yaml law_samples): a bank of filters, one per
+  // soil law and the user's, weighed by their GNSS likelihood (solvers/multiple_model_ekf.h).
+  // false, or no law samples: the paper's single filter.
+  bool multiple_model = true;
+  MultipleModelOptions multiple_model_options;
 };
 
 struct FilterResult {

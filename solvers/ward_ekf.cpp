@@ -163,21 +163,28 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
       S(i, i) += r(i);
     }
     // One or two rows (every stream but a stacked custom one): closed form, no factorization.
-    double mahalanobis;
+    double mahalanobis, det;
     if (m == 1) {
+      det = S(0, 0);
       mahalanobis = nu(0) * nu(0) / S(0, 0);
     } else if (m == 2) {
-      const double det = S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0);
+      det = S(0, 0) * S(1, 1) - S(0, 1) * S(1, 0);
       mahalanobis = (S(1, 1) * nu(0) * nu(0) - (S(0, 1) + S(1, 0)) * nu(0) * nu(1) +
                      S(0, 0) * nu(1) * nu(1)) /
                     det;
     } else {
-      mahalanobis = nu.dot(S.ldlt().solve(nu));
+      const auto ldlt = S.ldlt();
+      det = ldlt.vectorD().prod();
+      mahalanobis = nu.dot(ldlt.solve(nu));
     }
     if (mahalanobis > gate_chi2) {
       if (consecutive_rejections == nullptr ||
           ++*consecutive_rejections <= max_consecutive_rejections) {
         ++counters->rejected;
+        // A measurement gated out still happened: it counts against the model in the likelihood.
+        if (consecutive_rejections != nullptr) {
+          log_likelihood_ -= 0.5 * (mahalanobis + std::log(det) + m * std::log(2.0 * M_PI));
+        }
         return false;
       }
       ++counters->forced;
@@ -200,6 +207,10 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
     const StateVector Ph = unit >= 0 ? StateVector(P_.col(unit)) : StateVector(P_ * h);
     const double s = h.dot(Ph) + r(i);
     const StateVector k = Ph / s;
+    // The stacked measurement's log-likelihood, one conditional row at a time (sensor rows only).
+    if (consecutive_rejections != nullptr) {
+      log_likelihood_ -= 0.5 * (innovation * innovation / s + std::log(2.0 * M_PI * s));
+    }
     if (options_.record_innovations && names != nullptr && i < static_cast<int>(names->size())) {
       EkfStats::InnovationSeries& series = stats_.innovations[(*names)[i]];
       series.t.push_back(t_);

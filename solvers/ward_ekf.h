@@ -114,6 +114,14 @@ class WardEkf {
   void AddAttitude(const AttitudeSample& attitude);
 
   EkfEstimate Estimate() const;
+  // The log-likelihood of the sensor measurements applied (or gated out) since the last call,
+  // log N(nu; 0, H P H' + R) (weak constraints not counted), and reset: for a bank of filters
+  // weighing their models (solvers/multiple_model_ekf.h).
+  double TakeLogLikelihood() {
+    const double l = log_likelihood_;
+    log_likelihood_ = 0.0;
+    return l;
+  }
   const EkfStats& stats() const { return stats_; }
   bool started() const { return started_; }
 
@@ -177,6 +185,7 @@ class WardEkf {
   double wheels_stopped_since_ = 1e300;  // time both wheels first read still, 1e300: moving
   int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
   EkfStats stats_;
+  double log_likelihood_ = 0.0;  // since the last TakeLogLikelihood()
   StateVector last_good_x_ = StateVector::Zero();
   StateMatrix last_good_P_ = StateMatrix::Zero();
   std::vector<PseudoMeasurement> pseudo_;  // reused buffer

@@ -1,0 +1,97 @@
+#include "solvers/multiple_model_ekf.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace slipgraph {
+
+bool MultipleModelOptions::IsValid(std::string* error) const {
+  if (!(switch_time_s > 0.0)) {
+    *error = "switch_time_s must be positive";
+    return false;
+  }
+  return true;
+}
+
+MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& model,
+                                   const EkfOptions& ekf, const MultipleModelOptions& options)
+    : options_(options),
+      detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
+      encoder_timeout_s_(ekf.encoder_timeout_s) {
+  filters_.push_back(std::make_unique<WardEkf>(vehicle, model, ekf));
+  if (model.law_samples.size() >= 2) {
+    for (const LawSample& sample : model.law_samples) {
+      ModelConfig soil = model;
+      soil.tire = sample.tire;
+      soil.rolling = sample.rolling;
+      filters_.push_back(std::make_unique<WardEkf>(vehicle, soil, ekf));
+    }
+  }
+  weights_.assign(filters_.size(), 1.0 / filters_.size());
+}
+
+void MultipleModelEkf::AddImu(const ImuSample& imu) {
+  for (auto& f : filters_) {
+    f->AddImu(imu);
+    f->TakeLogLikelihood();  // not weighed (see the header)
+  }
+}
+
+void MultipleModelEkf::AddAttitude(const AttitudeSample& attitude) {
+  for (auto& f : filters_) f->AddAttitude(attitude);
+}
+
+void MultipleModelEkf::AddGps(const GpsSample& gps) {
+  std::vector<double> log_likelihood(filters_.size());
+  for (size_t i = 0; i < filters_.size(); ++i) {
+    filters_[i]->AddGps(gps);
+    log_likelihood[i] = filters_[i]->TakeLogLikelihood();
+  }
+  const double best = *std::max_element(log_likelihood.begin(), log_likelihood.end());
+  double sum = 0.0;
+  for (size_t i = 0; i < filters_.size(); ++i) {
+    weights_[i] *= std::exp(log_likelihood[i] - best);
+    sum += weights_[i];
+  }
+  for (double& w : weights_) w /= sum;
+}
+
+void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right) {
+  for (auto& f : filters_) {
+    f->AddWheels(t, omega_left, omega_right);
+    f->TakeLogLikelihood();
+  }
+  // Forgetting: the weights relax toward uniform, so a law that fits again can come back.
+  if (last_cycle_t_ >= 0.0 && t > last_cycle_t_) {
+    const double mix = std::min(1.0, (t - last_cycle_t_) / options_.switch_time_s);
+    for (double& w : weights_) w = (1.0 - mix) * w + mix / weights_.size();
+  }
+  last_cycle_t_ = t;
+  if (std::isfinite(omega_left) && std::isfinite(omega_right)) last_wheels_t_ = t;
+  const EkfEstimate e = Estimate();
+  slip_ = detector_.Update(e.x[ward::kVbx], e.x[ward::kYawRate], e.x[ward::kOmegaLeft],
+                           e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_);
+}
+
+EkfEstimate MultipleModelEkf::Estimate() const {
+  EkfEstimate out = filters_.front()->Estimate();
+  if (filters_.size() == 1) return out;
+  std::array<double, ward::kStateSize> mean{}, second{};
+  for (size_t i = 0; i < filters_.size(); ++i) {
+    const EkfEstimate e = filters_[i]->Estimate();
+    for (int j = 0; j < ward::kStateSize; ++j) {
+      mean[j] += weights_[i] * e.x[j];
+      second[j] += weights_[i] * (e.sd[j] * e.sd[j] + e.x[j] * e.x[j]);
+    }
+  }
+  for (int j = 0; j < ward::kStateSize; ++j) {
+    out.x[j] = mean[j];
+    out.sd[j] = std::sqrt(std::max(0.0, second[j] - mean[j] * mean[j]));
+  }
+  out.slip = slip_;
+  // Missing encoder data is never reported as immobilization.
+  if (out.t - last_wheels_t_ > encoder_timeout_s_) out.slip.immobilized = false;
+  return out;
+}
+
+}  // namespace slipgraph

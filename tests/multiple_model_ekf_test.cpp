@@ -1,0 +1,115 @@
+// The bank of Ward EKFs over the soils a tire law was fitted from (solvers/multiple_model_ekf.h),
+// on simulated ward21 runs whose vehicle.yaml lists those soils.
+#include "solvers/multiple_model_ekf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "evaluation/evaluation.h"
+#include "io/measurement_stream.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+namespace {
+
+DriveLog Simulated(const std::string& scenario, uint64_t seed = 1) {
+  const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
+  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  log.directory = scenario;
+  return log;
+}
+
+Evaluation RunFront(const DriveLog& log, bool bank) {
+  FilterRunOptions options;
+  options.multiple_model = bank;
+  return Evaluate(log,
+                  EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle), options).estimates));
+}
+
+TEST(MultipleModelEkf, WithoutLawSamplesItIsThePapersFilter) {
+  const DriveLog log = Simulated("fig5");  // its vehicle.yaml states one law, no soils
+  ASSERT_TRUE(log.vehicle.law_samples.empty());
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  FilterRunOptions single, bank;
+  single.multiple_model = false;
+  const std::vector<EkfEstimate> a = RunEkf(log, model, single).estimates;
+  const std::vector<EkfEstimate> b = RunEkf(log, model, bank).estimates;
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); k += 97) {
+    EXPECT_EQ(a[k].x, b[k].x);
+    EXPECT_EQ(a[k].slip.immobilized, b[k].slip.immobilized);
+  }
+}
+
+TEST(MultipleModelEkf, FindsTheSlowHoldBackOnMudThatOneFilterMisses) {
+  // ward21 seed 1, run 13: 0.2 m/s over mulch then mud, where the user's mean law puts v_bx
+  // 4-5 cm/s high and the single filter's slip EMA stays below the threshold (docs/ekf.md).
+  const DriveLog log = Simulated("ward21/13");
+  ASSERT_EQ(log.vehicle.law_samples.size(), 4u);
+  const Evaluation single = RunFront(log, false), bank = RunFront(log, true);
+  ASSERT_EQ(single.events.size(), 1u);
+  EXPECT_FALSE(single.events[0].detected);  // the case this exists for
+  ASSERT_EQ(bank.events.size(), 1u);
+  EXPECT_TRUE(bank.events[0].detected);
+  EXPECT_EQ(bank.false_immobilized_samples, 0);
+  EXPECT_LT(bank.velocity_rmse, single.velocity_rmse);
+}
+
+TEST(MultipleModelEkf, GnssWeighsTheLawsTowardTheSoil) {
+  // The same run on mud: after its 25 s of driving the GNSS fixes have moved weight to the mud
+  // law (the soils in vehicle.yaml order: mulch, gravel, mud, grass; filter 0 is the user's).
+  const DriveLog log = Simulated("ward21/13");
+  MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
+  ASSERT_EQ(bank.size(), 5u);
+  double mud_weight = 0.0, gravel_weight = 0.0;
+  for (const StreamEntry& e : MergeStreams(log)) {
+    if (e.stream == Stream::kImu) bank.AddImu(log.imu[e.index]);
+    if (e.stream == Stream::kAttitude) bank.AddAttitude(log.attitude[e.index]);
+    if (e.stream == Stream::kGps) bank.AddGps(log.gps[e.index]);
+    if (e.stream == Stream::kWheels) {
+      const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
+      bank.AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
+      if (std::abs(log.wheels[e.index].t - 27.0) < 0.005) {  // just before the hold-back
+        mud_weight = bank.weights()[3];
+        gravel_weight = bank.weights()[2];
+      }
+    }
+  }
+  std::printf("weights before the hold-back: mud %.3f, gravel %.3f\n", mud_weight, gravel_weight);
+  EXPECT_GT(mud_weight, 0.3);  // uniform: 0.2
+  EXPECT_LT(gravel_weight, 0.2);
+}
+
+TEST(MultipleModelEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
+  const DriveLog log = Simulated("ward21/13");
+  MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
+  bool flagged = false;
+  for (const StreamEntry& e : MergeStreams(log)) {
+    if (e.stream == Stream::kImu) bank.AddImu(log.imu[e.index]);
+    if (e.stream == Stream::kAttitude) bank.AddAttitude(log.attitude[e.index]);
+    if (e.stream == Stream::kGps) bank.AddGps(log.gps[e.index]);
+    // The encoders fall silent a second into the hold-back (27.5-31.0 s), once it is flagged.
+    if (e.stream == Stream::kWheels && e.t < 29.5) {
+      const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
+      bank.AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
+      flagged = flagged || bank.Estimate().slip.immobilized;
+    }
+  }
+  EXPECT_TRUE(flagged);
+  EXPECT_FALSE(bank.Estimate().slip.immobilized);
+}
+
+TEST(MultipleModelEkf, OptionsAreValidated) {
+  MultipleModelOptions options;
+  std::string error;
+  EXPECT_TRUE(options.IsValid(&error));
+  options.switch_time_s = 0.0;
+  EXPECT_FALSE(options.IsValid(&error));
+}
+
+}  // namespace
+}  // namespace slipgraph
