@@ -70,10 +70,10 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   if (options.multiple_model && model.law_samples.size() >= 2) {
     MultipleModelEkf bank(log.vehicle, model, options.ekf, options.multiple_model_options);
     Feed(log, selection, &bank, &result);
-    result.notes.push_back("a bank of " + std::to_string(bank.size()) +
-                           " filters: the user's tire law and the " +
-                           std::to_string(model.law_samples.size()) +
-                           " it was fitted over, weighed by their likelihood");
+    result.notes.push_back(
+        "a bank of " + std::to_string(bank.size()) + " filters: the user's tire law and the " +
+        std::to_string(model.law_samples.size()) +
+        " it was fitted over, weighed by their GNSS likelihood (--single-law: one filter)");
   } else {
     WardEkf ekf(log.vehicle, model, options.ekf);
     Feed(log, selection, &ekf, &result);
