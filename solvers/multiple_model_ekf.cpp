@@ -18,13 +18,15 @@ MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& mo
     : options_(options),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
       encoder_timeout_s_(ekf.encoder_timeout_s) {
-  filters_.push_back(std::make_unique<WardEkf>(vehicle, model, ekf));
+  EkfOptions weighed = ekf;
+  weighed.track_log_likelihood = model.law_samples.size() >= 2;
+  filters_.push_back(std::make_unique<WardEkf>(vehicle, model, weighed));
   if (model.law_samples.size() >= 2) {
     for (const LawSample& sample : model.law_samples) {
       ModelConfig soil = model;
       soil.tire = sample.tire;
       soil.rolling = sample.rolling;
-      filters_.push_back(std::make_unique<WardEkf>(vehicle, soil, ekf));
+      filters_.push_back(std::make_unique<WardEkf>(vehicle, soil, weighed));
     }
   }
   weights_.assign(filters_.size(), 1.0 / filters_.size());

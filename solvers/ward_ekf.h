@@ -61,6 +61,9 @@ struct EkfOptions {
   // Keep every applied measurement's normalized innovation (EkfStats::innovations), for the
   // filter's consistency tests (NIS, whiteness). Off in the streaming front end.
   bool record_innovations = false;
+  // Sum the sensor measurements' log-likelihood for TakeLogLikelihood() (a bank of filters
+  // weighing their models sets it); off, no logarithm is taken in the updates.
+  bool track_log_likelihood = false;
 
   bool IsValid(std::string* error) const;
 };
@@ -114,9 +117,10 @@ class WardEkf {
   void AddAttitude(const AttitudeSample& attitude);
 
   EkfEstimate Estimate() const;
-  // The log-likelihood of the sensor measurements applied (or gated out) since the last call,
-  // log N(nu; 0, H P H' + R) (weak constraints not counted), and reset: for a bank of filters
-  // weighing their models (solvers/multiple_model_ekf.h).
+  // With EkfOptions::track_log_likelihood: the log-likelihood of the sensor measurements applied
+  // (or gated out) since the last call, log N(nu; 0, H P H' + R) (weak constraints not counted),
+  // and reset; 0 without. For a bank of filters weighing their models
+  // (solvers/multiple_model_ekf.h).
   double TakeLogLikelihood() {
     const double l = log_likelihood_;
     log_likelihood_ = 0.0;

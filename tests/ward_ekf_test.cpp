@@ -177,6 +177,27 @@ TEST(WardEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
   EXPECT_FALSE(ekf.Estimate().slip.immobilized);
 }
 
+TEST(WardEkf, SumsTheLogLikelihoodOnlyWhenAsked) {
+  const DriveLog log = Simulated("fig5");
+  EkfOptions tracked;
+  tracked.track_log_likelihood = true;
+  WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
+  WardEkf weighing(log.vehicle, DefaultModelConfig(log.vehicle), tracked);
+  for (const StreamEntry& e : MergeStreams(log)) {
+    if (e.t > 5.0) break;
+    for (WardEkf* ekf : {&plain, &weighing}) {
+      if (e.stream == Stream::kImu) ekf->AddImu(log.imu[e.index]);
+      if (e.stream == Stream::kAttitude) ekf->AddAttitude(log.attitude[e.index]);
+      if (e.stream == Stream::kGps) ekf->AddGps(log.gps[e.index]);
+    }
+  }
+  EXPECT_EQ(plain.TakeLogLikelihood(), 0.0);
+  const double l = weighing.TakeLogLikelihood();
+  EXPECT_TRUE(std::isfinite(l));
+  EXPECT_NE(l, 0.0);
+  EXPECT_EQ(weighing.TakeLogLikelihood(), 0.0);  // reset by the call
+}
+
 TEST(WardEkf, OptionsAreValidated) {
   EkfOptions options;
   std::string error;
