@@ -11,8 +11,9 @@
 namespace slipgraph {
 namespace {
 
-void BM_EkfStep(benchmark::State& state) {
-  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
+// The front end over one simulated scenario, steps (wheel cycles) per second.
+void BM_FrontEnd(benchmark::State& state, const char* scenario) {
+  const sim::ScenarioRun run = sim::ExpandScenario(scenario, 1).at(0);
   const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   size_t cycles = 0;
@@ -24,24 +25,11 @@ void BM_EkfStep(benchmark::State& state) {
   state.counters["steps_per_s"] =
       benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_EkfStep)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-
-// The front end on a log whose vehicle.yaml lists the four soils its law was fitted over: the bank
-// of five filters (solvers/multiple_model_ekf.h), the same step counted once.
-void BM_BankStep(benchmark::State& state) {
-  const sim::ScenarioRun run = sim::ExpandScenario("ward21/13", 1).at(0);
-  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  const ModelConfig model = DefaultModelConfig(log.vehicle);
-  size_t cycles = 0;
-  for (auto _ : state) {
-    const FilterResult result = RunEkf(log, model);
-    cycles += result.estimates.size();
-    benchmark::DoNotOptimize(result.estimates.back());
-  }
-  state.counters["steps_per_s"] =
-      benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
-}
-BENCHMARK(BM_BankStep)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+// One filter: fig5's vehicle.yaml states one law.
+BENCHMARK_CAPTURE(BM_FrontEnd, EkfStep, "fig5")->Unit(benchmark::kMillisecond)->MinTime(2.0);
+// A log whose vehicle.yaml lists the four soils its law was fitted over: the bank of five
+// filters (solvers/multiple_model_ekf.h), the same step counted once.
+BENCHMARK_CAPTURE(BM_FrontEnd, BankStep, "ward21/13")->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace
 }  // namespace slipgraph
