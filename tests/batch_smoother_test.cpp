@@ -10,19 +10,13 @@
 #include "evaluation/evaluation.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
 
-DriveLog Simulated(const std::string& scenario) {
-  const sim::ScenarioRun run = sim::ExpandScenario(scenario, 1).at(0);
-  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  log.directory = scenario;
-  return log;
-}
-
 TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   const SmootherResult result = SmoothBatch(log, DefaultModelConfig(log.vehicle));
   ASSERT_FALSE(result.used_fallback);
   EXPECT_TRUE(result.summary.IsSolutionUsable());
@@ -59,7 +53,7 @@ double MovingVelocityBias(const DriveLog& log, const SmootherResult& result) {
 // own walk (0.3 rad/s^2/sqrt(Hz), Huber at 3 sd) 0.7 mm/s, v RMSE 0.0032 m/s (docs/smoother.md).
 // The control shows the test can fail.
 TEST(BatchSmoother, WheelSpeedWalkKeepsQuantizationOutOfTheVelocity) {
-  const DriveLog log = Simulated("hidden/none");
+  const DriveLog log = testing::SimulatedScenario("hidden/none");
   ASSERT_EQ(log.truth.size(), log.wheels.size());
   BatchSmootherOptions options;
   options.covariance = false;
@@ -83,7 +77,7 @@ TEST(BatchSmoother, EstimatedSlipStiffnessFollowsTheTerrain) {
   std::vector<Evaluation> fixed, estimated, filter;
   for (const char* name :
        {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
-    const DriveLog log = Simulated(name);
+    const DriveLog log = testing::SimulatedScenario(name);
     const ModelConfig model = DefaultModelConfig(log.vehicle);
     BatchSmootherOptions options;
     options.consider_law_uncertainty = false;
@@ -109,16 +103,17 @@ TEST(BatchSmoother, EstimatedSlipStiffnessFollowsTheTerrain) {
 }
 
 // ward21's vehicle.yaml states the four soils its mean law was fitted over (law_samples); the
-// batch counts their spread in every sd (a consider covariance) without moving the estimate. Runs 01-06 of seed 1, stiffness estimated: the velocity sd while moving grows where
-// the estimate leans on the law, and the share of samples inside the 95 % bound goes from below
-// 0.75 to 0.9 or more (measured: 0.66 -> 0.99; all 21 runs of seeds 1-4 in docs/smoother.md).
-// Per-coefficient sd instead (tire_sd, rolling_sd: correlations unknown) also widen the sd. With
-// the law exact (fig5, nothing stated) nothing changes.
+// batch counts their spread in every sd (a consider covariance) without moving the estimate. Runs
+// 01-06 of seed 1, stiffness estimated: the velocity sd while moving grows where the estimate leans
+// on the law, and the share of samples inside the 95 % bound goes from below 0.75 to 0.9 or more
+// (measured: 0.66 -> 0.99; all 21 runs of seeds 1-4 in docs/smoother.md). Per-coefficient sd
+// instead (tire_sd, rolling_sd: correlations unknown) also widen the sd. With the law exact (fig5,
+// nothing stated) nothing changes.
 TEST(BatchSmoother, TheLawsStatedUncertaintyIsInTheSd) {
   std::vector<Evaluation> without, with;
   for (const char* name :
        {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
-    const DriveLog log = Simulated(name);
+    const DriveLog log = testing::SimulatedScenario(name);
     ASSERT_EQ(log.vehicle.law_samples.size(), 4u);
     const ModelConfig model = DefaultModelConfig(log.vehicle);
     BatchSmootherOptions options;
@@ -150,7 +145,7 @@ TEST(BatchSmoother, TheLawsStatedUncertaintyIsInTheSd) {
 
   // The per-coefficient form on one run: the soils' sd, no correlations.
   {
-    const DriveLog log = Simulated("ward21/01");
+    const DriveLog log = testing::SimulatedScenario("ward21/01");
     ModelConfig model = DefaultModelConfig(log.vehicle);
     model.law_samples.clear();
     model.tire_sd = {0.097, 5.4, 0.026};
@@ -169,7 +164,7 @@ TEST(BatchSmoother, TheLawsStatedUncertaintyIsInTheSd) {
   }
 
   // fig5: the user's law is the terrain's, no sd stated: the sd are the plain ones.
-  const DriveLog fig5 = Simulated("fig5");
+  const DriveLog fig5 = testing::SimulatedScenario("fig5");
   EXPECT_EQ(fig5.vehicle.tire_sd.C1, 0.0);
   EXPECT_TRUE(fig5.vehicle.law_samples.empty());
   BatchSmootherOptions options;
@@ -185,7 +180,7 @@ TEST(BatchSmoother, TheLawsStatedUncertaintyIsInTheSd) {
 // then mud) the stiffness settles near -0.5; with the bound moved to -0.2 it stops there and the
 // run says the law does not fit.
 TEST(BatchSmoother, SlipStiffnessStopsAtItsBoundAndSaysSo) {
-  const DriveLog log = Simulated("ward21/01");
+  const DriveLog log = testing::SimulatedScenario("ward21/01");
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   BatchSmootherOptions options;
   options.problem.stiffness_prior_sd = 0.15;
@@ -207,7 +202,7 @@ TEST(BatchSmoother, SlipStiffnessStopsAtItsBoundAndSaysSo) {
 
 TEST(BatchSmoother, FallsBackToTheEkfAndSaysSo) {
   // A log with a single wheel sample cannot make a chain of states.
-  DriveLog log = Simulated("fig5");
+  DriveLog log = testing::SimulatedScenario("fig5");
   log.wheels.resize(1);
   const SmootherResult result = SmoothBatch(log, DefaultModelConfig(log.vehicle));
   EXPECT_TRUE(result.used_fallback);
@@ -223,7 +218,7 @@ TEST(BatchSmoother, FallsBackToTheEkfAndSaysSo) {
 TEST(BatchSmoother, ReGatedDecayPriorLowersTheDisturbanceError) {
   std::vector<Evaluation> regated, ekf_gated;
   for (const char* name : {"ward21/01", "ward21/02", "ward21/03"}) {
-    const DriveLog log = Simulated(name);
+    const DriveLog log = testing::SimulatedScenario(name);
     const ModelConfig model = DefaultModelConfig(log.vehicle);
     BatchSmootherOptions options;
     const SmootherResult r = SmoothBatch(log, model, options);

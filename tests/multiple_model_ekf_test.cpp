@@ -12,16 +12,10 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ekf_runner.h"
+#include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
-
-DriveLog Simulated(const std::string& scenario, uint64_t seed = 1) {
-  const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
-  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  log.directory = scenario;
-  return log;
-}
 
 Evaluation RunFront(const DriveLog& log, bool bank) {
   FilterRunOptions options;
@@ -31,7 +25,8 @@ Evaluation RunFront(const DriveLog& log, bool bank) {
 }
 
 TEST(MultipleModelEkf, WithoutLawSamplesItIsThePapersFilter) {
-  const DriveLog log = Simulated("fig5");  // its vehicle.yaml states one law, no soils
+  const DriveLog log =
+      testing::SimulatedScenario("fig5");  // its vehicle.yaml states one law, no soils
   ASSERT_TRUE(log.vehicle.law_samples.empty());
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   FilterRunOptions single, bank;
@@ -48,7 +43,7 @@ TEST(MultipleModelEkf, WithoutLawSamplesItIsThePapersFilter) {
 TEST(MultipleModelEkf, FindsTheSlowHoldBackOnMudThatOneFilterMisses) {
   // ward21 seed 1, run 13: 0.2 m/s over mulch then mud, where the user's mean law puts v_bx
   // 4-5 cm/s high and the single filter's slip EMA stays below the threshold (docs/ekf.md).
-  const DriveLog log = Simulated("ward21/13");
+  const DriveLog log = testing::SimulatedScenario("ward21/13");
   ASSERT_EQ(log.vehicle.law_samples.size(), 4u);
   const Evaluation single = RunFront(log, false), bank = RunFront(log, true);
   ASSERT_EQ(single.events.size(), 1u);
@@ -62,7 +57,7 @@ TEST(MultipleModelEkf, FindsTheSlowHoldBackOnMudThatOneFilterMisses) {
 TEST(MultipleModelEkf, GnssWeighsTheLawsTowardTheSoil) {
   // The same run on mud: after its 25 s of driving the GNSS fixes have moved weight to the mud
   // law (the soils in vehicle.yaml order: mulch, gravel, mud, grass; filter 0 is the user's).
-  const DriveLog log = Simulated("ward21/13");
+  const DriveLog log = testing::SimulatedScenario("ward21/13");
   MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
   ASSERT_EQ(bank.size(), 5u);
   double mud_weight = 0.0, gravel_weight = 0.0;
@@ -85,7 +80,7 @@ TEST(MultipleModelEkf, GnssWeighsTheLawsTowardTheSoil) {
 }
 
 TEST(MultipleModelEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
-  const DriveLog log = Simulated("ward21/13");
+  const DriveLog log = testing::SimulatedScenario("ward21/13");
   MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
   bool flagged = false;
   for (const StreamEntry& e : MergeStreams(log)) {

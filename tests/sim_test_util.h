@@ -1,4 +1,5 @@
-// Small helpers for simulator tests: a flat single-terrain LAGR scenario and truth lookups.
+// Small helpers for simulator tests: a named scenario's log, a flat single-terrain LAGR
+// scenario and truth lookups.
 #pragma once
 
 #include <cmath>
@@ -19,6 +20,15 @@ inline sim::Scenario FlatLagrScenario(const std::string& terrain, double speed_m
   sc.rest_start_s = 2.0;
   sc.commands = {{drive_s, speed_mps, 0.0}};
   return sc;
+}
+
+// The first run of a named scenario (sim/scenarios.h), simulated with the scenario's seed; its
+// directory named after the scenario (for messages).
+inline DriveLog SimulatedScenario(const std::string& scenario, uint64_t seed = 1) {
+  const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
+  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  log.directory = scenario;
+  return log;
 }
 
 // Mean of f(truth sample) over t in [t0, t1].

@@ -10,20 +10,14 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ekf_runner.h"
+#include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
 
-DriveLog Simulated(const std::string& scenario, uint64_t seed = 1) {
-  const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
-  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  log.directory = scenario;
-  return log;
-}
-
 TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) {
   // Ward & Iagnemma Fig. 5: 1 m/s on grass, held back with 325 N (2.78 m/s^2) for 4 s.
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   for (bool gps : {true, false}) {
     FilterRunOptions options;
     options.use_gps = gps;
@@ -53,7 +47,7 @@ TEST(WardEkf, Ward21RunsAreDetectedWithFewFalseAlarms) {
   std::vector<Evaluation> runs;
   for (const char* name :
        {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
-    const DriveLog log = Simulated(name);
+    const DriveLog log = testing::SimulatedScenario(name);
     runs.push_back(
         Evaluate(log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle)).estimates)));
   }
@@ -74,7 +68,7 @@ TEST(WardEkf, TheStartDoesNotLeakIntoTheAccelerometerOffset) {
   double sum_error = 0.0;
   for (const char* name :
        {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
-    const DriveLog log = Simulated(name);
+    const DriveLog log = testing::SimulatedScenario(name);
     double rest_sum = 0.0;
     int n = 0;
     for (const ImuSample& s : log.imu) {
@@ -93,7 +87,7 @@ TEST(WardEkf, TheStartDoesNotLeakIntoTheAccelerometerOffset) {
 }
 
 TEST(WardEkf, RunsWithoutGnssAndSaysSo) {
-  const DriveLog log = Simulated("ward21/04");
+  const DriveLog log = testing::SimulatedScenario("ward21/04");
   FilterRunOptions options;
   options.use_gps = false;
   const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle), options);
@@ -105,7 +99,7 @@ TEST(WardEkf, RunsWithoutGnssAndSaysSo) {
 }
 
 TEST(WardEkf, AnEffectWithoutAnEstimatorTermIsSaidNotSilentlyIgnored) {
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   ModelConfig model = DefaultModelConfig(log.vehicle);
   model.effects = {"quadratic_drag"};
   const FilterResult result = RunEkf(log, model);
@@ -117,7 +111,7 @@ TEST(WardEkf, AnEffectWithoutAnEstimatorTermIsSaidNotSilentlyIgnored) {
 }
 
 TEST(WardEkf, ANanComponentIsDroppedAlone) {
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   WardEkf ekf(log.vehicle, DefaultModelConfig(log.vehicle));
   for (size_t i = 0; i < 400; ++i) {
     ImuSample imu = log.imu[i];
@@ -136,7 +130,7 @@ TEST(WardEkf, ANanComponentIsDroppedAlone) {
 TEST(WardEkf, InconsistentGnssIsGatedThenReadmittedAndCounted) {
   // Driving at 1 m/s; the receiver reports 3 m/s. The first fix is rejected, the next one is
   // re-admitted rather than silently rejecting every fix.
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   WardEkf ekf(log.vehicle, DefaultModelConfig(log.vehicle));
   int gps_seen = 0;
   for (const StreamEntry& e : MergeStreams(log)) {
@@ -160,7 +154,7 @@ TEST(WardEkf, InconsistentGnssIsGatedThenReadmittedAndCounted) {
 }
 
 TEST(WardEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   WardEkf ekf(log.vehicle, DefaultModelConfig(log.vehicle));
   bool flagged = false;
   for (const StreamEntry& e : MergeStreams(log)) {
@@ -178,7 +172,7 @@ TEST(WardEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
 }
 
 TEST(WardEkf, SumsTheLogLikelihoodOnlyWhenAsked) {
-  const DriveLog log = Simulated("fig5");
+  const DriveLog log = testing::SimulatedScenario("fig5");
   EkfOptions tracked;
   tracked.track_log_likelihood = true;
   WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
