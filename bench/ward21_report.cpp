@@ -1,12 +1,14 @@
 // The EKF on the ward21 suite (Ward & Iagnemma Sec. III): detection, delay and false-alarm
 // figures with and without GNSS, and the paper's Table II (each tire coefficient at +-20 %).
 // Simulates the suite in memory. Run: build/bench/ward21_report [--seed N] [--tire-dynamics]
-// [--smoother] [--nominal] [--runs] [--threshold T] [--low-speed-add A] [--low-speed V]
-// [--ema P] (--tire-dynamics: the paper's propagation of v_bx through the tire
+// [--smoother] [--nominal] [--runs] [--seeds A-B [--single-law]] [--threshold T]
+// [--low-speed-add A] [--low-speed V] [--ema P] (--seeds: the nominal rows on suites A to B, one
+// line each, and how many meet every target; --tire-dynamics: the paper's propagation of v_bx through the tire
 // law, for comparison; --smoother: the batch smoother instead of the EKF, nominal rows only;
 // --nominal: without Table II; --runs: each run's line before each row). The nominal rows show the front end `filter` runs (a bank of
 // filters over the soils vehicle.yaml lists, solvers/multiple_model_ekf.h) and the paper's single
 // filter; Table II is the single filter's, as in the paper.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -67,16 +69,83 @@ void Print(const char* label, const Evaluation& ev) {
               ev.velocity_rmse, ev.disturbance_rmse);
 }
 
+std::vector<DriveLog> SimulateSuite(uint64_t seed) {
+  std::vector<DriveLog> logs;
+  for (const sim::ScenarioRun& run : sim::ExpandScenario("ward21", seed)) {
+    logs.push_back(sim::Simulate(run.scenario, run.seed).log);
+  }
+  return logs;
+}
+
+// The paper's targets for one suite: every hold-back detected, mean delay <= 0.4 s, false
+// immobilized <= 0.2 % of samples with GNSS and <= 0.35 % without.
+bool MeetsTargets(const Evaluation& ev, bool gps) {
+  const double delay = ev.mean_detection_delay_s();
+  return ev.detected() == static_cast<int>(ev.events.size()) && !(delay > 0.4) &&
+         ev.false_immobilized_fraction() <= (gps ? 0.002 : 0.0035);
+}
+
+// --seeds A-B: the front end's nominal rows on many independent suites, one line each, and how
+// many suites meet every target.
+int ReportSeeds(uint64_t first, uint64_t last) {
+  std::printf("ward21, seeds %llu-%llu, the front end (%s), detector threshold %.2f + %.2f at "
+              "low speed\n\n",
+              static_cast<unsigned long long>(first), static_cast<unsigned long long>(last),
+              g_bank ? "bank" : "single filter", g_detector.slip_threshold,
+              g_detector.low_speed_threshold_add);
+  std::printf("| seed | GNSS: det. | delay s | false | no GNSS: det. | delay s | false |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  struct Totals {
+    int detected = 0, events = 0, suites_met = 0, over_false_bound = 0;
+    long false_samples = 0, samples = 0;
+  } totals[2];
+  const auto nominal = [](ModelConfig*) {};
+  for (uint64_t seed = first; seed <= last; ++seed) {
+    const std::vector<DriveLog> logs = SimulateSuite(seed);
+    std::printf("| %llu |", static_cast<unsigned long long>(seed));
+    for (int g = 0; g < 2; ++g) {
+      const bool gps = g == 0;
+      const Evaluation ev = RunSuite(logs, gps, nominal);
+      Totals& t = totals[g];
+      t.detected += ev.detected();
+      t.events += static_cast<int>(ev.events.size());
+      t.false_samples += ev.false_immobilized_samples;
+      t.samples += static_cast<long>(ev.samples);
+      t.suites_met += MeetsTargets(ev, gps) ? 1 : 0;
+      t.over_false_bound += ev.false_immobilized_fraction() > (gps ? 0.002 : 0.0035) ? 1 : 0;
+      std::printf(" %d/%zu | %.3f | %.3f %% |", ev.detected(), ev.events.size(),
+                  ev.mean_detection_delay_s(), 100.0 * ev.false_immobilized_fraction());
+    }
+    std::printf("\n");
+  }
+  const int suites = static_cast<int>(last - first + 1);
+  for (int g = 0; g < 2; ++g) {
+    const Totals& t = totals[g];
+    std::printf("\n%s: %d/%d hold-backs detected, every target met on %d of %d suites, false "
+                "alarms above the bound on %d, %.3f %% of all samples",
+                g == 0 ? "GNSS" : "no GNSS", t.detected, t.events, t.suites_met, suites,
+                t.over_false_bound, 100.0 * t.false_samples / std::max(1L, t.samples));
+  }
+  std::printf("\n");
+  return 0;
+}
+
 }  // namespace
 }  // namespace slipgraph
 
 int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
   uint64_t seed = 1;
+  uint64_t seeds_first = 0, seeds_last = 0;  // --seeds A-B
   bool nominal_only = false;
   for (int i = 1; i + 1 < argc; ++i) {
     const auto value = [&] { return std::strtod(argv[i + 1], nullptr); };
     if (std::strcmp(argv[i], "--seed") == 0) seed = std::strtoull(argv[i + 1], nullptr, 10);
+    if (std::strcmp(argv[i], "--seeds") == 0) {
+      char* end = nullptr;
+      seeds_first = std::strtoull(argv[i + 1], &end, 10);
+      seeds_last = *end == '-' ? std::strtoull(end + 1, nullptr, 10) : seeds_first;
+    }
     if (std::strcmp(argv[i], "--threshold") == 0) g_detector.slip_threshold = value();
     if (std::strcmp(argv[i], "--low-speed-add") == 0) g_detector.low_speed_threshold_add = value();
     if (std::strcmp(argv[i], "--low-speed") == 0) g_detector.low_speed_mps = value();
@@ -89,11 +158,16 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--smoother") == 0) g_smoother = true;
     if (std::strcmp(argv[i], "--nominal") == 0) nominal_only = true;
     if (std::strcmp(argv[i], "--runs") == 0) g_runs = true;
+    if (std::strcmp(argv[i], "--single-law") == 0) g_bank = false;
   }
-  std::vector<DriveLog> logs;
-  for (const sim::ScenarioRun& run : sim::ExpandScenario("ward21", seed)) {
-    logs.push_back(sim::Simulate(run.scenario, run.seed).log);
+  if (seeds_first > 0) {
+    if (g_smoother || seeds_last < seeds_first) {
+      std::fprintf(stderr, "ward21_report: --seeds A-B (A <= B) runs the EKF front end only\n");
+      return 2;
+    }
+    return ReportSeeds(seeds_first, seeds_last);
   }
+  const std::vector<DriveLog> logs = SimulateSuite(seed);
   std::printf("ward21, seed %llu\n\n", static_cast<unsigned long long>(seed));
   std::printf("| %-22s | det.  | delay s | false immobilized | v RMSE | a_dist RMSE |\n", "case");
   std::printf("|---|---|---|---|---|---|\n");
