@@ -2,7 +2,7 @@
 // figures with and without GNSS, and the paper's Table II (each tire coefficient at +-20 %).
 // Simulates the suite in memory. Run: build/bench/ward21_report [--seed N] [--tire-dynamics]
 // [--smoother] [--nominal] [--runs] [--seeds A-B [--single-law]] [--threshold T]
-// [--low-speed-add A] [--low-speed V] [--ema P] (--seeds: the nominal rows on suites A to B, one
+// [--low-speed-add A] [--low-speed V] [--ema P] [--min-wheel-speed V] (--seeds: the nominal rows on suites A to B, one
 // line each, and how many meet every target; --tire-dynamics: the paper's propagation of v_bx through the tire
 // law, for comparison; --smoother: the batch smoother instead of the EKF, nominal rows only;
 // --nominal: without Table II; --runs: each run's line before each row). The nominal rows show the front end `filter` runs (a bank of
@@ -150,6 +150,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--low-speed-add") == 0) g_detector.low_speed_threshold_add = value();
     if (std::strcmp(argv[i], "--low-speed") == 0) g_detector.low_speed_mps = value();
     if (std::strcmp(argv[i], "--ema") == 0) g_detector.ema_samples = value();
+    if (std::strcmp(argv[i], "--min-wheel-speed") == 0) g_detector.min_wheel_speed_mps = value();
   }
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--tire-dynamics") == 0) {

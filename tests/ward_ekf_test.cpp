@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "evaluation/evaluation.h"
 #include "io/measurement_stream.h"
@@ -41,21 +42,35 @@ TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) 
   }
 }
 
-TEST(WardEkf, Ward21RunsAreDetectedWithFewFalseAlarms) {
-  // A small default version of the ward21 figure (the full suite is in docs/ekf.md): six runs,
-  // fast and slow, seed 1. Bounds sit above what is measured (6/6, 0.0 %) by one run / 0.3 %.
-  std::vector<Evaluation> runs;
-  for (const char* name :
-       {"ward21/01", "ward21/02", "ward21/03", "ward21/04", "ward21/05", "ward21/06"}) {
-    const DriveLog log = testing::SimulatedScenario(name);
-    runs.push_back(
-        Evaluate(log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle)).estimates)));
+TEST(WardEkf, Ward21RunsMeetThePapersBoundsWithAndWithoutGnss) {
+  // A small default version of the ward21 figure (the full suite and 100 independent ones are in
+  // docs/ekf.md): seven runs of seed 1, fast and slow, with run 13's slow hold-back on mud that the
+  // front end missed before the bank and the session-14 threshold. The paper's bounds: every
+  // hold-back detected, mean delay <= 0.4 s, false immobilized < 0.2 % of samples with GNSS and
+  // < 0.35 % without. Measured: 7/7 both ways, delay 0.08 / 0.11 s, no false sample (at the old
+  // threshold, 0.7 + 0.2, run 13 is missed without GNSS).
+  const char* const names[] = {"ward21/01", "ward21/02", "ward21/03", "ward21/04",
+                               "ward21/05", "ward21/06", "ward21/13"};
+  std::vector<DriveLog> logs;
+  for (const char* name : names) logs.push_back(testing::SimulatedScenario(name));
+  for (bool gps : {true, false}) {
+    std::vector<Evaluation> runs;
+    for (const DriveLog& log : logs) {
+      FilterRunOptions options;
+      options.use_gps = gps;
+      runs.push_back(Evaluate(
+          log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle), options).estimates)));
+    }
+    const Evaluation total = Combine(runs, "ward21 01-06, 13");
+    ASSERT_EQ(total.events.size(), 7u);
+    EXPECT_EQ(total.detected(), 7) << "gps=" << gps;
+    EXPECT_LE(total.mean_detection_delay_s(), 0.4) << "gps=" << gps;
+    EXPECT_LT(total.false_immobilized_fraction(), gps ? 0.002 : 0.0035) << "gps=" << gps;
+    EXPECT_LT(total.velocity_rmse, 0.03) << "gps=" << gps;
+    std::printf("ward21 01-06, 13, gps=%d: %d/7, delay %.3f s, false %.4f %%, v RMSE %.4f\n", gps,
+                total.detected(), total.mean_detection_delay_s(),
+                100.0 * total.false_immobilized_fraction(), total.velocity_rmse);
   }
-  const Evaluation total = Combine(runs, "ward21 01-06");
-  EXPECT_GE(total.detected(), 5);
-  EXPECT_LT(total.false_immobilized_fraction(), 0.003);
-  EXPECT_LT(total.mean_detection_delay_s(), 0.4);
-  EXPECT_LT(total.velocity_rmse, 0.05);
 }
 
 TEST(WardEkf, TheStartDoesNotLeakIntoTheAccelerometerOffset) {
