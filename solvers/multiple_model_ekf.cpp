@@ -78,17 +78,20 @@ void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right
 EkfEstimate MultipleModelEkf::Estimate() const {
   EkfEstimate out = filters_.front()->Estimate();
   if (filters_.size() == 1) return out;
-  std::array<double, ward::kStateSize> mean{}, second{};
+  std::array<double, ward::kStateSize> mean{}, within{}, second_moment{};
   for (size_t i = 0; i < filters_.size(); ++i) {
     const EkfEstimate e = filters_[i]->Estimate();
     for (int j = 0; j < ward::kStateSize; ++j) {
       mean[j] += weights_[i] * e.x[j];
-      second[j] += weights_[i] * (e.sd[j] * e.sd[j] + e.x[j] * e.x[j]);
+      within[j] += weights_[i] * e.sd[j] * e.sd[j];
+      second_moment[j] += weights_[i] * e.x[j] * e.x[j];
     }
   }
   for (int j = 0; j < ward::kStateSize; ++j) {
+    const double spread = std::max(0.0, second_moment[j] - mean[j] * mean[j]);
     out.x[j] = mean[j];
-    out.sd[j] = std::sqrt(std::max(0.0, second[j] - mean[j] * mean[j]));
+    out.sd[j] = std::sqrt(within[j] + spread);
+    out.law_spread_sd[j] = std::sqrt(spread);
   }
   out.slip = slip_;
   // Missing encoder data is never reported as immobilization.

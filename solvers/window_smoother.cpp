@@ -110,7 +110,12 @@ class Window {
         std::copy(states_.front().begin(), states_.front().end(), e.x.begin());
         e.accel_offset_mps2 = offsets_[0];
         e.gyro_offset_radps = offsets_[1];
-        if (have_sd) e.sd = sd[i];
+        if (have_sd) {
+          for (int j = 0; j < kStateSize; ++j) {
+            const double law = options_.law_spread_in_sd ? e.law_spread_sd[j] : 0.0;
+            e.sd[j] = std::sqrt(sd[i][j] * sd[i][j] + law * law);
+          }
+        }
       }
       result_->estimates[k] = e;
       result_->lag_s[k] = newest - source_.time(k);
@@ -258,6 +263,13 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
     if ((k + 1) % every == 0 && k + 1 < n) window.Update(false);
   }
   window.Update(true);
+  if (options.covariance && options.law_spread_in_sd &&
+      std::any_of(result.ekf.estimates.begin(), result.ekf.estimates.end(),
+                  [](const EkfEstimate& e) { return e.law_spread_sd[kVbx] > 0.0; })) {
+    result.notes.push_back(
+        "the sd include the tire law's uncertainty as the front end's bank of filters sees it "
+        "(the spread of the soils' estimates)");
+  }
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
                                        &result.estimates);
   result.counts = window.counts();
@@ -273,6 +285,7 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.max_iterations = batch.max_iterations;
   options.solver = WindowSolver::kCeres;  // chunks of minutes from the EKF: Levenberg-Marquardt
   options.covariance = batch.covariance;
+  options.law_spread_in_sd = batch.consider_law_uncertainty;
   options.filter = batch.filter;
   options.problem = batch.problem;
   options.min_immobilized_s = batch.min_immobilized_s;

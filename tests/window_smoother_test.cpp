@@ -8,11 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "evaluation/evaluation.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
+#include "solvers/ekf_runner.h"
+#include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
@@ -182,6 +186,47 @@ TEST(WindowSmoother, ChainGaussNewtonAgreesWithCeres) {
   const Evaluation a = Evaluate(log, EstimateTable(chain.estimates));
   const Evaluation b = Evaluate(log, EstimateTable(ceres.estimates));
   EXPECT_NEAR(a.velocity_rmse, b.velocity_rmse, 0.02 * b.velocity_rmse);
+}
+
+// ward21's user states the soils the law was fitted over; the window's own covariance takes the
+// law as exact and was overconfident (v NEES inside its 95 % bound for under half the samples on
+// seeds 1-2). With the front end's spread of the soils' estimates added (the same estimates):
+// measured on these three runs (07 and 13 drive mud at 0.2-0.3 m/s), 74 % inside against 42 %
+// without; over the whole suites of seeds 1-4, 87-90 % (seeds 1-2 without it: 50 / 45 %;
+// docs/smoother.md).
+TEST(WindowSmoother, TheLawsSpreadOverTheSoilsIsInTheSd) {
+  std::vector<Evaluation> with, without;
+  for (const char* name : {"ward21/01", "ward21/07", "ward21/13"}) {
+    const DriveLog log = testing::SimulatedScenario(name);
+    ASSERT_EQ(log.vehicle.law_samples.size(), 4u);
+    const ModelConfig model = DefaultModelConfig(log.vehicle);
+    WindowSmootherOptions options;
+    const WindowSmootherResult a = SmoothWindowed(log, model, options);
+    options.law_spread_in_sd = false;
+    const WindowSmootherResult b = SmoothWindowed(log, model, options);
+    ASSERT_EQ(a.estimates.size(), b.estimates.size());
+    for (size_t k = 0; k < a.estimates.size(); k += 53) {
+      // Only the sd differ. (Two runs of the window with the same options agree to about 1e-8
+      // here, not to the bit; the cause is not traced.)
+      for (int j = 0; j < kStateSize; ++j) {
+        const double scale = 1e-6 * (1.0 + std::abs(b.estimates[k].x[j]));
+        EXPECT_NEAR(a.estimates[k].x[j], b.estimates[k].x[j], scale);
+        EXPECT_GE(a.estimates[k].sd[j], b.estimates[k].sd[j] * (1.0 - 1e-6));
+      }
+    }
+    EXPECT_NE(std::find_if(a.notes.begin(), a.notes.end(),
+                           [](const std::string& n) {
+                             return n.find("bank of filters") != std::string::npos;
+                           }),
+              a.notes.end());
+    with.push_back(Evaluate(log, EstimateTable(a.estimates)));
+    without.push_back(Evaluate(log, EstimateTable(b.estimates)));
+  }
+  const Evaluation w = Combine(with, "with"), wo = Combine(without, "without");
+  std::printf("window v NEES inside 95 %%: %.3f with the law's spread, %.3f without\n",
+              w.nees_within_95_fraction(), wo.nees_within_95_fraction());
+  EXPECT_GT(w.nees_within_95_fraction(), 0.65);
+  EXPECT_LT(wo.nees_within_95_fraction(), 0.5);
 }
 
 }  // namespace
