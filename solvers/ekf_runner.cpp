@@ -1,6 +1,7 @@
 #include "solvers/ekf_runner.h"
 
 #include <sstream>
+#include <type_traits>
 #include <stdexcept>
 
 #include "io/estimate_file.h"
@@ -15,6 +16,9 @@ template <typename Filter>
 void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
           FilterResult* result) {
   result->estimates.reserve(log.wheels.size());
+  if constexpr (std::is_same_v<Filter, MultipleModelEkf>) {
+    result->law_spread_sd.reserve(log.wheels.size());
+  }
   for (const StreamEntry& entry : MergeStreams(log, selection)) {
     switch (entry.stream) {
       case Stream::kImu:
@@ -30,7 +34,12 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
         const WheelSample& w = log.wheels[entry.index];
         const SideSpeeds sides = DrivenSideSpeeds(w, log.vehicle.type);
         filter->AddWheels(w.t, sides.left_radps, sides.right_radps);
-        result->estimates.push_back(filter->Estimate());
+        if constexpr (std::is_same_v<Filter, MultipleModelEkf>) {
+          result->law_spread_sd.emplace_back();
+          result->estimates.push_back(filter->Estimate(&result->law_spread_sd.back()));
+        } else {
+          result->estimates.push_back(filter->Estimate());
+        }
         break;
       }
       default:

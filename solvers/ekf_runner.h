@@ -2,6 +2,7 @@
 // wheel cycle, and an account of which streams were used and what was rejected.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct FilterRunOptions {
 
 struct FilterResult {
   std::vector<EkfEstimate> estimates;  // one per wheel sample, after its cycle
+  // The bank of filters (solvers/multiple_model_ekf.h): per estimate, the sd of the soils'
+  // estimates about the bank's mean, the tire law's share of the sd (the window smoother adds it
+  // to its own). Empty for one filter.
+  std::vector<std::array<double, ward::kStateSize>> law_spread_sd;
   EkfStats stats;
   std::vector<std::string> streams_used;
   std::vector<std::string> notes;  // assumptions and problems, one line each

@@ -75,8 +75,9 @@ void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right
                            e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_);
 }
 
-EkfEstimate MultipleModelEkf::Estimate() const {
+EkfEstimate MultipleModelEkf::Estimate(std::array<double, ward::kStateSize>* law_spread_sd) const {
   EkfEstimate out = filters_.front()->Estimate();
+  if (law_spread_sd != nullptr) law_spread_sd->fill(0.0);
   if (filters_.size() == 1) return out;
   std::array<double, ward::kStateSize> mean{}, within{}, second_moment{};
   for (size_t i = 0; i < filters_.size(); ++i) {
@@ -91,7 +92,7 @@ EkfEstimate MultipleModelEkf::Estimate() const {
     const double spread = std::max(0.0, second_moment[j] - mean[j] * mean[j]);
     out.x[j] = mean[j];
     out.sd[j] = std::sqrt(within[j] + spread);
-    out.law_spread_sd[j] = std::sqrt(spread);
+    if (law_spread_sd != nullptr) (*law_spread_sd)[j] = std::sqrt(spread);
   }
   out.slip = slip_;
   // Missing encoder data is never reported as immobilization.

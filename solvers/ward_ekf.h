@@ -99,10 +99,6 @@ struct EkfEstimate {
   double t = 0.0;
   std::array<double, ward::kStateSize> x{};
   std::array<double, ward::kStateSize> sd{};
-  // A bank of filters over the law's soils (solvers/multiple_model_ekf.h): the sd of the
-  // filters' means about their weighted mean, the share of `sd` that is the tire law's
-  // uncertainty (zero for one filter). The window smoother adds it to its own sd.
-  std::array<double, ward::kStateSize> law_spread_sd{};
   SlipEstimate slip;
   double accel_offset_mps2 = 0.0;  // c_ax
   double gyro_offset_radps = 0.0;  // c_gz

@@ -112,7 +112,9 @@ class Window {
         e.gyro_offset_radps = offsets_[1];
         if (have_sd) {
           for (int j = 0; j < kStateSize; ++j) {
-            const double law = options_.law_spread_in_sd ? e.law_spread_sd[j] : 0.0;
+            const double law = options_.law_spread_in_sd && k < result_->ekf.law_spread_sd.size()
+                                   ? result_->ekf.law_spread_sd[k][j]
+                                   : 0.0;
             e.sd[j] = std::sqrt(sd[i][j] * sd[i][j] + law * law);
           }
         }
@@ -264,8 +266,8 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   }
   window.Update(true);
   if (options.covariance && options.law_spread_in_sd &&
-      std::any_of(result.ekf.estimates.begin(), result.ekf.estimates.end(),
-                  [](const EkfEstimate& e) { return e.law_spread_sd[kVbx] > 0.0; })) {
+      std::any_of(result.ekf.law_spread_sd.begin(), result.ekf.law_spread_sd.end(),
+                  [](const std::array<double, kStateSize>& s) { return s[kVbx] > 0.0; })) {
     result.notes.push_back(
         "the sd include the tire law's uncertainty as the front end's bank of filters sees it "
         "(the spread of the soils' estimates)");

@@ -38,7 +38,7 @@ struct WindowSmootherOptions {
   int max_iterations = 5;  // bounded work per update
   bool covariance = true;  // marginal sd of each state as it leaves (else the EKF's sd)
   // Add to that sd the tire law's uncertainty as the front end's bank of filters sees it (the
-  // spread of the soils' estimates, EkfEstimate::law_spread_sd; zero without law samples). The
+  // spread of the soils' estimates, FilterResult::law_spread_sd; none without law samples). The
   // window's own covariance takes the law as exact; the batch computes the smoother's own
   // sensitivity to the law instead (BatchSmootherOptions::consider_law_uncertainty).
   bool law_spread_in_sd = true;
