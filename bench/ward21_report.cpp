@@ -2,18 +2,21 @@
 // figures with and without GNSS, and the paper's Table II (each tire coefficient at +-20 %).
 // Simulates the suite in memory. Run: build/bench/ward21_report [--seed N] [--tire-dynamics]
 // [--smoother] [--nominal] [--runs] [--seeds A-B [--single-law]] [--threshold T]
-// [--low-speed-add A] [--low-speed V] [--ema P] [--min-wheel-speed V] (--seeds: the nominal rows on suites A to B, one
-// line each, and how many meet every target; --tire-dynamics: the paper's propagation of v_bx through the tire
-// law, for comparison; --smoother: the batch smoother instead of the EKF, nominal rows only;
-// --nominal: without Table II; --runs: each run's line before each row). The nominal rows show the front end `filter` runs (a bank of
-// filters over the soils vehicle.yaml lists, solvers/multiple_model_ekf.h) and the paper's single
-// filter; Table II is the single filter's, as in the paper.
+// [--low-speed-add A] [--low-speed V] [--ema P] [--min-wheel-speed V]
+//   --tire-dynamics: the paper's propagation of v_bx through the tire law, for comparison;
+//   --smoother: the batch smoother instead of the EKF, nominal rows only;
+//   --nominal: without Table II; --runs: each run's line before each row;
+//   --seeds: the front end on suites A to B, one line each, and how many meet every target;
+//   --threshold ... --min-wheel-speed: the detector's parameters (ImmobilizationConfig).
+// The nominal rows show the front end `filter` runs (a bank of filters over the soils
+// vehicle.yaml lists, solvers/multiple_model_ekf.h) and the paper's single filter; Table II is
+// the single filter's, as in the paper.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <iostream>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -28,10 +31,10 @@ namespace {
 
 VelocityModel g_velocity_model = VelocityModel::kAccelerometerDriven;
 bool g_smoother = false;
-bool g_bank = true;  // the nominal rows' first pair; Table II uses the single filter
+bool g_bank = true;   // the nominal rows' first pair; Table II uses the single filter
 bool g_runs = false;  // --runs: one line per run of the nominal rows (misses, false alarms)
-// --threshold, --low-speed-add, --low-speed, --ema: the detector's parameters (chosen
-// empirically, as the paper says; try them on suites the figures are not reported on).
+// --threshold, --low-speed-add, --low-speed, --ema, --min-wheel-speed: the detector's parameters
+// (chosen empirically, as the paper says; try them on suites the figures are not reported on).
 ImmobilizationConfig g_detector;
 
 Evaluation RunSuite(const std::vector<DriveLog>& logs, bool gps,
@@ -88,11 +91,12 @@ bool MeetsTargets(const Evaluation& ev, bool gps) {
 // --seeds A-B: the front end's nominal rows on many independent suites, one line each, and how
 // many suites meet every target.
 int ReportSeeds(uint64_t first, uint64_t last) {
-  std::printf("ward21, seeds %llu-%llu, the front end (%s), detector threshold %.2f + %.2f at "
-              "low speed\n\n",
-              static_cast<unsigned long long>(first), static_cast<unsigned long long>(last),
-              g_bank ? "bank" : "single filter", g_detector.slip_threshold,
-              g_detector.low_speed_threshold_add);
+  std::printf(
+      "ward21, seeds %llu-%llu, the front end (%s), detector threshold %.2f + %.2f at "
+      "low speed\n\n",
+      static_cast<unsigned long long>(first), static_cast<unsigned long long>(last),
+      g_bank ? "bank" : "single filter", g_detector.slip_threshold,
+      g_detector.low_speed_threshold_add);
   std::printf("| seed | GNSS: det. | delay s | false | no GNSS: det. | delay s | false |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   struct Totals {
@@ -121,10 +125,11 @@ int ReportSeeds(uint64_t first, uint64_t last) {
   const int suites = static_cast<int>(last - first + 1);
   for (int g = 0; g < 2; ++g) {
     const Totals& t = totals[g];
-    std::printf("\n%s: %d/%d hold-backs detected, every target met on %d of %d suites, false "
-                "alarms above the bound on %d, %.3f %% of all samples",
-                g == 0 ? "GNSS" : "no GNSS", t.detected, t.events, t.suites_met, suites,
-                t.over_false_bound, 100.0 * t.false_samples / std::max(1L, t.samples));
+    std::printf(
+        "\n%s: %d/%d hold-backs detected, every target met on %d of %d suites, false "
+        "alarms above the bound on %d, %.3f %% of all samples",
+        g == 0 ? "GNSS" : "no GNSS", t.detected, t.events, t.suites_met, suites, t.over_false_bound,
+        100.0 * t.false_samples / std::max(1L, t.samples));
   }
   std::printf("\n");
   return 0;

@@ -61,9 +61,9 @@ struct ImmobilizationConfig {
   double ema_samples = 20.0;              // p of eq. (12)
   double slip_threshold = 0.6;            // EMA slip above which the robot is immobilized
   double low_speed_threshold_add = 0.05;  // added to the threshold at zero wheel speed
-  double low_speed_mps = 0.2;            // wheel surface speed below which the addition fades in
-  double min_wheel_speed_mps = 0.05;     // never flagged below this wheel surface speed: the
-                                         // wheels are not "spinning" (and slip is noise there)
+  double low_speed_mps = 0.2;             // wheel surface speed below which the addition fades in
+  double min_wheel_speed_mps = 0.05;      // never flagged below this wheel surface speed: the
+                                          // wheels are not "spinning" (and slip is noise there)
 };
 
 // How far the tire law (eqs. 8-9) with the nominal coefficients may be from the terrain's, as

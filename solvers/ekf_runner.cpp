@@ -1,8 +1,8 @@
 #include "solvers/ekf_runner.h"
 
 #include <sstream>
-#include <type_traits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "io/estimate_file.h"
 #include "io/measurement_stream.h"
