@@ -207,8 +207,8 @@ TEST(WindowSmoother, TheLawsSpreadOverTheSoilsIsInTheSd) {
     ASSERT_EQ(a.estimates.size(), b.estimates.size());
     for (size_t k = 0; k < a.estimates.size(); k += 53) {
       // Only the sd differ. (Two runs of the window with the same options agree to about 1e-8
-      // here, not to the bit: problems/marginalization.cpp orders its residual blocks in a
-      // std::set of ResidualBlockId, by address, so its sums run in a heap-dependent order.)
+      // here, not to the bit. The likely cause, not confirmed: problems/marginalization.cpp
+      // orders its residual blocks in a std::set of ResidualBlockId, by address.)
       for (int j = 0; j < kStateSize; ++j) {
         const double scale = 1e-6 * (1.0 + std::abs(b.estimates[k].x[j]));
         EXPECT_NEAR(a.estimates[k].x[j], b.estimates[k].x[j], scale);
