@@ -18,25 +18,20 @@ MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& mo
     : options_(options),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
       encoder_timeout_s_(ekf.encoder_timeout_s) {
-  EkfOptions weighed = ekf;
-  weighed.track_log_likelihood = model.law_samples.size() >= 2;
-  filters_.push_back(std::make_unique<WardEkf>(vehicle, model, weighed));
+  filters_.push_back(std::make_unique<WardEkf>(vehicle, model, ekf));
   if (model.law_samples.size() >= 2) {
     for (const LawSample& sample : model.law_samples) {
       ModelConfig soil = model;
       soil.tire = sample.tire;
       soil.rolling = sample.rolling;
-      filters_.push_back(std::make_unique<WardEkf>(vehicle, soil, weighed));
+      filters_.push_back(std::make_unique<WardEkf>(vehicle, soil, ekf));
     }
   }
   weights_.assign(filters_.size(), 1.0 / filters_.size());
 }
 
 void MultipleModelEkf::AddImu(const ImuSample& imu) {
-  for (auto& f : filters_) {
-    f->AddImu(imu);
-    f->TakeLogLikelihood();  // not weighed (see the header)
-  }
+  for (auto& f : filters_) f->AddImu(imu);  // not weighed (see the header)
 }
 
 void MultipleModelEkf::AddAttitude(const AttitudeSample& attitude) {
@@ -46,8 +41,7 @@ void MultipleModelEkf::AddAttitude(const AttitudeSample& attitude) {
 void MultipleModelEkf::AddGps(const GpsSample& gps) {
   std::vector<double> log_likelihood(filters_.size());
   for (size_t i = 0; i < filters_.size(); ++i) {
-    filters_[i]->AddGps(gps);
-    log_likelihood[i] = filters_[i]->TakeLogLikelihood();
+    log_likelihood[i] = filters_[i]->AddGpsScored(gps);
   }
   const double best = *std::max_element(log_likelihood.begin(), log_likelihood.end());
   double sum = 0.0;
@@ -59,10 +53,7 @@ void MultipleModelEkf::AddGps(const GpsSample& gps) {
 }
 
 void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right) {
-  for (auto& f : filters_) {
-    f->AddWheels(t, omega_left, omega_right);
-    f->TakeLogLikelihood();
-  }
+  for (auto& f : filters_) f->AddWheels(t, omega_left, omega_right);
   // Forgetting: the weights relax toward uniform, so a law that fits again can come back.
   if (last_cycle_t_ >= 0.0 && t > last_cycle_t_) {
     const double mix = std::min(1.0, (t - last_cycle_t_) / options_.switch_time_s);

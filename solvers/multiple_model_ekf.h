@@ -8,7 +8,7 @@
 // at slow speed on mud, and misses hold-backs there (docs/ekf.md). The bank runs one filter on the
 // user's law and one on each soil's, every filter fed every measurement. After each GNSS fix,
 // filter i's weight is multiplied by the likelihood of that fix under its prediction
-// (WardEkf::TakeLogLikelihood); at each wheel cycle the weights mix with the uniform weight at rate
+// (WardEkf::AddGpsScored); at each wheel cycle the weights mix with the uniform weight at rate
 // dt / switch_time. The estimate is the weighted mean (sd: the weighted variances plus the spread
 // of the means), and the immobilization detector runs on it. Until GNSS tells the laws apart the
 // estimate is their average: the posterior mean over the soils the user named.

@@ -182,7 +182,7 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
           ++*consecutive_rejections <= max_consecutive_rejections) {
         ++counters->rejected;
         // A measurement gated out still happened: it counts against the model in the likelihood.
-        if (options_.track_log_likelihood && consecutive_rejections != nullptr) {
+        if ((options_.track_log_likelihood || scoring_) && consecutive_rejections != nullptr) {
           log_likelihood_ -= 0.5 * (mahalanobis + std::log(det) + m * std::log(2.0 * M_PI));
         }
         return false;
@@ -208,7 +208,7 @@ bool WardEkf::Update(const RowVector& nu, const RowMatrix& H, const RowVector& r
     const double s = h.dot(Ph) + r(i);
     const StateVector k = Ph / s;
     // The stacked measurement's log-likelihood, one conditional row at a time (sensor rows only).
-    if (options_.track_log_likelihood && consecutive_rejections != nullptr) {
+    if ((options_.track_log_likelihood || scoring_) && consecutive_rejections != nullptr) {
       log_likelihood_ -= 0.5 * (innovation * innovation / s + std::log(2.0 * M_PI * s));
     }
     if (options_.record_innovations && names != nullptr && i < static_cast<int>(names->size())) {
@@ -420,6 +420,17 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
     Update(nu, H, r, std::numeric_limits<double>::infinity(), 0, &unused, nullptr);
     ++stats_.weak_constraints[static_cast<int>(p.constraint)];
   }
+}
+
+double WardEkf::AddGpsScored(const GpsSample& gps) {
+  const double sum_before = log_likelihood_;
+  log_likelihood_ = 0.0;
+  scoring_ = true;
+  AddGps(gps);
+  scoring_ = false;
+  const double fix = log_likelihood_;
+  log_likelihood_ = sum_before + (options_.track_log_likelihood ? fix : 0.0);
+  return fix;
 }
 
 void WardEkf::AddGps(const GpsSample& gps) {

@@ -126,6 +126,11 @@ class WardEkf {
     log_likelihood_ = 0.0;
     return l;
   }
+  // AddGps, returning that fix's log-likelihood under the filter's prediction (applied or gated
+  // out) whether or not track_log_likelihood is set; the running sum is as AddGps leaves it. A
+  // bank weighing its filters by GNSS alone (solvers/multiple_model_ekf.h) takes no logarithm in
+  // the other streams' updates.
+  double AddGpsScored(const GpsSample& gps);
   const EkfStats& stats() const { return stats_; }
   bool started() const { return started_; }
 
@@ -190,6 +195,7 @@ class WardEkf {
   int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
   EkfStats stats_;
   double log_likelihood_ = 0.0;  // since the last TakeLogLikelihood()
+  bool scoring_ = false;         // inside AddGpsScored: the updates sum their log-likelihood
   StateVector last_good_x_ = StateVector::Zero();
   StateMatrix last_good_P_ = StateMatrix::Zero();
   std::vector<PseudoMeasurement> pseudo_;  // reused buffer

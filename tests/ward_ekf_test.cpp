@@ -207,6 +207,39 @@ TEST(WardEkf, SumsTheLogLikelihoodOnlyWhenAsked) {
   EXPECT_EQ(weighing.TakeLogLikelihood(), 0.0);  // reset by the call
 }
 
+TEST(WardEkf, ScoresOneGnssFixWithoutTrackingTheRest) {
+  // AddGpsScored returns the fix's log-likelihood, the same value a tracked filter sums for it,
+  // and leaves an untracked filter's sum at zero (the bank takes no logarithm elsewhere).
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  EkfOptions tracked_options;
+  tracked_options.track_log_likelihood = true;
+  WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
+  WardEkf tracked(log.vehicle, DefaultModelConfig(log.vehicle), tracked_options);
+  int fixes = 0;
+  for (const StreamEntry& e : MergeStreams(log)) {
+    if (e.t > 6.0) break;
+    for (WardEkf* ekf : {&plain, &tracked}) {
+      if (e.stream == Stream::kImu) ekf->AddImu(log.imu[e.index]);
+      if (e.stream == Stream::kAttitude) ekf->AddAttitude(log.attitude[e.index]);
+      if (e.stream == Stream::kWheels) {
+        const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
+        ekf->AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
+      }
+    }
+    if (e.stream == Stream::kGps) {
+      tracked.TakeLogLikelihood();  // the other streams' share so far
+      const double scored = plain.AddGpsScored(log.gps[e.index]);
+      const double again = tracked.AddGpsScored(log.gps[e.index]);
+      EXPECT_TRUE(std::isfinite(scored));
+      EXPECT_EQ(scored, again);
+      EXPECT_EQ(tracked.TakeLogLikelihood(), again);  // tracked: the fix also in the sum
+      EXPECT_EQ(plain.TakeLogLikelihood(), 0.0);      // untracked: nothing summed
+      ++fixes;
+    }
+  }
+  EXPECT_GE(fixes, 5);
+}
+
 TEST(WardEkf, OptionsAreValidated) {
   EkfOptions options;
   std::string error;
