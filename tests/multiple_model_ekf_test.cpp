@@ -68,19 +68,12 @@ TEST(MultipleModelEkf, GnssWeighsTheLawsTowardTheSoil) {
   MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
   ASSERT_EQ(bank.size(), 5u);
   double mud_weight = 0.0, gravel_weight = 0.0;
-  for (const StreamEntry& e : MergeStreams(log)) {
-    if (e.stream == Stream::kImu) bank.AddImu(log.imu[e.index]);
-    if (e.stream == Stream::kAttitude) bank.AddAttitude(log.attitude[e.index]);
-    if (e.stream == Stream::kGps) bank.AddGps(log.gps[e.index]);
-    if (e.stream == Stream::kWheels) {
-      const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
-      bank.AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
-      if (std::abs(log.wheels[e.index].t - 27.0) < 0.005) {  // just before the hold-back
-        mud_weight = bank.weights()[3];
-        gravel_weight = bank.weights()[2];
-      }
+  testing::FeedStreams(log, &bank, {}, [&](const StreamEntry& e) {
+    if (std::abs(log.wheels[e.index].t - 27.0) < 0.005) {  // just before the hold-back
+      mud_weight = bank.weights()[3];
+      gravel_weight = bank.weights()[2];
     }
-  }
+  });
   std::printf("weights before the hold-back: mud %.3f, gravel %.3f\n", mud_weight, gravel_weight);
   EXPECT_GT(mud_weight, 0.3);  // uniform: 0.2
   EXPECT_LT(gravel_weight, 0.2);
@@ -90,17 +83,10 @@ TEST(MultipleModelEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
   const DriveLog log = testing::SimulatedScenario("ward21/13");
   MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
   bool flagged = false;
-  for (const StreamEntry& e : MergeStreams(log)) {
-    if (e.stream == Stream::kImu) bank.AddImu(log.imu[e.index]);
-    if (e.stream == Stream::kAttitude) bank.AddAttitude(log.attitude[e.index]);
-    if (e.stream == Stream::kGps) bank.AddGps(log.gps[e.index]);
-    // The encoders fall silent a second into the hold-back (27.5-31.0 s), once it is flagged.
-    if (e.stream == Stream::kWheels && e.t < 29.5) {
-      const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
-      bank.AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
-      flagged = flagged || bank.Estimate().slip.immobilized;
-    }
-  }
+  // The encoders fall silent a second into the hold-back (27.5-31.0 s), once it is flagged.
+  testing::FeedStreams(
+      log, &bank, [](const StreamEntry& e) { return e.stream != Stream::kWheels || e.t < 29.5; },
+      [&](const StreamEntry&) { flagged = flagged || bank.Estimate().slip.immobilized; });
   EXPECT_TRUE(flagged);
   EXPECT_FALSE(bank.Estimate().slip.immobilized);
 }

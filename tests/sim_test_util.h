@@ -1,10 +1,11 @@
 // Small helpers for simulator tests: a named scenario's log, a flat single-terrain LAGR
-// scenario and truth lookups.
+// scenario, truth lookups and feeding a log to a filter.
 #pragma once
 
 #include <cmath>
 #include <functional>
 
+#include "io/measurement_stream.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 
@@ -40,6 +41,26 @@ inline double MeanTruth(const DriveLog& log, double t0, double t1,
     if (s.t >= t0 && s.t <= t1) sum += f(s), ++n;
   }
   return n > 0 ? sum / n : std::nan("");
+}
+
+// Feeds a log's merged streams to a filter with the WardEkf interface (WardEkf,
+// MultipleModelEkf), in time order as RunEkf does. `take` (optional) may skip an entry by
+// returning false; `after_wheels` (optional) sees each wheel cycle once the filter has it.
+template <typename Filter>
+void FeedStreams(const DriveLog& log, Filter* filter,
+                 const std::function<bool(const StreamEntry&)>& take = {},
+                 const std::function<void(const StreamEntry&)>& after_wheels = {}) {
+  for (const StreamEntry& e : MergeStreams(log)) {
+    if (take && !take(e)) continue;
+    if (e.stream == Stream::kImu) filter->AddImu(log.imu[e.index]);
+    if (e.stream == Stream::kAttitude) filter->AddAttitude(log.attitude[e.index]);
+    if (e.stream == Stream::kGps) filter->AddGps(log.gps[e.index]);
+    if (e.stream == Stream::kWheels) {
+      const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
+      filter->AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
+      if (after_wheels) after_wheels(e);
+    }
+  }
 }
 
 // Root of a monotonic increasing g on [lo, hi] by bisection.

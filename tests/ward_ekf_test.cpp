@@ -172,16 +172,13 @@ TEST(WardEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
   const DriveLog log = testing::SimulatedScenario("fig5");
   WardEkf ekf(log.vehicle, DefaultModelConfig(log.vehicle));
   bool flagged = false;
-  for (const StreamEntry& e : MergeStreams(log)) {
-    if (e.stream == Stream::kImu) ekf.AddImu(log.imu[e.index]);
-    if (e.stream == Stream::kAttitude) ekf.AddAttitude(log.attitude[e.index]);
-    // The encoders fall silent 0.5 s into the hold-back, once the robot is flagged.
-    if (e.stream == Stream::kWheels && e.t < 11.0) {
-      const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
-      ekf.AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
-      flagged = flagged || ekf.Estimate().slip.immobilized;
-    }
-  }
+  // The encoders fall silent 0.5 s into the hold-back, once the robot is flagged (no GNSS).
+  testing::FeedStreams(
+      log, &ekf,
+      [](const StreamEntry& e) {
+        return e.stream != Stream::kGps && (e.stream != Stream::kWheels || e.t < 11.0);
+      },
+      [&](const StreamEntry&) { flagged = flagged || ekf.Estimate().slip.immobilized; });
   EXPECT_TRUE(flagged);  // it was flagged while the encoders spoke
   EXPECT_FALSE(ekf.Estimate().slip.immobilized);
 }
@@ -192,13 +189,10 @@ TEST(WardEkf, SumsTheLogLikelihoodOnlyWhenAsked) {
   tracked.track_log_likelihood = true;
   WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
   WardEkf weighing(log.vehicle, DefaultModelConfig(log.vehicle), tracked);
-  for (const StreamEntry& e : MergeStreams(log)) {
-    if (e.t > 5.0) break;
-    for (WardEkf* ekf : {&plain, &weighing}) {
-      if (e.stream == Stream::kImu) ekf->AddImu(log.imu[e.index]);
-      if (e.stream == Stream::kAttitude) ekf->AddAttitude(log.attitude[e.index]);
-      if (e.stream == Stream::kGps) ekf->AddGps(log.gps[e.index]);
-    }
+  for (WardEkf* ekf : {&plain, &weighing}) {
+    testing::FeedStreams(log, ekf, [](const StreamEntry& e) {
+      return e.t <= 5.0 && e.stream != Stream::kWheels;
+    });
   }
   EXPECT_EQ(plain.TakeLogLikelihood(), 0.0);
   const double l = weighing.TakeLogLikelihood();
