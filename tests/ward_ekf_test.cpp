@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "evaluation/evaluation.h"
 #include "io/measurement_stream.h"
@@ -190,9 +192,8 @@ TEST(WardEkf, SumsTheLogLikelihoodOnlyWhenAsked) {
   WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
   WardEkf weighing(log.vehicle, DefaultModelConfig(log.vehicle), tracked);
   for (WardEkf* ekf : {&plain, &weighing}) {
-    testing::FeedStreams(log, ekf, [](const StreamEntry& e) {
-      return e.t <= 5.0 && e.stream != Stream::kWheels;
-    });
+    testing::FeedStreams(
+        log, ekf, [](const StreamEntry& e) { return e.t <= 5.0 && e.stream != Stream::kWheels; });
   }
   EXPECT_EQ(plain.TakeLogLikelihood(), 0.0);
   const double l = weighing.TakeLogLikelihood();
@@ -209,29 +210,28 @@ TEST(WardEkf, ScoresOneGnssFixWithoutTrackingTheRest) {
   tracked_options.track_log_likelihood = true;
   WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
   WardEkf tracked(log.vehicle, DefaultModelConfig(log.vehicle), tracked_options);
-  int fixes = 0;
-  for (const StreamEntry& e : MergeStreams(log)) {
-    if (e.t > 6.0) break;
-    for (WardEkf* ekf : {&plain, &tracked}) {
-      if (e.stream == Stream::kImu) ekf->AddImu(log.imu[e.index]);
-      if (e.stream == Stream::kAttitude) ekf->AddAttitude(log.attitude[e.index]);
-      if (e.stream == Stream::kWheels) {
-        const SideSpeeds s = DrivenSideSpeeds(log.wheels[e.index], log.vehicle.type);
-        ekf->AddWheels(log.wheels[e.index].t, s.left_radps, s.right_radps);
-      }
-    }
-    if (e.stream == Stream::kGps) {
-      tracked.TakeLogLikelihood();  // the other streams' share so far
-      const double scored = plain.AddGpsScored(log.gps[e.index]);
-      const double again = tracked.AddGpsScored(log.gps[e.index]);
-      EXPECT_TRUE(std::isfinite(scored));
-      EXPECT_EQ(scored, again);
-      EXPECT_EQ(tracked.TakeLogLikelihood(), again);  // tracked: the fix also in the sum
-      EXPECT_EQ(plain.TakeLogLikelihood(), 0.0);      // untracked: nothing summed
-      ++fixes;
-    }
+  // Per fix: the score, and what TakeLogLikelihood then returns.
+  const auto score_fixes = [&](WardEkf* ekf) {
+    std::vector<std::pair<double, double>> fixes;
+    testing::FeedStreams(log, ekf, [&](const StreamEntry& e) {
+      if (e.t > 6.0) return false;
+      if (e.stream != Stream::kGps) return true;
+      ekf->TakeLogLikelihood();  // the other streams' share so far
+      const double scored = ekf->AddGpsScored(log.gps[e.index]);
+      fixes.emplace_back(scored, ekf->TakeLogLikelihood());
+      return false;  // fed here
+    });
+    return fixes;
+  };
+  const auto untracked = score_fixes(&plain), summed = score_fixes(&tracked);
+  ASSERT_GE(untracked.size(), 5u);
+  ASSERT_EQ(untracked.size(), summed.size());
+  for (size_t i = 0; i < untracked.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(untracked[i].first));
+    EXPECT_EQ(untracked[i].first, summed[i].first);
+    EXPECT_EQ(summed[i].second, summed[i].first);  // tracked: the fix also in the sum
+    EXPECT_EQ(untracked[i].second, 0.0);           // untracked: nothing summed
   }
-  EXPECT_GE(fixes, 5);
 }
 
 TEST(WardEkf, OptionsAreValidated) {
