@@ -173,6 +173,10 @@ int main(int argc, char** argv) {
     }
     return ReportSeeds(seeds_first, seeds_last);
   }
+  if (!g_bank) {  // one suite prints the bank's rows and the single filter's already
+    std::fprintf(stderr, "ward21_report: --single-law goes with --seeds\n");
+    return 2;
+  }
   const std::vector<DriveLog> logs = SimulateSuite(seed);
   std::printf("ward21, seed %llu\n\n", static_cast<unsigned long long>(seed));
   std::printf("| %-22s | det.  | delay s | false immobilized | v RMSE | a_dist RMSE |\n", "case");
