@@ -76,7 +76,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
                                             {"ekf_slip_ema", {}},    {"ekf_immobilized", {}},
                                             {"lag_s", result.lag_s}, {"from_filter", {}}};
           for (size_t k = 0; k < result.estimates.size(); ++k) {
-            const EkfEstimate& e = result.ekf.estimates[k];
+            const WardEstimate& e = result.ekf.estimates[k];
             extra[0].values.push_back(e.x[ward::kVbx]);
             extra[1].values.push_back(e.sd[ward::kVbx]);
             extra[2].values.push_back(e.x[ward::kAdist]);

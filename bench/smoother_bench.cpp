@@ -123,7 +123,8 @@ int Window(const std::vector<int>& iterations, bool chain) {
   const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
   const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
   std::printf(
-      "| solver | iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms | "
+      "| solver | iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms "
+      "| "
       "update with the covariance p50 ms | p99 ms | fallbacks to Ceres | v RMSE m/s |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : iterations) {

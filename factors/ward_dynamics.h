@@ -39,9 +39,9 @@ struct TireForces {
 // instead of at every evaluation of the tire forces (the trigonometry was a tenth of an EKF step).
 template <typename A>
 struct AttitudeLoads {
-  A driven_left_n;         // driven wheels of each side (traction, yaw moment)
+  A driven_left_n;  // driven wheels of each side (traction, yaw moment)
   A driven_right_n;
-  A roll_left_n;           // all wheels of each side (rolling resistance)
+  A roll_left_n;  // all wheels of each side (rolling resistance)
   A roll_right_n;
   A gravity_along_x_mps2;  // g sin(phi), phi uphill positive
 };
@@ -73,8 +73,7 @@ inline AttitudeLoads<A> ComputeAttitudeLoads(const Attitude<A>& attitude, const 
 // T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
 // keeps the trigonometry of the normal forces out of the automatic differentiation).
 template <typename T, typename A>
-inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads,
-                                       const Params& p) {
+inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads, const Params& p) {
   const T half_track_yaw = 0.5 * p.track_width_m * x[kYawRate];
   const T v_fwd_left = x[kVbx] - half_track_yaw;
   const T v_fwd_right = x[kVbx] + half_track_yaw;

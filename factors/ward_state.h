@@ -18,6 +18,16 @@
 #include "model/vehicle.h"
 
 namespace slipgraph {
+
+// How v_bx is propagated. kTireDynamics is eq. (10) as printed: v' = f_tire + a_dist - g sin(phi),
+// the accelerometer an eq. (11) measurement. kAccelerometerDriven integrates the accelerometer
+// (v' = a_x - c_ax - b_ax - g sin(phi), the strapdown form) and keeps eq. (11) as the measurement
+// that ties a_dist to the tire model, with the tire law's own uncertainty in its noise. The two are
+// the same equations; they differ in where the noise is. With a stiff tire law (d v'/d v of
+// order -100 1/s) and tire coefficients off by tens of percent, the first slaves v_bx to r w and
+// misses slow hold-backs (docs/ekf.md); the second keeps the accelerometer's integral.
+enum class VelocityModel { kTireDynamics, kAccelerometerDriven };
+
 namespace ward {
 
 enum StateIndex : int {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/csv_writer.h"
+#include "io/state_estimate.h"
 
 namespace slipgraph {
 
@@ -34,5 +35,19 @@ struct NumericTable {
   size_t rows() const { return columns.empty() ? 0 : columns.begin()->second.size(); }
 };
 NumericTable ReadNumericTable(const std::string& path);
+
+// A column an estimator adds after the standard ones (one value per estimate).
+struct ExtraColumn {
+  std::string name;
+  std::vector<double> values;
+};
+
+// Estimate file: t, v_bx, b_ax, a_dist, omega_left, omega_right, yaw_rate, b_gz (each with
+// sd_), slip_left, slip_right, slip_ema, immobilized, accel_offset, gyro_offset, then `extra`.
+void WriteEstimates(const std::vector<WardEstimate>& estimates, const std::string& path,
+                    const std::vector<ExtraColumn>& extra = {});
+// The estimates as the table `evaluate` reads (t, v_bx, sd_v_bx, a_dist, immobilized), without
+// a file.
+NumericTable EstimateTable(const std::vector<WardEstimate>& estimates);
 
 }  // namespace slipgraph

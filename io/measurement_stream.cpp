@@ -46,8 +46,8 @@ std::vector<StreamEntry> MergeStreams(const DriveLog& log, const StreamSelection
   bool runs_sorted = true;
   size_t begin = 0;
   for (size_t end : run_end) {
-    runs_sorted = runs_sorted && std::is_sorted(entries.begin() + begin, entries.begin() + end,
-                                                by_time);
+    runs_sorted =
+        runs_sorted && std::is_sorted(entries.begin() + begin, entries.begin() + end, by_time);
     begin = end;
   }
   if (runs_sorted) {  // the usual case: merge the sorted runs, O(n) per run

@@ -106,8 +106,9 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
       {"cg_height", &v.cg_height_m, true},
       {"axle_spacing", &v.axle_spacing_m, rocker},
   };
-  ReadNumbers(path, root, "", top, false, warnings,
-              {"name", "type", "tire", "rolling", "tire_sd", "rolling_sd", "law_samples", "sensors"});
+  ReadNumbers(
+      path, root, "", top, false, warnings,
+      {"name", "type", "tire", "rolling", "tire_sd", "rolling_sd", "law_samples", "sensors"});
   for (const NumberField& field : top) {
     if (root[field.key] && *field.target <= 0.0) {
       Fail(path, root[field.key], field.key, root[field.key].Scalar(), "must be positive");
@@ -126,7 +127,7 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
     const char* key;
     std::vector<NumberField> fields;
   } law_sd[] = {{"tire_sd", TireFields(&v.tire_sd, false)},
-                 {"rolling_sd", RollingFields(&v.rolling_sd, false)}};
+                {"rolling_sd", RollingFields(&v.rolling_sd, false)}};
   for (const auto& section : law_sd) {
     const YAML::Node node = root[section.key];
     if (!node) continue;
@@ -346,9 +347,8 @@ void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {
   }
   if (v.rolling_sd.R1 > 0.0 || v.rolling_sd.A_roll > 0.0 || v.rolling_sd.R2 > 0.0) {
     e << YAML::Key << "rolling_sd" << YAML::Value << YAML::Flow << YAML::BeginMap;
-    e << YAML::Key << "R1" << YAML::Value << v.rolling_sd.R1 << YAML::Key << "A_roll"
-      << YAML::Value << v.rolling_sd.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling_sd.R2
-      << YAML::EndMap;
+    e << YAML::Key << "R1" << YAML::Value << v.rolling_sd.R1 << YAML::Key << "A_roll" << YAML::Value
+      << v.rolling_sd.A_roll << YAML::Key << "R2" << YAML::Value << v.rolling_sd.R2 << YAML::EndMap;
   }
   if (!v.law_samples.empty()) {
     e << YAML::Key << "law_samples" << YAML::Value << YAML::BeginSeq;

@@ -71,8 +71,8 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "tire_uncertainty.slip_relative_sd and slip_floor must be non-negative";
     return false;
   }
-  for (double sd : {tire_sd.C1, tire_sd.At, tire_sd.C2, rolling_sd.R1, rolling_sd.A_roll,
-                    rolling_sd.R2}) {
+  for (double sd :
+       {tire_sd.C1, tire_sd.At, tire_sd.C2, rolling_sd.R1, rolling_sd.A_roll, rolling_sd.R2}) {
     if (!(sd >= 0.0)) {
       *error = "tire_sd and rolling_sd must be non-negative";
       return false;

@@ -108,7 +108,7 @@ struct ModelConfig {
   // An at-rest IMU sample updates the offsets only once the robot has stayed at rest this long
   // after it (the encoders see a start late; solvers/imu_offsets.h).
   double offset_rest_guard_s = 0.5;
-  std::vector<std::string> effects;   // optional physical effects switched on, by name
+  std::vector<std::string> effects;  // optional physical effects switched on, by name
   // Where an effect that acts on part of a drive acts (ActsOnWindows): for sinkage_resistance
   // the time spans (log time, s) on soft ground, for terrain_change those on the changed
   // terrain, as `diagnose` found them. Required when such an effect is on.

@@ -13,19 +13,19 @@
 namespace slipgraph {
 
 std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const ModelConfig& model,
-                                                   const FilterResult& ekf,
+                                                   const std::vector<WardEstimate>& initial,
                                                    const WardProblemOptions& options) {
-  const WardFactorSource source(log, model, ekf, options);
+  const WardFactorSource source(log, model, initial, options);
   auto out = std::make_unique<WardProblem>();
   const size_t n = source.size();
   out->times = source.times();
   out->states.resize(n);
   out->wheel_speeds.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    std::copy(ekf.estimates[k].x.begin(), ekf.estimates[k].x.end(), out->states[k].begin());
+    std::copy(initial[k].x.begin(), initial[k].x.end(), out->states[k].begin());
     out->wheel_speeds[k] = source.wheel_speeds(k);
   }
-  out->offsets = {ekf.estimates.back().accel_offset_mps2, ekf.estimates.back().gyro_offset_radps};
+  out->offsets = {initial.back().accel_offset_mps2, initial.back().gyro_offset_radps};
 
   ceres::Problem::Options problem_options;
   problem_options.enable_fast_removal = false;

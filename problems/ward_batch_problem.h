@@ -2,7 +2,7 @@
 // sample, the constant IMU offsets as one 2-block, every step's factors from WardFactorSource
 // (dynamics, disturbance random walk (robust), accelerometer and yaw gyro, encoders, GNSS
 // velocity, weak constraints 1, 2, 4 and 5 as soft priors), and priors on the first state and the
-// offsets. Initial values come from an EKF run over the same log.
+// offsets. Initial values come from a front end's run over the same log.
 #pragma once
 
 #include <ceres/problem.h>
@@ -15,9 +15,9 @@
 
 #include "factors/model_effects.h"
 #include "io/drive_log.h"
+#include "io/state_estimate.h"
 #include "model/model_config.h"
 #include "problems/ward_factor_source.h"
-#include "solvers/ekf_runner.h"
 
 namespace slipgraph {
 
@@ -49,9 +49,10 @@ struct WardProblem {
 // Half the sum of squared (loss-applied) residuals of each factor kind at the current values.
 std::map<std::string, double> CostByKind(const WardProblem& problem);
 
-// Throws std::invalid_argument when the EKF run has no estimates (no wheel data).
+// `initial`: a front end's estimates over the log, one per wheel sample (the states' times and
+// initial values). Throws std::invalid_argument when it is empty (no wheel data).
 std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const ModelConfig& model,
-                                                   const FilterResult& ekf,
+                                                   const std::vector<WardEstimate>& initial,
                                                    const WardProblemOptions& options = {});
 
 }  // namespace slipgraph

@@ -23,7 +23,6 @@
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
-#include "solvers/weak_constraints.h"
 
 namespace slipgraph {
 
@@ -74,13 +73,6 @@ std::vector<size_t> AttachToStates(const Samples& samples, const std::vector<dou
 
 }  // namespace
 
-WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter) {
-  options.use_gps = filter.use_gps;
-  options.velocity_model = filter.ekf.velocity_model;
-  options.wheel_still_radps = filter.ekf.wheel_still_radps;
-  return options;
-}
-
 std::string FactorCounts::Describe() const {
   std::ostringstream out;
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
@@ -95,10 +87,11 @@ std::string FactorCounts::Describe() const {
 }
 
 WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model,
-                                   const FilterResult& ekf, const WardProblemOptions& options)
+                                   const std::vector<WardEstimate>& initial,
+                                   const WardProblemOptions& options)
     : log_(log),
       model_(model),
-      ekf_(ekf),
+      initial_(initial),
       options_(options),
       params_(MakeParams(log.vehicle, model)),
       tire_uncertainty_(model.tire_uncertainty) {
@@ -112,12 +105,12 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   if (std::isfinite(options.tire_law_correlation_time_s)) {
     tire_uncertainty_.correlation_time_s = options.tire_law_correlation_time_s;
   }
-  if (ekf.estimates.empty()) throw std::invalid_argument("the EKF produced no estimates");
-  const size_t n = ekf.estimates.size();
+  if (initial.empty()) throw std::invalid_argument("the front end produced no estimates");
+  const size_t n = initial.size();
   times_.resize(n);
   wheel_speeds_.assign(n, {0.0, 0.0});
   stopped_since_.assign(n, -1.0);
-  for (size_t k = 0; k < n; ++k) times_[k] = ekf.estimates[k].t;
+  for (size_t k = 0; k < n; ++k) times_[k] = initial[k].t;
   for (size_t k = 0; k < n && k < log.wheels.size(); ++k) {
     const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
     wheel_speeds_[k] = {s.left_radps, s.right_radps};
@@ -201,8 +194,8 @@ void WardFactorSource::AddStatePrior(size_t k, double* x, ceres::Problem* proble
                                      std::vector<AddedFactor>* added) const {
   std::array<double, kStateSize> mean, sd;
   for (int i = 0; i < kStateSize; ++i) {
-    mean[i] = ekf_.estimates[k].x[i];
-    sd[i] = std::max(ekf_.estimates[k].sd[i], 1e-6);
+    mean[i] = initial_[k].x[i];
+    sd[i] = std::max(initial_[k].sd[i], 1e-6);
   }
   added->push_back(
       {"first_state_prior",
@@ -250,7 +243,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     double sd_a = noise.imu_sd_accel_mps2;
     if (options_.velocity_model == VelocityModel::kAccelerometerDriven) {
       sd_a = std::sqrt(sd_a * sd_a +
-                       TireLawSampleVariance(ekf_.estimates[k].x.data(),
+                       TireLawSampleVariance(initial_[k].x.data(),
                                              ward::ComputeAttitudeLoads(c.attitude, params), params,
                                              tire_uncertainty_, imu_period_s_));
     }
@@ -330,9 +323,9 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   // Slip is meaningless on (nearly) stopped wheels: there the prior stays on.
   const double surface_mps = 0.5 * params_.wheel_radius_m * std::abs(w[0] + w[1]);
   const double gate_slip = options_.decay_gate_slip.size() == n ? options_.decay_gate_slip[k]
-                                                                  : ekf_.estimates[k].slip.slip_ema;
-  const bool slipping = gate_slip >= wc.slip_threshold &&
-                        surface_mps > model_.immobilization.min_wheel_speed_mps;
+                                                                : initial_[k].slip.slip_ema;
+  const bool slipping =
+      gate_slip >= wc.slip_threshold && surface_mps > model_.immobilization.min_wheel_speed_mps;
   if (!slipping) {
     Add("act_quickly", DisturbanceDecayPrior::Create(options_.decay_sd_density / root_dt),
         new ceres::CauchyLoss(options_.decay_cauchy_sigmas), x);

@@ -15,11 +15,12 @@
 #include <string>
 #include <vector>
 
+#include "factors/drive_direction.h"
 #include "factors/force_term.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
+#include "io/state_estimate.h"
 #include "model/model_config.h"
-#include "solvers/ekf_runner.h"
 
 namespace slipgraph {
 
@@ -45,7 +46,7 @@ struct WardProblemOptions {
   // otherwise it is counted as too late). Off for post-processing: each at its own state.
   bool body_velocity_when_available = false;
   // |w| below this reads as a stopped wheel (weak constraints 1 and 4), as in the EKF.
-  double wheel_still_radps = EkfOptions().wheel_still_radps;
+  double wheel_still_radps = kDefaultWheelStillRadps;
   // Huber scale of the disturbance random walk, in standard deviations of one step.
   double disturbance_huber_sigmas = 3.0;
   // Cauchy scale of the disturbance decay prior (weak constraint 2), in its standard deviations:
@@ -106,16 +107,6 @@ struct WardProblemOptions {
   double stiffness_min = -0.9;
 };
 
-// The slip-stiffness prior `smooth` and `compare` use unless told otherwise: a user's tire law is
-// a fit that no terrain matches exactly. Chosen on ward21 seeds 1/2; on seeds 3/4, not used to
-// choose it, the batch's velocity error fell 0.0172/0.0166 -> 0.0115/0.0114 m/s with the
-// disturbance unchanged; where the law is exact (fig5) it costs 0.0031 -> 0.0048 m/s.
-constexpr double kPostProcessingStiffnessPriorSd = 0.15;
-
-// `options` with the choices of the EKF run that initialises the problem (GNSS on or off, the
-// velocity model, the wheel-still threshold), so the smoother's factors and its filter agree.
-WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter);
-
 // A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).
 struct AddedFactor {
   const char* kind;
@@ -149,15 +140,17 @@ struct GlobalBlocks {
 
 class WardFactorSource {
  public:
-  // Throws std::invalid_argument when the EKF run has no estimates (no wheel data).
-  WardFactorSource(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
-                   const WardProblemOptions& options);
+  // `initial`: one estimate per wheel sample (a front end's run over the log), the states'
+  // times and initial values; kept by reference. Throws std::invalid_argument when it is empty
+  // (no wheel data).
+  WardFactorSource(const DriveLog& log, const ModelConfig& model,
+                   const std::vector<WardEstimate>& initial, const WardProblemOptions& options);
 
   size_t size() const { return times_.size(); }
   double time(size_t k) const { return times_[k]; }
   const std::vector<double>& times() const { return times_; }
-  // The EKF's estimate at state k: the initial value of the state.
-  const EkfEstimate& initial(size_t k) const { return ekf_.estimates[k]; }
+  // The front end's estimate at state k: the initial value of the state.
+  const WardEstimate& initial(size_t k) const { return initial_[k]; }
   // The measured driven-side wheel speeds [left, right] at state k.
   const std::array<double, 2>& wheel_speeds(size_t k) const { return wheel_speeds_[k]; }
 
@@ -194,7 +187,7 @@ class WardFactorSource {
 
   const DriveLog& log_;
   const ModelConfig& model_;
-  const FilterResult& ekf_;
+  const std::vector<WardEstimate>& initial_;
   WardProblemOptions options_;
   ward::Params params_;
   TireLawUncertainty tire_uncertainty_;  // the model's, with the options' correlation time

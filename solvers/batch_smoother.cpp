@@ -12,6 +12,13 @@
 
 namespace slipgraph {
 
+WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter) {
+  options.use_gps = filter.use_gps;
+  options.velocity_model = filter.ekf.velocity_model;
+  options.wheel_still_radps = filter.ekf.wheel_still_radps;
+  return options;
+}
+
 using namespace ward;  // NOLINT: state indices
 
 namespace {
@@ -76,7 +83,8 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
   std::vector<Eigen::VectorXd> shifts;
   std::string names;
   for (const auto& [name, perturbed] : perturbations) {
-    std::unique_ptr<WardProblem> other = BuildWardBatchProblem(log, perturbed, ekf, problem_options);
+    std::unique_ptr<WardProblem> other =
+        BuildWardBatchProblem(log, perturbed, ekf.estimates, problem_options);
     if (other->states.size() != problem->states.size() ||
         other->stiffness.size() != problem->stiffness.size() ||
         other->force_term_values.size() != problem->force_term_values.size()) {
@@ -115,9 +123,9 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
 }
 
 SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
-                               const BatchSmootherOptions& options) {
+                               const FilterResult& ekf, const BatchSmootherOptions& options) {
   SmootherResult result;
-  result.ekf = RunEkf(log, model, options.filter);
+  result.ekf = ekf;
   result.estimates = result.ekf.estimates;
   if (result.ekf.estimates.size() < 2) {
     result.used_fallback = true;
@@ -126,7 +134,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   }
   const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   std::unique_ptr<WardProblem> problem =
-      BuildWardBatchProblem(log, model, result.ekf, problem_options);
+      BuildWardBatchProblem(log, model, result.ekf.estimates, problem_options);
   for (const std::string& effect : problem->ignored_effects) {
     result.notes.push_back("effect '" + effect +
                            "' is named in the model but has no model term yet: ignored");
@@ -182,9 +190,8 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
         "effects");
   }
   result.stiffness = problem->stiffness;
-  if (std::any_of(result.stiffness.begin(), result.stiffness.end(), [&](double theta) {
-        return theta <= options.problem.stiffness_min + 1e-6;
-      })) {
+  if (std::any_of(result.stiffness.begin(), result.stiffness.end(),
+                  [&](double theta) { return theta <= options.problem.stiffness_min + 1e-6; })) {
     char bound[32];
     std::snprintf(bound, sizeof(bound), "%.2f", options.problem.stiffness_min);
     result.notes.push_back(std::string("the slip stiffness reached its lower bound (theta = ") +
@@ -194,7 +201,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   }
   const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
-    EkfEstimate& e = result.estimates[k];
+    WardEstimate& e = result.estimates[k];
     for (int i = 0; i < kStateSize; ++i) e.x[i] = problem->states[k][i];
     e.accel_offset_mps2 = problem->offsets[0];
     e.gyro_offset_radps = problem->offsets[1];
@@ -250,12 +257,17 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
 
 SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
                            const BatchSmootherOptions& options) {
+  return SmoothBatch(log, model, RunEkf(log, model, options.filter), options);
+}
+
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
+                           const BatchSmootherOptions& options) {
   if (!options.regate_decay_prior || !options.problem.decay_gate_slip.empty()) {
-    return SmoothBatchOnce(log, model, options);
+    return SmoothBatchOnce(log, model, ekf, options);
   }
   BatchSmootherOptions first_options = options;
   first_options.covariance = false;
-  const SmootherResult first = SmoothBatchOnce(log, model, first_options);
+  const SmootherResult first = SmoothBatchOnce(log, model, ekf, first_options);
   if (first.used_fallback) return first;  // the EKF's estimates, sd included (no covariance ran)
   // The smoothed slip (DetectImmobilizationOnSmoothedStates leaves the mean of the two sides in
   // slip_ema) gates the second solve, which starts from the first.
@@ -268,9 +280,9 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
     changed += (gate.back() >= threshold) != (first.ekf.estimates[k].slip.slip_ema >= threshold);
   }
   second_options.start = &first.estimates;
-  SmootherResult second = SmoothBatchOnce(log, model, second_options);
+  SmootherResult second = SmoothBatchOnce(log, model, ekf, second_options);
   if (second.used_fallback) {
-    SmootherResult result = SmoothBatchOnce(log, model, options);
+    SmootherResult result = SmoothBatchOnce(log, model, ekf, options);
     result.notes.push_back(
         "weak constraint 2 re-gated by the smoother's own slip: that solve failed, the EKF-gated "
         "solution is reported");
@@ -282,9 +294,9 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
   return second;
 }
 
-std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
-                                                const ModelConfig& model) {
-  std::vector<EkfEstimate> estimates = result.estimates;
+std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
+                                                 const ModelConfig& model) {
+  std::vector<WardEstimate> estimates = result.estimates;
   double theta[kModelEffectCount] = {};
   std::vector<const ForceTerm*> terms;
   std::vector<double> phi;
@@ -296,7 +308,7 @@ std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, co
   }
   if (result.effects.empty()) return estimates;
   const ward::Params params = ward::MakeParams(log.vehicle, model);
-  for (EkfEstimate& e : estimates) {
+  for (WardEstimate& e : estimates) {
     e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta,
                                              EffectWindowWeightsAt(model, e.t).soft_ground);
     if (!terms.empty()) {

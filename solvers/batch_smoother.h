@@ -16,6 +16,10 @@
 
 namespace slipgraph {
 
+// `options` with the choices of the EKF run that initialises the problem (GNSS on or off, the
+// velocity model, the wheel-still threshold), so the smoother's factors and its filter agree.
+WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter);
+
 struct BatchSmootherOptions {
   int max_iterations = 200;
   // Ceres's relative cost change at convergence. 1e-12 for post-processing; a likelihood-ratio
@@ -31,7 +35,7 @@ struct BatchSmootherOptions {
   // Start the solve from these states and offsets instead of the EKF's (one per wheel sample, as
   // a SmootherResult's estimates on the same log): a model refitted with one more term converges
   // from the previous solution in a few iterations. Ignored when the sizes differ.
-  const std::vector<EkfEstimate>* start = nullptr;
+  const std::vector<WardEstimate>* start = nullptr;
   // Weak constraint 2 (the disturbance decays while the wheels do not slip) is gated by a slip.
   // First solve: the EKF's slip EMA, which lags each hold-back's onset and, when the EKF's
   // velocity is biased by a tire law that is not the terrain's, stays below the gate through a
@@ -59,7 +63,7 @@ struct EffectEstimate {
 };
 
 struct SmootherResult {
-  std::vector<EkfEstimate> estimates;   // same layout as the EKF's, one per wheel sample
+  std::vector<WardEstimate> estimates;  // same layout as the EKF's, one per wheel sample
   FilterResult ekf;                     // the initialising filter run
   std::vector<EffectEstimate> effects;  // the model's effects that have a model term
   double final_cost = 0.0;              // the solution's cost (for likelihood-ratio tests)
@@ -75,7 +79,13 @@ struct SmootherResult {
   std::vector<std::string> notes;
 };
 
+// Runs the front end (options.filter) over the log, then smooths from its estimates.
 SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
+                           const BatchSmootherOptions& options = {});
+// Smooths from a front end's run over the same log (`ekf`, run with options.filter's settings
+// and the same model but for its effects, which the front end does not model): a caller that has
+// the run (compare, the workbench's fits) passes it down instead of running it again.
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
                            const BatchSmootherOptions& options = {});
 
 std::string DescribeSmootherRun(const SmootherResult& result);
@@ -84,7 +94,7 @@ std::string DescribeSmootherRun(const SmootherResult& result);
 // resistance; factors/model_effects.h) added to a_dist: the disturbance as every external force
 // the tires and gravity do not explain, as a simulator's truth and a reader of `a_dist` count
 // it. The solution's own a_dist leaves the modelled ones out (they are terms of their own).
-std::vector<EkfEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
-                                                const ModelConfig& model);
+std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
+                                                 const ModelConfig& model);
 
 }  // namespace slipgraph

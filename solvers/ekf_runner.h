@@ -26,7 +26,7 @@ struct FilterRunOptions {
 };
 
 struct FilterResult {
-  std::vector<EkfEstimate> estimates;  // one per wheel sample, after its cycle
+  std::vector<WardEstimate> estimates;  // one per wheel sample, after its cycle
   // The bank of filters (solvers/multiple_model_ekf.h): per estimate, the sd of the soils'
   // estimates about the bank's mean, the tire law's share of the sd (the window smoother adds it
   // to its own). Empty for one filter.
@@ -39,21 +39,7 @@ struct FilterResult {
 FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
                     const FilterRunOptions& options = {});
 
-// A column an estimator adds after the standard ones (one value per estimate).
-struct ExtraColumn {
-  std::string name;
-  std::vector<double> values;
-};
-
-// Estimate file: t, v_bx, b_ax, a_dist, omega_left, omega_right, yaw_rate, b_gz (each with
-// sd_), slip_left, slip_right, slip_ema, immobilized, accel_offset, gyro_offset, then `extra`.
-void WriteEstimates(const std::vector<EkfEstimate>& estimates, const std::string& path,
-                    const std::vector<ExtraColumn>& extra = {});
 void WriteEkfEstimates(const FilterResult& result, const std::string& path);
-
-// The estimates as the table `evaluate` reads (t, v_bx, sd_v_bx, a_dist, immobilized), without
-// a file.
-NumericTable EstimateTable(const std::vector<EkfEstimate>& estimates);
 
 // One paragraph for the terminal: streams used, counts, rejections, weak constraints.
 std::string DescribeFilterRun(const FilterResult& result);

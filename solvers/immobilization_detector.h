@@ -4,19 +4,11 @@
 // data is stale (missing encoder data is never reported as immobilization).
 #pragma once
 
+#include "io/state_estimate.h"
 #include "model/model_config.h"
 #include "solvers/ema.h"
 
 namespace slipgraph {
-
-struct SlipEstimate {
-  double slip_left = 0.0;  // slip ratio of the left driven wheel/side (factors/slip_ratio.h)
-  double slip_right = 0.0;
-  double slip_ema = 0.0;   // EMA of the mean of the two
-  double threshold = 0.0;  // the speed-dependent threshold in force
-  bool braking = false;
-  bool immobilized = false;
-};
 
 // The instantaneous part of the detector, shared with post-processing: the slip of each driven
 // side, braking, the speed-dependent threshold, and whether the wheels turn fast enough to count

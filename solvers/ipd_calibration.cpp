@@ -283,8 +283,7 @@ IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& opti
       linearize();
     }
     JumpDetector<kAlphaSize, 3>::Jump jump;
-    if (options.jump.enabled &&
-        detector.Measure(seg.t_end, l.residual, l.H, HPH + R, &jump)) {
+    if (options.jump.enabled && detector.Measure(seg.t_end, l.residual, l.H, HPH + R, &jump)) {
       // A jump in alpha before jump.t: the model before it is remembered, alpha corrected by the
       // jump's estimate (which already holds this segment).
       ++jumps;

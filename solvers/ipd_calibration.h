@@ -30,10 +30,10 @@ namespace slipgraph {
 // The terrain memory (solvers/ipd_terrain_memory.h): slip models of earlier terrains, recalled
 // when the segments say the robot is back on one.
 struct IpdTerrainMemoryOptions {
-  int capacity = 8;        // stored models (0: off)
-  double settle_s = 30.0;  // a model is stored only after this long in use
-  double search_s = 20.0;  // stored models are scored this long after a misfit
-  int window = 4;          // segments in the likelihood comparison
+  int capacity = 8;                 // stored models (0: off)
+  double settle_s = 30.0;           // a model is stored only after this long in use
+  double search_s = 20.0;           // stored models are scored this long after a misfit
+  int window = 4;                   // segments in the likelihood comparison
   double log_bayes_factor = 4.605;  // ln(100)
 };
 
@@ -42,9 +42,9 @@ struct IpdTerrainMemoryOptions {
 // one segment; the detector tests "alpha jumped before segment k" for the recent segments.
 struct IpdJumpOptions {
   bool enabled = true;
-  double jump_sd = 0.05;           // prior sd of a jump in each alpha
-  double log_bayes_factor = 6.9;   // ln 1000
-  double window_s = 20.0;          // jumps this far back are tested
+  double jump_sd = 0.05;          // prior sd of a jump in each alpha
+  double log_bayes_factor = 6.9;  // ln 1000
+  double window_s = 20.0;         // jumps this far back are tested
 };
 
 struct IpdOptions {

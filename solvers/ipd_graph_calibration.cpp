@@ -14,11 +14,11 @@
 #include "factors/diagonal_prior.h"
 #include "factors/ipd_segment_factor.h"
 #include "factors/marginal_prior.h"
-#include "problems/marginalization.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/ipd_covariance_matching.h"
 #include "solvers/ipd_noise_likelihood.h"
 #include "solvers/ipd_terrain_memory.h"
+#include "solvers/marginalization.h"
 
 namespace slipgraph {
 namespace {

@@ -32,11 +32,11 @@
 namespace slipgraph {
 
 struct JumpDetectorOptions {
-  double jump_sd = 0.05;           // prior sd of the jump in each parameter
-  double log_bayes_factor = 6.9;   // ln B to declare a jump (ln 1000)
-  int window = 40;                 // hypotheses kept: jumps before the last `window` measurements
-  int min_measurements = 2;        // a hypothesis is tested after this many measurements
-  double overlap = 1.0;            // each datum enters this many measurements
+  double jump_sd = 0.05;          // prior sd of the jump in each parameter
+  double log_bayes_factor = 6.9;  // ln B to declare a jump (ln 1000)
+  int window = 40;                // hypotheses kept: jumps before the last `window` measurements
+  int min_measurements = 2;       // a hypothesis is tested after this many measurements
+  double overlap = 1.0;           // each datum enters this many measurements
 };
 
 template <int N, int M>
@@ -51,9 +51,9 @@ class JumpDetector {
   using Options = JumpDetectorOptions;
 
   struct Jump {
-    double t = 0.0;                  // the hypothesis's start (the update it precedes)
+    double t = 0.0;  // the hypothesis's start (the update it precedes)
     double log_bayes_factor = 0.0;
-    int measurements = 0;            // measurements since the jump
+    int measurements = 0;                // measurements since the jump
     Vector correction = Vector::Zero();  // F nu: add to the estimate
     Matrix covariance = Matrix::Zero();  // F cov(nu) F': add to its covariance
   };
@@ -67,8 +67,8 @@ class JumpDetector {
   // true and fills *jump when the best hypothesis passes the threshold (the caller applies the
   // correction and calls Restart(); it should not also update on this measurement: the
   // measurement is already in the jump's estimate).
-  bool Measure(double t, const Residual& r, const Jacobian& H,
-               const Eigen::Matrix<double, M, M>& S, Jump* jump) {
+  bool Measure(double t, const Residual& r, const Jacobian& H, const Eigen::Matrix<double, M, M>& S,
+               Jump* jump) {
     hypotheses_.push_back({t, Matrix::Identity(), Vector::Zero(), Matrix::Zero(), 0});
     while (static_cast<int>(hypotheses_.size()) > options_.window) hypotheses_.pop_front();
     const Eigen::LDLT<Eigen::Matrix<double, M, M>> S_ldlt(S * options_.overlap);

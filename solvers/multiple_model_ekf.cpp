@@ -61,18 +61,18 @@ void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right
   }
   last_cycle_t_ = t;
   if (std::isfinite(omega_left) && std::isfinite(omega_right)) last_wheels_t_ = t;
-  const EkfEstimate e = Estimate();
+  const WardEstimate e = Estimate();
   slip_ = detector_.Update(e.x[ward::kVbx], e.x[ward::kYawRate], e.x[ward::kOmegaLeft],
                            e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_);
 }
 
-EkfEstimate MultipleModelEkf::Estimate(std::array<double, ward::kStateSize>* law_spread_sd) const {
-  EkfEstimate out = filters_.front()->Estimate();
+WardEstimate MultipleModelEkf::Estimate(std::array<double, ward::kStateSize>* law_spread_sd) const {
+  WardEstimate out = filters_.front()->Estimate();
   if (law_spread_sd != nullptr) law_spread_sd->fill(0.0);
   if (filters_.size() == 1) return out;
   std::array<double, ward::kStateSize> mean{}, within{}, second_moment{};
   for (size_t i = 0; i < filters_.size(); ++i) {
-    const EkfEstimate e = filters_[i]->Estimate();
+    const WardEstimate e = filters_[i]->Estimate();
     for (int j = 0; j < ward::kStateSize; ++j) {
       mean[j] += weights_[i] * e.x[j];
       within[j] += weights_[i] * e.sd[j] * e.sd[j];

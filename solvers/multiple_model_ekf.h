@@ -50,7 +50,7 @@ class MultipleModelEkf {
 
   // With law_spread_sd: also the sd of the filters' means about their weighted mean, the share
   // of the estimate's sd that is the tire law's uncertainty (zero with one filter).
-  EkfEstimate Estimate(std::array<double, ward::kStateSize>* law_spread_sd = nullptr) const;
+  WardEstimate Estimate(std::array<double, ward::kStateSize>* law_spread_sd = nullptr) const;
   // The user's-law filter's counters (every filter is fed the same measurements).
   const EkfStats& stats() const { return filters_.front()->stats(); }
   // The filters: [0] on the user's law, then one per law sample.

@@ -8,10 +8,10 @@ using namespace ward;  // NOLINT: state indices
 
 void DetectImmobilizationOnSmoothedStates(const ModelConfig& model, const Vehicle& vehicle,
                                           double min_duration_s,
-                                          std::vector<EkfEstimate>* estimates) {
+                                          std::vector<WardEstimate>* estimates) {
   std::vector<bool> raw(estimates->size(), false);
   for (size_t k = 0; k < estimates->size(); ++k) {
-    EkfEstimate& e = (*estimates)[k];
+    WardEstimate& e = (*estimates)[k];
     const InstantSlip instant =
         ComputeInstantSlip(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m,
                            e.x[kVbx], e.x[kYawRate], e.x[kOmegaLeft], e.x[kOmegaRight]);

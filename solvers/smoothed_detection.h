@@ -15,6 +15,6 @@ namespace slipgraph {
 
 void DetectImmobilizationOnSmoothedStates(const ModelConfig& model, const Vehicle& vehicle,
                                           double min_duration_s,
-                                          std::vector<EkfEstimate>* estimates);
+                                          std::vector<WardEstimate>* estimates);
 
 }  // namespace slipgraph

@@ -466,8 +466,8 @@ void WardEkf::AddGps(const GpsSample& gps) {
          &gps_rejections_, &kGnss);
 }
 
-EkfEstimate WardEkf::Estimate() const {
-  EkfEstimate e;
+WardEstimate WardEkf::Estimate() const {
+  WardEstimate e;
   e.t = t_;
   for (int i = 0; i < kStateSize; ++i) {
     e.x[i] = x_(i);

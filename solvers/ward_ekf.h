@@ -20,24 +20,17 @@
 #include <string>
 #include <vector>
 
+#include "factors/drive_direction.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
+#include "io/state_estimate.h"
 #include "model/model_config.h"
 #include "solvers/immobilization_detector.h"
 #include "solvers/imu_offsets.h"
 #include "solvers/weak_constraints.h"
 
 namespace slipgraph {
-
-// How v_bx is propagated. kTireDynamics is eq. (10) as printed: v' = f_tire + a_dist - g sin(phi),
-// the accelerometer an eq. (11) measurement. kAccelerometerDriven integrates the accelerometer
-// (v' = a_x - c_ax - b_ax - g sin(phi), the strapdown form) and keeps eq. (11) as the measurement
-// that ties a_dist to the tire model, with the tire law's own uncertainty in its noise. The two are
-// the same equations; they differ in where the noise is. With a stiff tire law (d v'/d v of
-// order -100 1/s) and tire coefficients off by tens of percent, the first slaves v_bx to r w and
-// misses slow hold-backs (docs/ekf.md); the second keeps the accelerometer's integral.
-enum class VelocityModel { kTireDynamics, kAccelerometerDriven };
 
 struct EkfOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
@@ -53,9 +46,8 @@ struct EkfOptions {
   int wheels_max_consecutive_rejections = 10;
   int gps_max_consecutive_rejections = 1;
   double encoder_timeout_s = 0.25;  // older encoder data: no immobilization flag
-  // |w| below this reads as a stopped wheel: 3 sd of the LAGR encoder noise at 100 Hz (0.05 rad/s),
-  // so that noise alone rarely restarts the at-rest timer of WC4.
-  double wheel_still_radps = 0.15;
+  // |w| below this reads as a stopped wheel (factors/drive_direction.h).
+  double wheel_still_radps = kDefaultWheelStillRadps;
   // Initial standard deviations of the state (the wheel speeds start at their first reading).
   std::array<double, ward::kStateSize> initial_sd = {0.2, 0.02, 0.5, 1.0, 1.0, 0.1, 0.002};
   // Keep every applied measurement's normalized innovation (EkfStats::innovations), for the
@@ -95,16 +87,6 @@ struct EkfStats {
   std::map<std::string, InnovationSeries> innovations;
 };
 
-struct EkfEstimate {
-  double t = 0.0;
-  std::array<double, ward::kStateSize> x{};
-  std::array<double, ward::kStateSize> sd{};
-  SlipEstimate slip;
-  double accel_offset_mps2 = 0.0;  // c_ax
-  double gyro_offset_radps = 0.0;  // c_gz
-  bool offsets_ready = false;
-};
-
 class WardEkf {
  public:
   WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOptions& options = {});
@@ -116,7 +98,7 @@ class WardEkf {
   void AddGps(const GpsSample& gps);
   void AddAttitude(const AttitudeSample& attitude);
 
-  EkfEstimate Estimate() const;
+  WardEstimate Estimate() const;
   // With EkfOptions::track_log_likelihood: the log-likelihood of the sensor measurements applied
   // (or gated out) since the last call, log N(nu; 0, H P H' + R) (weak constraints not counted),
   // and reset; 0 without. For a bank of filters weighing their models

@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "factors/drive_direction.h"
 #include "factors/ward_state.h"
 #include "model/model_config.h"
 
@@ -45,14 +46,6 @@ struct WeakConstraintInputs {
                                       // (v_bx = 0); read when MovingAgainstTheWheels
   double gravity_along_x_mps2 = 0.0;  // g sin(phi), phi uphill positive
 };
-
-// VelDir of Table I: sign(w_l + w_r), 0 when the sum is within twice the still threshold.
-inline double DriveDirection(double omega_left_radps, double omega_right_radps,
-                             double wheel_still_radps) {
-  const double sum = omega_left_radps + omega_right_radps;
-  if (sum > -2.0 * wheel_still_radps && sum < 2.0 * wheel_still_radps) return 0.0;
-  return sum > 0.0 ? 1.0 : -1.0;
-}
 
 // WC3's condition: the body moves against the wheels' direction. Only then does a constraint read
 // WeakConstraintInputs::f_tire_mps2, so a caller may skip evaluating the tire forces otherwise.

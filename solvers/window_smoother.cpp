@@ -9,8 +9,8 @@
 #include <deque>
 #include <sstream>
 
-#include "problems/marginalization.h"
 #include "solvers/chain_covariance.h"
+#include "solvers/marginalization.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
@@ -37,7 +37,7 @@ class Window {
     solver_options_.gradient_tolerance = 1e-10;
     solver_options_.parameter_tolerance = 1e-10;
     // Causal start: the offsets the EKF had at the first state.
-    const EkfEstimate& first = source.initial(0);
+    const WardEstimate& first = source.initial(0);
     offsets_ = {first.accel_offset_mps2, first.gyro_offset_radps};
     problem_.AddParameterBlock(offsets_.data(), 2);
     source_.AddOffsetPrior(offsets_, offsets_.data(), &problem_, &added_);
@@ -105,7 +105,7 @@ class Window {
     const Clock::time_point marginalization_start = Clock::now();
     for (size_t i = 0; i < leaving; ++i) {
       const size_t k = first_;
-      EkfEstimate e = source_.initial(k);
+      WardEstimate e = source_.initial(k);
       if (!failed) {
         std::copy(states_.front().begin(), states_.front().end(), e.x.begin());
         e.accel_offset_mps2 = offsets_[0];
@@ -241,8 +241,13 @@ class Window {
 
 WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
                                     const WindowSmootherOptions& options) {
+  return SmoothWindowed(log, model, RunEkf(log, model, options.filter), options);
+}
+
+WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
+                                    const FilterResult& ekf, const WindowSmootherOptions& options) {
   WindowSmootherResult result;
-  result.ekf = RunEkf(log, model, options.filter);
+  result.ekf = ekf;
   result.estimates = result.ekf.estimates;
   const size_t n = result.ekf.estimates.size();
   result.lag_s.assign(n, 0.0);
@@ -257,7 +262,7 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
     return result;
   }
   const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
-  const WardFactorSource source(log, model, result.ekf, problem_options);
+  const WardFactorSource source(log, model, result.ekf.estimates, problem_options);
   Window window(source, options, &result);
   const size_t every = static_cast<size_t>(std::max(1, options.update_every));
   for (size_t k = 0; k < n; ++k) {

@@ -50,7 +50,7 @@ struct WindowSmootherOptions {
 
 struct WindowSmootherResult {
   // One per wheel sample: the window's estimate as it left (or the EKF's, see from_filter).
-  std::vector<EkfEstimate> estimates;
+  std::vector<WardEstimate> estimates;
   std::vector<double> lag_s;      // newest state time when the estimate became final, minus t
   std::vector<bool> from_filter;  // true: the window failed there and the EKF estimate stands
   FilterResult ekf;               // the streaming front end, at every sample
@@ -65,7 +65,13 @@ struct WindowSmootherResult {
   std::vector<std::string> notes;
 };
 
+// Runs the front end (options.filter) over the log, then the window behind it.
 WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
+                                    const WindowSmootherOptions& options = {});
+// The window behind a front end's run over the same log (`ekf`, run with options.filter's
+// settings): a caller that has the run (compare) passes it down instead of running it again.
+WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
+                                    const FilterResult& ekf,
                                     const WindowSmootherOptions& options = {});
 
 // Chunked batch mode for logs too long for one problem: the window machinery with chunks of

@@ -22,7 +22,7 @@ TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
   EXPECT_TRUE(result.summary.IsSolutionUsable());
   EXPECT_TRUE(result.covariance_ok);
   ASSERT_EQ(result.estimates.size(), log.wheels.size());
-  for (const EkfEstimate& e : result.estimates) {
+  for (const WardEstimate& e : result.estimates) {
     for (double sd : e.sd) EXPECT_GT(sd, 0.0);
   }
   const Evaluation ev = Evaluate(log, EstimateTable(result.estimates));

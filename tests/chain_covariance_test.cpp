@@ -13,6 +13,7 @@
 #include "problems/ward_batch_problem.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "solvers/ekf_runner.h"
 
 namespace slipgraph {
 namespace {
@@ -32,7 +33,7 @@ TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
   cut(&log.attitude);
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   const FilterResult ekf = RunEkf(log, model);
-  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf);
+  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf.estimates);
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   ceres::Solver::Summary summary;

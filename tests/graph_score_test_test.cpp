@@ -47,7 +47,7 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
   const ShortLog s = MakeShortLog();
   const ModelConfig all = WithAllEffects(s.model);
   for (const std::vector<int>& in_model : {std::vector<int>{}, std::vector<int>{kTurnSlip}}) {
-    std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, all, s.ekf);
+    std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, all, s.ekf.estimates);
     const auto scores = GraphScoreTests(*problem, in_model);
 
     // Dense J and r over the same columns (states, offsets, effects).
@@ -123,7 +123,7 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
 TEST(GraphScoreTest, AForceShapeScoresLikeTheEffectItIs) {
   const ShortLog s = MakeShortLog();
   std::unique_ptr<WardProblem> problem =
-      BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
+      BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf.estimates);
   const GraphProjector graph(*problem, {});
   ASSERT_TRUE(graph.ok());
   const double mass = s.log.vehicle.mass_kg;
@@ -149,7 +149,7 @@ TEST(GraphScoreTest, AForceShapeScoresLikeTheEffectItIs) {
 TEST(GraphScoreTest, NothingToTestWithEveryEffectInTheModel) {
   const ShortLog s = MakeShortLog();
   std::unique_ptr<WardProblem> problem =
-      BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf);
+      BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf.estimates);
   std::vector<int> all;
   for (int e = 0; e < kModelEffectCount; ++e) all.push_back(e);
   const auto scores = GraphScoreTests(*problem, all);

@@ -27,7 +27,7 @@ TEST(ImuOffsets, AtRestSamplesWaitTheGuardAndAreDroppedWhenMotionFollows) {
   // The encoders still read zero while the body creeps off: these carry its acceleration.
   for (int i = 1; i <= 10; ++i) offsets.Add(0.01 * i, 0.5, 0.0, 0.0, true);
   EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-12);  // not yet older than the guard
-  offsets.Add(0.11, 0.6, 0.0, 0.0, false);           // motion seen: the waiting samples go
+  offsets.Add(0.11, 0.6, 0.0, 0.0, false);          // motion seen: the waiting samples go
   EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-12);
   // A long rest: each sample enters once the rest has lasted the guard after it.
   offsets.Add(2.0, 0.3, 0.0, 0.0, true);

@@ -78,8 +78,8 @@ TEST(JumpDetector, BayesFactorAndEstimateAreTheExactLinearGaussianOnes) {
   EXPECT_NEAR(jump.log_bayes_factor, log_normal(S1) - log_normal(S0), 1e-9);
   // F at the last measurement (the hypothesis has seen kMeasurements - 1 updates).
   const Eigen::Vector2d nu = J * G.transpose() * S1.ldlt().solve(r);
-  EXPECT_TRUE(jump.correction.isApprox(F * nu, 1e-9)) << jump.correction.transpose() << " vs "
-                                                      << (F * nu).transpose();
+  EXPECT_TRUE(jump.correction.isApprox(F * nu, 1e-9))
+      << jump.correction.transpose() << " vs " << (F * nu).transpose();
 }
 
 // A jump in a long-settled filter: found within a few measurements, placed at the right

@@ -76,7 +76,7 @@ TEST_F(MatlabImport, TheEkfRunsThroughWithoutANaN) {
   const DriveLog log = Import(kMapping);
   const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle));
   ASSERT_EQ(result.estimates.size(), log.wheels.size());
-  for (const EkfEstimate& e : result.estimates) {
+  for (const WardEstimate& e : result.estimates) {
     for (double v : e.x) ASSERT_TRUE(std::isfinite(v)) << "t=" << e.t;
     for (double sd : e.sd) ASSERT_TRUE(std::isfinite(sd)) << "t=" << e.t;
   }
@@ -95,7 +95,7 @@ TEST_F(MatlabImport, SmootherAndDiagnoseRunThroughAndSayWhereTheModelFails) {
   options.smoother.max_iterations = 60;
   const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle), options);
   ASSERT_EQ(d.solution.estimates.size(), log.wheels.size());
-  for (const EkfEstimate& e : d.solution.estimates) {
+  for (const WardEstimate& e : d.solution.estimates) {
     for (double v : e.x) ASSERT_TRUE(std::isfinite(v)) << "t=" << e.t;
     for (double sd : e.sd) ASSERT_TRUE(std::isfinite(sd)) << "t=" << e.t;
   }
@@ -126,7 +126,7 @@ TEST_F(MatlabImport, DivergenceIsCaughtAndReportedNotANaN) {
   log.vehicle.track_width_m = 1.78;
   const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle));
   ASSERT_EQ(result.estimates.size(), log.wheels.size());
-  for (const EkfEstimate& e : result.estimates) {
+  for (const WardEstimate& e : result.estimates) {
     for (double v : e.x) ASSERT_TRUE(std::isfinite(v)) << "t=" << e.t;
   }
   EXPECT_GT(result.stats.divergence_resets, 0);

@@ -148,7 +148,7 @@ TEST(ModelEffectsInTheSmoother, ASwitchedOnEffectGetsAMagnitudeAndAnSd) {
   }
   EXPECT_TRUE(noted);
   // The disturbance as every external force: the fitted drag added back, -theta v|v| / m.
-  const std::vector<EkfEstimate> total = DisturbanceWithEffects(result, log, model);
+  const std::vector<WardEstimate> total = DisturbanceWithEffects(result, log, model);
   ASSERT_EQ(total.size(), result.estimates.size());
   const size_t k = total.size() / 2;
   const double v = result.estimates[k].x[kVbx];

@@ -33,8 +33,8 @@ TEST(MultipleModelEkf, WithoutLawSamplesItIsThePapersFilter) {
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   FilterRunOptions single, bank;
   single.multiple_model = false;
-  const std::vector<EkfEstimate> a = RunEkf(log, model, single).estimates;
-  const std::vector<EkfEstimate> b = RunEkf(log, model, bank).estimates;
+  const std::vector<WardEstimate> a = RunEkf(log, model, single).estimates;
+  const std::vector<WardEstimate> b = RunEkf(log, model, bank).estimates;
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); k += 97) {
     EXPECT_EQ(a[k].x, b[k].x);

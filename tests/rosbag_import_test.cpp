@@ -91,14 +91,14 @@ TEST_F(HuskyBag, FilterSmootherAndDiagnoseRunThrough) {
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   const FilterResult ekf = RunEkf(log, model);
   ASSERT_EQ(ekf.estimates.size(), log.wheels.size());
-  for (const EkfEstimate& e : ekf.estimates) {
+  for (const WardEstimate& e : ekf.estimates) {
     for (double v : e.x) ASSERT_TRUE(std::isfinite(v));
   }
   DiagnosisOptions options;
   options.smoother.max_iterations = 60;
   const Diagnosis d = Diagnose(log, model, options);
   ASSERT_EQ(d.solution.estimates.size(), log.wheels.size());
-  for (const EkfEstimate& e : d.solution.estimates) {
+  for (const WardEstimate& e : d.solution.estimates) {
     for (double v : e.x) ASSERT_TRUE(std::isfinite(v));
     for (double sd : e.sd) ASSERT_TRUE(std::isfinite(sd));
   }

@@ -37,7 +37,7 @@ TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) 
     // where the steep rolling law near v = 0 had turned round (docs/ekf.md).
     double sum = 0.0;
     int n = 0;
-    for (const EkfEstimate& e : result.estimates) {
+    for (const WardEstimate& e : result.estimates) {
       if (e.t > 12.9 && e.t < 13.9) sum += e.x[ward::kAdist], ++n;
     }
     EXPECT_NEAR(sum / n, -2.78, 0.278) << "gps=" << gps;
@@ -93,7 +93,7 @@ TEST(WardEkf, TheStartDoesNotLeakIntoTheAccelerometerOffset) {
     }
     const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle));
     double offset = std::nan("");
-    for (const EkfEstimate& e : result.estimates) {
+    for (const WardEstimate& e : result.estimates) {
       if (e.t <= 5.0) offset = e.accel_offset_mps2;
     }
     const double error = offset - rest_sum / n;
@@ -140,7 +140,7 @@ TEST(WardEkf, ANanComponentIsDroppedAlone) {
   EXPECT_EQ(ekf.stats().imu.dropped_components, 1);
   EXPECT_EQ(ekf.stats().wheels.dropped_components, 1);
   EXPECT_EQ(ekf.stats().imu.used, 400 - 100);  // after the 100 offset-initialisation samples
-  const EkfEstimate e = ekf.Estimate();
+  const WardEstimate e = ekf.Estimate();
   for (double v : e.x) EXPECT_TRUE(std::isfinite(v));
 }
 

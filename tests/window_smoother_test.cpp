@@ -174,8 +174,8 @@ TEST(WindowSmoother, ChainGaussNewtonAgreesWithCeres) {
   double max_dv = 0.0, max_dsd = 0.0;
   for (size_t k = 0; k < chain.estimates.size(); ++k) {
     max_dv = std::max(max_dv, std::abs(chain.estimates[k].x[kVbx] - ceres.estimates[k].x[kVbx]));
-    max_dsd = std::max(max_dsd, std::abs(chain.estimates[k].sd[kVbx] / ceres.estimates[k].sd[kVbx] -
-                                         1.0));
+    max_dsd = std::max(max_dsd,
+                       std::abs(chain.estimates[k].sd[kVbx] / ceres.estimates[k].sd[kVbx] - 1.0));
   }
   std::printf("chain vs Ceres: largest v difference %.2e m/s, largest sd ratio - 1 %.2e\n", max_dv,
               max_dsd);
@@ -207,8 +207,8 @@ TEST(WindowSmoother, TheLawsSpreadOverTheSoilsIsInTheSd) {
     ASSERT_EQ(a.estimates.size(), b.estimates.size());
     for (size_t k = 0; k < a.estimates.size(); k += 53) {
       // Only the sd differ. (Two runs of the window with the same options agree to about 1e-8
-      // here, not to the bit. The likely cause, not confirmed: problems/marginalization.cpp
-      // orders its residual blocks in a std::set of ResidualBlockId, by address.)
+      // here, not to the bit: removing a state's blocks, Ceres reorders the problem's residual
+      // blocks by a hash of their addresses, and the window's solve sums them in that order.)
       for (int j = 0; j < kStateSize; ++j) {
         const double scale = 1e-6 * (1.0 + std::abs(b.estimates[k].x[j]));
         EXPECT_NEAR(a.estimates[k].x[j], b.estimates[k].x[j], scale);

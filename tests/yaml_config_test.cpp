@@ -178,8 +178,7 @@ TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
   std::ostringstream samples_out;
   WriteVehicleYaml(with_samples, samples_out);
   testing::WriteText(dir, "vehicle.yaml", samples_out.str());
-  EXPECT_DOUBLE_EQ(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings).law_samples[0].tire.C2,
-                   0.08);
+  EXPECT_DOUBLE_EQ(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings).law_samples[0].tire.C2, 0.08);
   testing::WriteText(dir, "vehicle.yaml",
                      std::string(testing::kLagrVehicleYaml) +
                          "law_samples:\n  - {C1: 0.5, At: 10, C2: 0.08, R1: 0.07, A_roll: 15}\n");

@@ -155,7 +155,7 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
   if (!without.used_fallback) smoother.start = &without.estimates;  // a few iterations from there
   // The cost to 1e-7 of itself (about 0.001 on these logs) is enough for a likelihood ratio.
   smoother.function_tolerance = 1e-7;
-  const SmootherResult fit = SmoothBatch(log, with, smoother);
+  const SmootherResult fit = SmoothBatch(log, with, without.ekf, smoother);
   Fit out;
   if (fit.used_fallback) return out;
   for (const EffectEstimate& e : fit.effects) {
@@ -303,7 +303,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   if (!log.truth.empty()) {
     // The simulator's disturbance is every external force; with drag, turn slip or sinkage in
     // the model the estimate's a_dist no longer carries them, so they are added back.
-    const std::vector<EkfEstimate> estimates = DisturbanceWithEffects(d.solution, log, model);
+    const std::vector<WardEstimate> estimates = DisturbanceWithEffects(d.solution, log, model);
     const Evaluation e = Evaluate(log, EstimateTable(estimates));
     d.truth.available = true;
     d.truth.velocity_rmse = e.velocity_rmse;

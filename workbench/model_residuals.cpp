@@ -65,7 +65,7 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
   }
   const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   std::unique_ptr<WardProblem> problem =
-      BuildWardBatchProblem(log, all, solution.ekf, problem_options);
+      BuildWardBatchProblem(log, all, solution.ekf.estimates, problem_options);
   const size_t n = problem->states.size();
   if (solution.estimates.size() != n) {
     throw std::invalid_argument("diagnosis: the solution has " +
