@@ -45,6 +45,10 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->add_option("--alpha", options->diagnosis.alpha,
                   "Family-wise significance level of the tests")
       ->capture_default_str();
+  cmd->add_option("--threads", options->diagnosis.threads,
+                  "Candidates tested and fitted at once (the result does not depend on it)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-gps", options->no_gps, "Ignore GNSS");
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
   cmd->callback([options, status]() {

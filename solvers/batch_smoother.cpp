@@ -149,6 +149,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   solver_options.function_tolerance = options.function_tolerance;
   solver_options.gradient_tolerance = 1e-12;
   solver_options.parameter_tolerance = 1e-12;
+  solver_options.initial_trust_region_radius = options.initial_trust_region_radius;
   if (options.start != nullptr && options.start->size() == problem->states.size()) {
     for (size_t k = 0; k < problem->states.size(); ++k) {
       for (int i = 0; i < kStateSize; ++i) problem->states[k][i] = (*options.start)[k].x[i];

@@ -1,10 +1,13 @@
 #include "workbench/diagnosis.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "evaluation/html_report.h"
 #include "factors/model_effects.h"
@@ -138,6 +141,32 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   return c;
 }
 
+// job(i) for i in [0, count) on `threads` threads, each taking the next i; the first exception
+// (by i) is rethrown once all have finished. The jobs write only their own results.
+template <typename Job>
+void RunConcurrently(size_t count, int threads, const Job& job) {
+  std::vector<std::exception_ptr> errors(count);
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t i = next++; i < count; i = next++) {
+      try {
+        job(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < std::min<size_t>(std::max(1, threads), count); ++t) {
+    pool.emplace_back(work);
+  }
+  work();
+  for (std::thread& thread : pool) thread.join();
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
 // One fit: the smoother with `effect` switched on (on `windows` when it acts on windows), from
 // the solution without it; ok is false when the solve failed.
 struct Fit {
@@ -155,6 +184,9 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
   if (!without.used_fallback) smoother.start = &without.estimates;  // a few iterations from there
   // The cost to 1e-7 of itself (about 0.001 on these logs) is enough for a likelihood ratio.
   smoother.function_tolerance = 1e-7;
+  // One term away from the solution: Gauss-Newton-sized steps from the start
+  // (BatchSmootherOptions::initial_trust_region_radius).
+  smoother.initial_trust_region_radius = 1e8;
   const SmootherResult fit = SmoothBatch(log, with, without.ekf, smoother);
   Fit out;
   if (fit.used_fallback) return out;
@@ -176,14 +208,22 @@ void FitAndCompare(const DriveLog& log, const ModelConfig& model, const Smoother
                    std::vector<CandidateScore>* candidates) {
   const size_t to_fit =
       options.fit_candidates < 0 ? candidates->size() : static_cast<size_t>(options.fit_candidates);
-  size_t tried = 0;
+  std::vector<CandidateScore*> chosen;
   for (CandidateScore& c : *candidates) {
-    if (tried >= to_fit) break;
+    if (chosen.size() >= to_fit) break;
     if (!HasModelTerm(c.effect) || c.dof == 0) continue;
     if (ActsOnWindows(c.effect) && c.windows.empty()) continue;
-    ++tried;
-    const Fit fit = FitEffect(log, model, without, options, c.effect, c.windows);
+    chosen.push_back(&c);
+  }
+  // The fits are independent solves from the same solution, applied in the candidates' order.
+  std::vector<Fit> fits(chosen.size());
+  RunConcurrently(chosen.size(), options.threads, [&](size_t i) {
+    fits[i] = FitEffect(log, model, without, options, chosen[i]->effect, chosen[i]->windows);
+  });
+  for (size_t i = 0; i < chosen.size(); ++i) {
+    const Fit& fit = fits[i];
     if (!fit.ok) continue;
+    CandidateScore& c = *chosen[i];
     c.fitted = true;
     c.likelihood_ratio = fit.likelihood_ratio;
     c.score_statistic = c.statistic;
@@ -254,12 +294,14 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
     if (a.p_value != b.p_value) return a.p_value < b.p_value;
     return a.statistic / std::max(1, a.dof) > b.statistic / std::max(1, b.dof);
   };
-  for (const EffectSignature* s : candidates) {
-    CandidateScore c = Score(*s, m, log, model);
+  // Each candidate's test reads the residuals and the graph only: they run at once.
+  d.candidates.resize(candidates.size());
+  RunConcurrently(candidates.size(), options.threads, [&](size_t i) {
+    CandidateScore& c = d.candidates[i];
+    c = Score(*candidates[i], m, log, model);
     c.p_value = std::min(1.0, c.p_value * candidates.size());
     c.significant = c.dof > 0 && c.p_value < options.alpha;
-    d.candidates.push_back(c);
-  }
+  });
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
   FitAndCompare(log, model, d.solution, options, candidates.size(), &d.candidates);
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);

@@ -42,6 +42,9 @@ struct DiagnosisOptions {
   // terrain change and slope slip on a drive whose hill comes after the change) the fit tells
   // them apart.
   int fit_candidates = -1;
+  // Candidates tested and fitted at once. Each test reads the solution only and each fit is one
+  // single-threaded solve from it, so the results do not depend on the count.
+  int threads = 2;
 };
 
 struct StreamReport {
