@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "factors/normal_forces.h"
@@ -10,6 +11,7 @@
 #include "factors/smooth_math.h"
 #include "factors/traction.h"
 #include "sim/command_schedule.h"
+#include "sim/peaked_tire.h"
 #include "sim/sensor_models.h"
 
 namespace slipgraph {
@@ -23,6 +25,9 @@ constexpr double kGravity = 9.80665;
 constexpr double kStoppedSpeedMps = 0.03;
 constexpr double kTurningWheelSpeedMps = 0.05;
 constexpr double kMinEventS = 0.2;
+// A stop interrupted for less than this is one event (a held robot rocking on its tether lifts
+// its speed above kStoppedSpeedMps for a few samples).
+constexpr double kMergeGapS = 0.5;
 // Sinkage builds up over this distance into a soft patch.
 constexpr double kSinkageBuildUpM = 0.5;
 constexpr double kCorrugationWavelengthM = 0.8;
@@ -32,7 +37,15 @@ constexpr double kEffectSignRate = 20.0;
 class EventTracker {
  public:
   void Update(double t, bool immobilized, std::vector<Event>* events) {
-    if (immobilized && !active_) start_ = t;
+    if (immobilized && !active_) {
+      // Joins the last event when it ended less than kMergeGapS ago.
+      if (!events->empty() && t - events->back().t_end < kMergeGapS) {
+        start_ = events->back().t_start;
+        events->pop_back();
+      } else {
+        start_ = t;
+      }
+    }
     if (!immobilized && active_ && t - start_ >= kMinEventS) {
       events->push_back({start_, t, "immobilized"});
     }
@@ -82,6 +95,9 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
   double a_prev = 0.0;
   double integral[2] = {0.0, 0.0};
   double previous_roll = 0.0, previous_pitch = 0.0;
+  double kappa[2] = {0.0, 0.0};  // slip ratios of the peaked law (mismatch suites)
+  const auto level = DiffDriveCastorNormalForcesN(weight, 0.0, 0.0, veh.cg_to_front_m,
+                                                  veh.cg_to_rear_m, c, veh.cg_height_m);
   int active_hold = -1;
   double hold_anchor_s = 0.0;
   EventTracker events;
@@ -103,7 +119,17 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     const double grade = sc.course.GradeRad(s);  // uphill positive (Ward's phi)
     const double cross = sc.course.CrossSlopeRad(s);
     TireParams tire = terrain.tire;
-    tire.C1 *= std::max(0.05, 1.0 - EffectValue(fx, "slope_slip") * std::abs(grade));
+    const double slope_scale =
+        std::max(0.05, 1.0 - EffectValue(fx, "slope_slip") * std::abs(grade));
+    tire.C1 *= slope_scale;
+    std::optional<PeakedSoil> peaked = terrain.peaked;
+    if (peaked) {
+      // The effects that scale eq. (8)'s C1 scale the peaked law's peak.
+      peaked->peak_mu *= slope_scale;
+      if (EffectValue(fx, "terrain_change") != 0.0 && t >= 0.5 * duration) {
+        peaked->peak_mu *= EffectValue(fx, "terrain_change");
+      }
+    }
 
     // Normal forces (eqs. 3-5), plus load transfer under acceleration when switched on.
     const auto n = DiffDriveCastorNormalForcesN(weight, cross, grade, veh.cg_to_front_m,
@@ -116,13 +142,26 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     // Tire forces on each side (0 = left, 1 = right).
     const double v = state.v_bx, yaw_rate = state.yaw_rate;
     const double v_fwd[2] = {v - 0.5 * c * yaw_rate, v + 0.5 * c * yaw_rate};
-    double traction[2], rolling_front[2], rolling_side[2];
+    double traction[2], rolling_front[2], rolling_side[2], r_eff[2];
     for (int side = 0; side < 2; ++side) {
-      const double v_rel = TireRelativeVelocityMps(state.omega_radps[side], r_true, v_fwd[side]);
-      traction[side] = TractionForceN(n_front[side], v_rel, tire);
-      rolling_front[side] = RollingResistanceForceN(n_front[side], v_fwd[side], terrain.rolling);
+      r_eff[side] = r_true;
+      if (!peaked) {
+        const double v_rel = TireRelativeVelocityMps(state.omega_radps[side], r_true, v_fwd[side]);
+        traction[side] = TractionForceN(n_front[side], v_rel, tire);
+        rolling_front[side] = RollingResistanceForceN(n_front[side], v_fwd[side], terrain.rolling);
+        rolling_side[side] = rolling_front[side] +
+                             RollingResistanceForceN(n_rear_each, v_fwd[side], terrain.rolling);
+        continue;
+      }
+      const double load = n_front[side] / level.front_left_n - 1.0;
+      r_eff[side] = r_true * (1.0 - sc.mismatch.radius_load_sensitivity * load);
+      const double surface = r_eff[side] * state.omega_radps[side];
+      kappa[side] = RelaxSlipRatio(kappa[side], SteadySlipRatio(surface, v_fwd[side]), v_fwd[side],
+                                   sc.mismatch.relaxation_length_m, dt);
+      traction[side] = PeakedTractionForceN(n_front[side], kappa[side], *peaked);
+      rolling_front[side] = PeakedRollingForceN(n_front[side], v_fwd[side], *peaked);
       rolling_side[side] =
-          rolling_front[side] + RollingResistanceForceN(n_rear_each, v_fwd[side], terrain.rolling);
+          rolling_front[side] + PeakedRollingForceN(n_rear_each, v_fwd[side], *peaked);
     }
 
     // External forces: hold-back tether and the force-side effects.
@@ -172,7 +211,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
         integral[side] -= error * dt;
         torque = std::copysign(act.torque_limit_nm, torque);
       }
-      omega_dot[side] = (torque - r_true * traction[side]) / act.wheel_inertia_kgm2;
+      omega_dot[side] = (torque - r_eff[side] * traction[side]) / act.wheel_inertia_kgm2;
     }
 
     // Observe the state at t.
@@ -187,8 +226,8 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
     state.command_yaw_rate_radps = w_cmd;
     sensors.Observe(state, k);
     if (k % truth_period == 0) {
-      const double surface_speed =
-          0.5 * r_true * (std::abs(state.omega_radps[0]) + std::abs(state.omega_radps[1]));
+      const double surface_speed = 0.5 * (r_eff[0] * std::abs(state.omega_radps[0]) +
+                                          r_eff[1] * std::abs(state.omega_radps[1]));
       const bool immobilized = surface_speed > kTurningWheelSpeedMps &&
                                std::abs(v) < kStoppedSpeedMps && 2.0 * std::abs(v) < surface_speed;
       events.Update(t, immobilized, &log.events);
@@ -202,7 +241,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
       truth.slip.fill(kMissing);
       truth.sinkage.fill(kMissing);
       for (int side = 0; side < 2; ++side) {
-        truth.slip[side] = SlipRatio(r_true * state.omega_radps[side], v_fwd[side]);
+        truth.slip[side] = SlipRatio(r_eff[side] * state.omega_radps[side], v_fwd[side]);
       }
       log.truth.push_back(truth);
     }

@@ -41,6 +41,18 @@ struct Actuation {
   double tether_damping_nspm = 2000.0;  // about critical for the LAGR mass
 };
 
+// Sensor errors of the mismatch suites (docs/mismatch.md), zero in the matched ones: an AHRS
+// whose roll and pitch carry a slowly varying error, chassis vibration in the accelerometer
+// growing with speed, GNSS velocity averaged over the interval since the previous fix.
+struct SensorMismatch {
+  double attitude_error_sd_rad = 0.0;  // Gauss-Markov error on roll and pitch
+  double attitude_error_tau_s = 30.0;
+  double vibration_sd_mps2_per_mps = 0.0;  // sd of the vibration at 1 m/s, along x and z
+  double vibration_hz = 12.0;              // the chassis' resonance
+  double vibration_damping = 0.05;         // its damping ratio
+  bool gps_velocity_interval_mean = false;
+};
+
 struct SensorSpec {
   double imu_rate_hz = 100.0;
   double wheel_rate_hz = 100.0;
@@ -66,6 +78,15 @@ struct SensorSpec {
   double attitude_sd_yaw_rad = 0.01;
   double pose_sd_xy_m = 0.02;
   double pose_sd_yaw_rad = 0.005;
+  SensorMismatch mismatch;
+};
+
+// Vehicle-side truth of the mismatch suites (docs/mismatch.md; the soils are the patches'
+// TerrainType::peaked): how far the tires roll before their slip settles, and how their rolling
+// radius shrinks with load. Inert when the patches have no peaked soil.
+struct VehicleMismatch {
+  double relaxation_length_m = 0.2;
+  double radius_load_sensitivity = 0.0;  // r_eff = r (1 - k (N / N_static - 1))
 };
 
 // The articulated 6-wheel rover of Wilcox: per-side terrain profiles, sinkage, slip, and the
@@ -112,6 +133,7 @@ struct Scenario {
   SensorSpec sensors;
   EffectSet effects;
   RockerSpec rocker;  // rocker_bogie6 only
+  VehicleMismatch mismatch;
   // A force along body x (N) the catalogue does not have, for testing a user's own effect
   // (docs/adding-an-effect.md); differential-drive vehicles only. Unset: none.
   std::function<double(const ExtraForceInputs&)> extra_force_n;

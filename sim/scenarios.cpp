@@ -13,7 +13,12 @@ namespace {
 // A terrain with exactly the nominal coefficients the user believes (hidden-effect logs: the
 // only model error is the hidden effect).
 TerrainType NominalTerrain(const Vehicle& vehicle, bool soft) {
-  return {soft ? "nominal_soft" : "nominal", vehicle.tire, vehicle.rolling, soft, IpdSlip{}};
+  return {soft ? "nominal_soft" : "nominal",
+          vehicle.tire,
+          vehicle.rolling,
+          soft,
+          IpdSlip{},
+          std::nullopt};
 }
 
 uint64_t RunSeed(uint64_t seed, uint64_t run) { return seed * 1000003ULL + run; }
@@ -181,6 +186,68 @@ Scenario WilcoxSlopeRun(double roughness_m, const std::string& name) {
   return sc;
 }
 
+// The mismatch suites (docs/mismatch.md): the scenario with truth the estimators do not contain.
+// Soils per patch of 10-40 m from the peaked law's ranges (sim/peaked_tire.h), never eq. (8)'s;
+// tire relaxation and load-dependent rolling radius; an AHRS with 0.5 deg noise and a 0.3 deg
+// slowly varying error; chassis vibration; GNSS velocity averaged over each fix's interval. The
+// user's vehicle.yaml keeps one nominal law and lists no soils, as for a new robot. The ranges
+// were fixed before any estimator ran on these suites. Its own random stream: the matched
+// scenario's draws are unchanged.
+void ApplyMismatch(uint64_t stream_seed, double course_m, Scenario* sc) {
+  std::mt19937_64 rng(stream_seed ^ 0x6d69736d61746368ULL);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+  const size_t slash = sc->name.find('/');  // ward21/03 -> ward21m/03, fig5 -> fig5m
+  sc->name.insert(slash == std::string::npos ? sc->name.size() : slash, "m");
+  sc->vehicle.law_samples.clear();
+  const bool soft_course = std::any_of(sc->course.patches.begin(), sc->course.patches.end(),
+                                       [](const TerrainPatch& p) { return p.terrain.soft; });
+  std::vector<TerrainPatch> patches;
+  int index = 0;
+  // The first patch began before the drive: it ends 0-40 m in.
+  for (double start = 0.0, end = in(0.0, 40.0); start < course_m + 40.0;
+       start = end, end += in(10.0, 40.0)) {
+    PeakedSoil soil;
+    soil.peak_mu = in(0.30, 0.90);
+    soil.stiffness_b = in(4.0, 14.0);
+    soil.shape_c = in(1.3, 1.8);
+    soil.curvature_e = in(-0.5, 0.3);
+    soil.roll_c0 = in(0.015, 0.10);
+    soil.roll_c1_spm = in(0.0, 0.04);
+    TerrainType terrain;
+    terrain.name = "peaked_" + std::to_string(++index);
+    terrain.tire = sc->vehicle.tire;  // unused: the peaked law acts
+    terrain.rolling = sc->vehicle.rolling;
+    // Soft ground (sinkage_resistance acts there) where the rolling resistance is high.
+    terrain.soft = soft_course && soil.roll_c0 > 0.0575;
+    terrain.peaked = soil;
+    patches.push_back({start, terrain});
+  }
+  sc->course.patches = patches;
+  sc->mismatch.relaxation_length_m = in(0.1, 0.3);
+  sc->mismatch.radius_load_sensitivity = in(0.0, 0.05);
+  SensorSpec& sensors = sc->sensors;
+  sensors.attitude_sd_rad = 0.5 * M_PI / 180.0;
+  sensors.mismatch.attitude_error_sd_rad = 0.3 * M_PI / 180.0;
+  sensors.mismatch.attitude_error_tau_s = in(20.0, 60.0);
+  sensors.mismatch.vibration_sd_mps2_per_mps = 0.25;
+  sensors.mismatch.vibration_hz = in(10.0, 15.0);
+  sensors.mismatch.vibration_damping = 0.05;
+  sensors.mismatch.gps_velocity_interval_mean = true;
+}
+
+// The path length a scenario covers at its commanded speeds (the mismatch patches cover it).
+double CommandedDistanceM(const Scenario& sc) {
+  double distance = 0.0;
+  for (const CommandSegment& c : sc.commands) distance += std::abs(c.v_mps) * c.duration_s;
+  return distance;
+}
+
+Scenario Mismatched(Scenario sc, uint64_t stream_seed) {
+  ApplyMismatch(stream_seed, CommandedDistanceM(sc), &sc);
+  return sc;
+}
+
 const double kWilcoxRoughnessCm[] = {0.25, 0.5, 1.0, 2.0, 4.0};
 constexpr int kWilcoxRunsPerRoughness = 8;
 
@@ -249,8 +316,23 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
     const int run = std::atoi(name.c_str() + 7);
     if (run < 1 || run > 21) throw std::invalid_argument("ward21 runs are 01..21: '" + name + "'");
     runs.push_back({"", Ward21Run(run, seed), RunSeed(seed, run)});
+  } else if (name == "ward21m") {
+    for (int run = 1; run <= 21; ++run) {
+      char dir[16];
+      std::snprintf(dir, sizeof(dir), "run_%02d", run);
+      runs.push_back(
+          {dir, Mismatched(Ward21Run(run, seed), RunSeed(seed, run)), RunSeed(seed, run)});
+    }
+  } else if (name.rfind("ward21m/", 0) == 0) {
+    const int run = std::atoi(name.c_str() + 8);
+    if (run < 1 || run > 21) throw std::invalid_argument("ward21m runs are 01..21: '" + name + "'");
+    runs.push_back({"", Mismatched(Ward21Run(run, seed), RunSeed(seed, run)), RunSeed(seed, run)});
   } else if (name == "fig5") {
     runs.push_back({"", Fig5(seed), seed});
+  } else if (name == "fig5m") {
+    Scenario sc = Fig5(seed);
+    sc.vehicle = LagrVehicle();  // no calibration on this ground: the nominal law
+    runs.push_back({"", Mismatched(sc, seed), seed});
   } else if (name == "ipd35") {
     runs.push_back({"", Ipd35(seed), RunSeed(seed, 35)});
   } else if (name == "wilcox") {
@@ -299,6 +381,15 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
     }
   } else if (name.rfind("hidden/", 0) == 0) {
     runs.push_back({"", HiddenEffect(name.substr(7)), seed});
+  } else if (name == "hiddenm") {
+    // GNSS velocity is averaged in every mismatch log: that effect is not hidden there.
+    runs.push_back({"none", Mismatched(HiddenEffect("none"), seed), seed});
+    for (const EffectInfo& effect : EffectCatalogue()) {
+      if (effect.name == "gps_velocity_averaging") continue;
+      runs.push_back({effect.name, Mismatched(HiddenEffect(effect.name), seed), seed});
+    }
+  } else if (name.rfind("hiddenm/", 0) == 0) {
+    runs.push_back({"", Mismatched(HiddenEffect(name.substr(8)), seed), seed});
   } else {
     throw std::invalid_argument("unknown scenario '" + name + "'; " + ScenarioHelp());
   }
@@ -307,7 +398,8 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
 
 std::string ScenarioHelp() {
   return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, wilcox, wilcox/ROUGHNESS_CM, "
-         "wilcox_lr, wilcox_slope, hidden, hidden/EFFECT, hidden/none";
+         "wilcox_lr, wilcox_slope, hidden, hidden/EFFECT, hidden/none; mismatch suites (truth "
+         "the model lacks): ward21m, ward21m/NN, fig5m, hiddenm, hiddenm/EFFECT";
 }
 
 }  // namespace sim

@@ -11,6 +11,10 @@
 //   wilcox_slope      6 runs each at 1 and 2 cm over a hill up and down, slip 20 % + the slope
 //   hidden            one log per catalogue effect with only that effect on, plus `none`
 //   hidden/EFFECT     one of them (hidden/none: no effect)
+//   ward21m, ward21m/NN, fig5m, hiddenm, hiddenm/EFFECT
+//                     the mismatch suites: the same drives with truth the estimators do not
+//                     contain (peaked traction law, soils per 10-40 m patch, AHRS error,
+//                     vibration, averaged GNSS velocity; docs/mismatch.md)
 // Every scenario is a pure function of (name, seed): the same inputs give the same bytes.
 #pragma once
 

@@ -38,6 +38,22 @@ SensorSimulator::SensorSimulator(const SensorSpec& spec, const EffectSet& effect
     accel_bias_[i] = spec.accel_bias_sd_mps2 * normal_(*rng_);
     gyro_bias_[i] = spec.gyro_bias_sd_radps * normal_(*rng_);
   }
+  const SensorMismatch& mismatch = spec.mismatch;
+  if (mismatch.vibration_sd_mps2_per_mps > 0.0) {
+    // z_k = a1 z_{k-1} + a2 z_{k-2} + g e_k, a damped resonance at vibration_hz sampled every
+    // step; g sets its stationary variance to 1.
+    const double theta = 2.0 * M_PI * mismatch.vibration_hz * step_s;
+    const double radius = std::exp(-mismatch.vibration_damping * theta);
+    vibration_a1_ = 2.0 * radius * std::cos(theta);
+    vibration_a2_ = -radius * radius;
+    vibration_gain_ =
+        std::sqrt((1.0 + vibration_a2_) *
+                  ((1.0 - vibration_a2_) * (1.0 - vibration_a2_) - vibration_a1_ * vibration_a1_) /
+                  (1.0 - vibration_a2_));
+  }
+  if (mismatch.attitude_error_sd_rad > 0.0) {
+    for (double& e : attitude_error_) e = mismatch.attitude_error_sd_rad * normal_(*rng_);
+  }
   if (attitude_period_ > 0) log_->present_files.push_back("attitude.csv");
   if (gps_period_ > 0) log_->present_files.push_back("gps.csv");
   if (pose_period_ > 0) log_->present_files.push_back("pose.csv");
@@ -57,13 +73,33 @@ int64_t SensorSimulator::Period(double rate_hz) const {
 
 double SensorSimulator::Normal(double sd) { return sd * normal_(*rng_); }
 
+void SensorSimulator::StepMismatch(const KinematicState& s) {
+  const SensorMismatch& mismatch = spec_.mismatch;
+  if (mismatch.vibration_sd_mps2_per_mps > 0.0) {
+    for (int axis = 0; axis < 2; ++axis) {
+      double* z = vibration_[axis];
+      const double next =
+          vibration_a1_ * z[0] + vibration_a2_ * z[1] + vibration_gain_ * normal_(*rng_);
+      z[1] = z[0], z[0] = next;
+      vibration_now_[axis] = mismatch.vibration_sd_mps2_per_mps * std::abs(s.v_bx) * next;
+    }
+  }
+  if (mismatch.attitude_error_sd_rad > 0.0) {
+    for (double& e : attitude_error_) {
+      e = GaussMarkovStep(e, mismatch.attitude_error_sd_rad, mismatch.attitude_error_tau_s, step_s_,
+                          normal_(*rng_));
+    }
+  }
+}
+
 void SensorSimulator::Observe(const KinematicState& s, int64_t step) {
+  StepMismatch(s);
   if (imu_period_ > 0 && step % imu_period_ == 0) EmitImu(s);
   if (wheel_period_ > 0 && step % wheel_period_ == 0) EmitWheels(s);
   if (gps_period_ > 0 && step % gps_period_ == 0) EmitGps(s);
   if (attitude_period_ > 0 && step % attitude_period_ == 0) {
-    log_->attitude.push_back({s.t, s.roll + Normal(spec_.attitude_sd_rad),
-                              s.pitch + Normal(spec_.attitude_sd_rad),
+    log_->attitude.push_back({s.t, s.roll + attitude_error_[0] + Normal(spec_.attitude_sd_rad),
+                              s.pitch + attitude_error_[1] + Normal(spec_.attitude_sd_rad),
                               s.yaw + Normal(spec_.attitude_sd_yaw_rad), spec_.attitude_sd_rad,
                               spec_.attitude_sd_rad, spec_.attitude_sd_yaw_rad});
   }
@@ -99,6 +135,8 @@ void SensorSimulator::EmitImu(const KinematicState& s) {
   have_previous_imu_ = true;
   double f[3] = {a_x - s.v_by * s.yaw_rate - kGravity * sp,
                  a_y + s.v_bx * s.yaw_rate + kGravity * sr * cp, kGravity * cr * cp};
+  f[0] += vibration_now_[0];
+  f[2] += vibration_now_[1];
   double w[3] = {s.roll_rate, s.pitch_rate, s.yaw_rate};
   // imu_mounting_pitch: sensor axes pitched nose-down by delta about body y.
   const double delta = EffectValue(effects_, "imu_mounting_pitch");
@@ -162,7 +200,9 @@ void SensorSimulator::EmitGps(const KinematicState& s) {
   double vx = s.v_bx * cy - s.v_by * sy;
   double vy = s.v_bx * sy + s.v_by * cy;
   double vz = -s.v_bx * std::sin(s.pitch);
-  if (EffectValue(effects_, "gps_velocity_averaging") != 0.0 && last_gps_t_ >= 0.0) {
+  const bool averaged = EffectValue(effects_, "gps_velocity_averaging") != 0.0 ||
+                        spec_.mismatch.gps_velocity_interval_mean;
+  if (averaged && last_gps_t_ >= 0.0) {
     // Mean velocity over the previous interval: the true position difference.
     const double dt = s.t - last_gps_t_;
     vx = (s.x - last_gps_x_) / dt;

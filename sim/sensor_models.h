@@ -56,6 +56,8 @@ class SensorSimulator {
   void EmitImu(const KinematicState& s);
   void EmitWheels(const KinematicState& s);
   void EmitGps(const KinematicState& s);
+  // The mismatch suites' sensor errors (SensorSpec::mismatch), stepped with the simulation.
+  void StepMismatch(const KinematicState& s);
   double Normal(double sd);
 
   SensorSpec spec_;
@@ -72,6 +74,12 @@ class SensorSimulator {
   double previous_v_bx_ = 0.0, previous_v_by_ = 0.0;
   bool have_previous_imu_ = false;
   double gyro_bias_[3] = {0.0, 0.0, 0.0};
+  // Chassis vibration along x and z: unit-variance resonances z_k (AR(2), the last two values
+  // each), scaled by |v| on output.
+  double vibration_[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  double vibration_a1_ = 0.0, vibration_a2_ = 0.0, vibration_gain_ = 0.0;
+  double attitude_error_[2] = {0.0, 0.0};  // roll, pitch (Gauss-Markov)
+  double vibration_now_[2] = {0.0, 0.0};   // m/s^2 along x and z
   std::array<int64_t, kMaxWheels> last_counts_{};
   bool have_last_counts_ = false;
   double last_gps_x_ = 0.0, last_gps_y_ = 0.0, last_gps_z_ = 0.0, last_gps_t_ = -1.0;

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -85,10 +86,22 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
   for (const TerrainPatch& patch : scenario.course.patches) {
     e << YAML::BeginMap << YAML::Key << "s_start_m" << YAML::Value << patch.s_start_m;
     e << YAML::Key << "terrain" << YAML::Value << patch.terrain.name;
-    e << YAML::Key << "tire" << YAML::Value;
-    EmitTire(e, patch.terrain.tire);
-    e << YAML::Key << "rolling" << YAML::Value;
-    EmitRolling(e, patch.terrain.rolling);
+    if (patch.terrain.peaked) {
+      const PeakedSoil& p = *patch.terrain.peaked;
+      e << YAML::Key << "peaked" << YAML::Value << YAML::Flow << YAML::BeginMap;
+      e << YAML::Key << "peak_mu" << YAML::Value << p.peak_mu;
+      e << YAML::Key << "stiffness_b" << YAML::Value << p.stiffness_b;
+      e << YAML::Key << "shape_c" << YAML::Value << p.shape_c;
+      e << YAML::Key << "curvature_e" << YAML::Value << p.curvature_e;
+      e << YAML::Key << "roll_c0" << YAML::Value << p.roll_c0;
+      e << YAML::Key << "roll_c1_spm" << YAML::Value << p.roll_c1_spm;
+      e << YAML::EndMap;
+    } else {
+      e << YAML::Key << "tire" << YAML::Value;
+      EmitTire(e, patch.terrain.tire);
+      e << YAML::Key << "rolling" << YAML::Value;
+      EmitRolling(e, patch.terrain.rolling);
+    }
     e << YAML::Key << "soft" << YAML::Value << patch.terrain.soft << YAML::EndMap;
   }
   e << YAML::EndSeq;
@@ -147,6 +160,25 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
   e << YAML::Key << "tether_damping_nspm" << YAML::Value << a.tether_damping_nspm;
   e << YAML::EndMap;
   const SensorSpec& s = scenario.sensors;
+  const SensorMismatch& sm = s.mismatch;
+  const bool peaked =
+      std::any_of(scenario.course.patches.begin(), scenario.course.patches.end(),
+                  [](const TerrainPatch& p) { return p.terrain.peaked.has_value(); });
+  if (peaked) {
+    e << YAML::Key << "mismatch" << YAML::Value << YAML::BeginMap;
+    const std::pair<const char*, double> fields[] = {
+        {"relaxation_length_m", scenario.mismatch.relaxation_length_m},
+        {"radius_load_sensitivity", scenario.mismatch.radius_load_sensitivity},
+        {"attitude_error_sd_rad", sm.attitude_error_sd_rad},
+        {"attitude_error_tau_s", sm.attitude_error_tau_s},
+        {"vibration_sd_mps2_per_mps", sm.vibration_sd_mps2_per_mps},
+        {"vibration_hz", sm.vibration_hz},
+        {"vibration_damping", sm.vibration_damping},
+        {"gps_velocity_interval_mean", sm.gps_velocity_interval_mean ? 1.0 : 0.0},
+    };
+    for (const auto& [key, value] : fields) e << YAML::Key << key << YAML::Value << value;
+    e << YAML::EndMap;
+  }
   e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
   const std::pair<const char*, double> sensor_fields[] = {
       {"imu_rate_hz", s.imu_rate_hz},

@@ -4,10 +4,12 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "model/vehicle.h"
+#include "sim/peaked_tire.h"
 
 namespace slipgraph {
 namespace sim {
@@ -25,6 +27,9 @@ struct TerrainType {
   RollingParams rolling;  // true rolling resistance (eq. 9)
   bool soft = false;      // compaction possible (sinkage_resistance effect)
   IpdSlip ipd;            // tracked vehicle slip on this soil
+  // Set in the mismatch suites: the true traction and rolling resistance follow this law
+  // (sim/peaked_tire.h), not eq. (8) and (9); `tire` and `rolling` are then unused.
+  std::optional<PeakedSoil> peaked;
 };
 
 // grass, mulch, gravel (loose gravel over hard soil), mud, asphalt, soft_dirt, loose_rock.

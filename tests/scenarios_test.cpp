@@ -57,7 +57,8 @@ TEST(Scenarios, Ward21HasTwentyHoldBacksOverAbout120Metres) {
 }
 
 TEST(Scenarios, EveryScenarioWritesALogThatReadsBackCleanly) {
-  std::vector<std::string> names = {"fig5", "ward21/21", "wilcox/0.5", "hidden/none"};
+  std::vector<std::string> names = {"fig5",       "ward21/21",    "wilcox/0.5", "hidden/none",
+                                    "ward21m/03", "hiddenm/none", "fig5m"};
   for (const sim::EffectInfo& effect : sim::EffectCatalogue()) {
     names.push_back("hidden/" + effect.name);
   }

@@ -1,0 +1,150 @@
+// The estimators on a matched suite and its mismatch twin (docs/mismatch.md), seed by seed:
+// detection, false alarms, velocity error and consistency of the front end with and without
+// GNSS and, with --smoother, of the batch smoother. Simulates each suite in memory.
+//
+// Run: build/bench/mismatch_report [--suite ward21m] [--seeds A-B] [--smoother] [--threads N]
+//   --suite: ward21 or ward21m (default ward21m);
+//   --seeds: the suites' seeds (default 1-4);
+//   --smoother: add the batch smoother (GNSS; a few seconds per run);
+//   --threads: suites run at once (default 2).
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "evaluation/evaluation.h"
+#include "sim/scenarios.h"
+#include "sim/simulation.h"
+#include "solvers/batch_smoother.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+namespace {
+
+enum Estimator { kEkfGnss = 0, kEkfNoGnss, kBatchGnss, kEstimatorCount };
+const char* const kNames[kEstimatorCount] = {"EKF, GNSS", "EKF, no GNSS", "batch, GNSS"};
+
+struct SuiteResult {
+  Evaluation evaluation[kEstimatorCount];
+  int smoother_fallbacks = 0;
+};
+
+SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool smoother) {
+  SuiteResult out;
+  std::vector<Evaluation> runs[kEstimatorCount];
+  for (const sim::ScenarioRun& run : sim::ExpandScenario(suite, seed)) {
+    const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+    const ModelConfig model = DefaultModelConfig(log.vehicle);
+    for (int e = kEkfGnss; e <= kEkfNoGnss; ++e) {
+      FilterRunOptions options;
+      options.use_gps = e == kEkfGnss;
+      runs[e].push_back(Evaluate(log, EstimateTable(RunEkf(log, model, options).estimates)));
+    }
+    if (smoother) {
+      BatchSmootherOptions options;
+      options.problem.stiffness_prior_sd = 0.15;  // as `smooth` and `compare` run it
+      const SmootherResult result = SmoothBatch(log, model, options);
+      out.smoother_fallbacks += result.used_fallback ? 1 : 0;
+      runs[kBatchGnss].push_back(Evaluate(log, EstimateTable(result.estimates)));
+    }
+  }
+  for (int e = 0; e < kEstimatorCount; ++e) {
+    if (!runs[e].empty()) out.evaluation[e] = Combine(runs[e], suite);
+  }
+  return out;
+}
+
+void PrintCells(const Evaluation& ev) {
+  std::printf(" %d/%zu | %.2f | %.3f | %.4f | %.0f |", ev.detected(), ev.events.size(),
+              ev.mean_detection_delay_s(), 100.0 * ev.false_immobilized_fraction(),
+              ev.velocity_rmse, 100.0 * ev.nees_within_95_fraction());
+}
+
+}  // namespace
+}  // namespace slipgraph
+
+int main(int argc, char** argv) {
+  using namespace slipgraph;  // NOLINT
+  std::string suite = "ward21m";
+  uint64_t first = 1, last = 4;
+  bool smoother = false;
+  int threads = 2;
+  for (int i = 1; i < argc; ++i) {
+    const bool has_value = i + 1 < argc;
+    if (std::strcmp(argv[i], "--suite") == 0 && has_value)
+      suite = argv[++i];
+    else if (std::strcmp(argv[i], "--seeds") == 0 && has_value) {
+      char* end = nullptr;
+      first = std::strtoull(argv[++i], &end, 10);
+      last = *end == '-' ? std::strtoull(end + 1, nullptr, 10) : first;
+    } else if (std::strcmp(argv[i], "--threads") == 0 && has_value) {
+      threads = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--smoother") == 0) {
+      smoother = true;
+    } else {
+      std::fprintf(stderr, "mismatch_report: unknown argument '%s'\n", argv[i]);
+      return 2;
+    }
+  }
+  if (first == 0 || last < first || threads < 1) {
+    std::fprintf(stderr, "mismatch_report: --seeds A-B with 1 <= A <= B, --threads >= 1\n");
+    return 2;
+  }
+  const size_t count = static_cast<size_t>(last - first + 1);
+  std::vector<SuiteResult> results(count);
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    for (size_t i = next++; i < count; i = next++) {
+      results[i] = RunSuite(suite, first + i, smoother);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+
+  const int shown = smoother ? kEstimatorCount : kBatchGnss;
+  std::printf(
+      "%s, seeds %llu-%llu: per estimator detected / events, mean delay s, false "
+      "immobilized %%, v RMSE m/s, v NEES inside its 95 %% bound %%\n\n",
+      suite.c_str(), static_cast<unsigned long long>(first), static_cast<unsigned long long>(last));
+  std::printf("| seed |");
+  for (int e = 0; e < shown; ++e)
+    std::printf(" %s: det. | delay | false %% | v RMSE | NEES %% |", kNames[e]);
+  std::printf("\n|---|");
+  for (int e = 0; e < shown; ++e) std::printf("---|---|---|---|---|");
+  std::printf("\n");
+  for (size_t i = 0; i < count; ++i) {
+    std::printf("| %llu |", static_cast<unsigned long long>(first + i));
+    for (int e = 0; e < shown; ++e) PrintCells(results[i].evaluation[e]);
+    std::printf("\n");
+  }
+  std::printf("\n");
+  for (int e = 0; e < shown; ++e) {
+    std::vector<Evaluation> all;
+    double false_mean = 0.0, worst = 0.0;
+    for (const SuiteResult& r : results) {
+      all.push_back(r.evaluation[e]);
+      false_mean += r.evaluation[e].false_immobilized_fraction() / count;
+      worst = std::max(worst, r.evaluation[e].false_immobilized_fraction());
+    }
+    const Evaluation pooled = Combine(all, suite);
+    std::printf(
+        "%s: %d/%zu detected, mean delay %.2f s, false immobilized %.3f %% (mean over "
+        "suites; worst suite %.3f %%), v RMSE %.4f m/s, v NEES inside 95 %% %.1f %%\n",
+        kNames[e], pooled.detected(), pooled.events.size(), pooled.mean_detection_delay_s(),
+        100.0 * false_mean, 100.0 * worst, pooled.velocity_rmse,
+        100.0 * pooled.nees_within_95_fraction());
+  }
+  if (smoother) {
+    int fallbacks = 0;
+    for (const SuiteResult& r : results) fallbacks += r.smoother_fallbacks;
+    std::printf("batch fell back to the EKF on %d runs\n", fallbacks);
+  }
+  return 0;
+}
