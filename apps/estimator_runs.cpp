@@ -9,6 +9,7 @@
 #include "io/log_reader.h"
 #include "io/yaml_config.h"
 #include "solvers/ekf_runner.h"
+#include "solvers/trust_check.h"
 
 namespace slipgraph {
 
@@ -55,7 +56,13 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
     const std::string file =
         suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
     std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";
-    const EstimatorOutput output = estimate(log, model, std::cerr);
+    EstimatorOutput output = estimate(log, model, std::cerr);
+    // Whether the estimates hold against the log's own wheels and GNSS (solvers/trust_check.h).
+    const TrustReport trust = CheckTrust(log, output.estimates);
+    std::cerr << DescribeTrust(trust)
+              << (trust.trusted ? ""
+                                : "  the estimate file's column `suspect` marks the samples\n");
+    output.extra.push_back({"suspect", trust.suspect});
     WriteEstimates(output.estimates, file, output.extra);
     if (!log.truth.empty()) {
       Evaluation ev = Evaluate(log, ReadNumericTable(file));

@@ -6,7 +6,9 @@
 //   --suite: ward21 or ward21m (default ward21m);
 //   --seeds: the suites' seeds (default 1-4);
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
-//   --threads: suites run at once (default 2).
+//   --threads: suites run at once (default 2);
+//   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
+//     vibration, gnss, radius, relaxation): an ablation.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -22,6 +24,7 @@
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
+#include "solvers/trust_check.h"
 
 namespace slipgraph {
 namespace {
@@ -31,30 +34,76 @@ const char* const kNames[kEstimatorCount] = {"EKF, GNSS", "EKF, no GNSS", "batch
 
 struct SuiteResult {
   Evaluation evaluation[kEstimatorCount];
+  // The runs the trust check (solvers/trust_check.h) passed, pooled, and how many it did not.
+  Evaluation trusted[kEstimatorCount];
+  int untrusted_runs[kEstimatorCount] = {};
   int smoother_fallbacks = 0;
 };
 
+// --without: the mismatch ingredients taken back out of a mismatch suite's scenarios, each
+// restored to the matched suite's (an ablation: which ingredient costs what).
+std::vector<std::string> g_without;
+
+bool Without(const std::string& ingredient) {
+  return std::find(g_without.begin(), g_without.end(), ingredient) != g_without.end();
+}
+
+sim::Scenario Ablate(sim::Scenario sc, const sim::Scenario& matched) {
+  if (Without("soils")) {  // the matched soils and the user's stated law_samples
+    sc.course.patches = matched.course.patches;
+    sc.vehicle = matched.vehicle;
+  }
+  if (Without("attitude")) {
+    sc.sensors.attitude_sd_rad = matched.sensors.attitude_sd_rad;
+    sc.sensors.mismatch.attitude_error_sd_rad = 0.0;
+  }
+  if (Without("vibration")) sc.sensors.mismatch.vibration_sd_mps2_per_mps = 0.0;
+  if (Without("gnss")) sc.sensors.mismatch.gps_velocity_interval_mean = false;
+  if (Without("radius")) sc.mismatch.radius_load_sensitivity = 0.0;
+  if (Without("relaxation")) sc.mismatch.relaxation_length_m = 1e-3;
+  return sc;
+}
+
 SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool smoother) {
   SuiteResult out;
-  std::vector<Evaluation> runs[kEstimatorCount];
-  for (const sim::ScenarioRun& run : sim::ExpandScenario(suite, seed)) {
-    const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  std::vector<Evaluation> runs[kEstimatorCount], trusted_runs[kEstimatorCount];
+  const auto score = [&](int e, const DriveLog& log, const std::vector<WardEstimate>& estimates) {
+    runs[e].push_back(Evaluate(log, EstimateTable(estimates)));
+    if (CheckTrust(log, estimates).trusted) {
+      trusted_runs[e].push_back(runs[e].back());
+    } else {
+      ++out.untrusted_runs[e];
+    }
+  };
+  const std::vector<sim::ScenarioRun> scenario_runs = sim::ExpandScenario(suite, seed);
+  std::vector<sim::ScenarioRun> matched;
+  if (!g_without.empty()) {
+    std::string name = suite;
+    name.erase(name.find('m'), 1);  // ward21m -> ward21
+    matched = sim::ExpandScenario(name, seed);
+  }
+  for (size_t r = 0; r < scenario_runs.size(); ++r) {
+    const sim::ScenarioRun& run = scenario_runs[r];
+    const sim::Scenario scenario =
+        matched.empty() ? run.scenario : Ablate(run.scenario, matched[r].scenario);
+    const DriveLog log = sim::Simulate(scenario, run.seed).log;
     const ModelConfig model = DefaultModelConfig(log.vehicle);
     for (int e = kEkfGnss; e <= kEkfNoGnss; ++e) {
       FilterRunOptions options;
       options.use_gps = e == kEkfGnss;
-      runs[e].push_back(Evaluate(log, EstimateTable(RunEkf(log, model, options).estimates)));
+      score(e, log, RunEkf(log, model, options).estimates);
     }
     if (smoother) {
       BatchSmootherOptions options;
       options.problem.stiffness_prior_sd = 0.15;  // as `smooth` and `compare` run it
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
-      runs[kBatchGnss].push_back(Evaluate(log, EstimateTable(result.estimates)));
+      score(kBatchGnss, log, result.estimates);
     }
   }
   for (int e = 0; e < kEstimatorCount; ++e) {
     if (!runs[e].empty()) out.evaluation[e] = Combine(runs[e], suite);
+    out.trusted[e] = Combine(trusted_runs[e], suite);
   }
   return out;
 }
@@ -84,6 +133,13 @@ int main(int argc, char** argv) {
       last = *end == '-' ? std::strtoull(end + 1, nullptr, 10) : first;
     } else if (std::strcmp(argv[i], "--threads") == 0 && has_value) {
       threads = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--without") == 0 && has_value) {
+      std::string list = argv[++i];
+      for (size_t start = 0; start <= list.size();) {
+        const size_t comma = std::min(list.find(',', start), list.size());
+        g_without.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+      }
     } else if (std::strcmp(argv[i], "--smoother") == 0) {
       smoother = true;
     } else {
@@ -140,6 +196,18 @@ int main(int argc, char** argv) {
         kNames[e], pooled.detected(), pooled.events.size(), pooled.mean_detection_delay_s(),
         100.0 * false_mean, 100.0 * worst, pooled.velocity_rmse,
         100.0 * pooled.nees_within_95_fraction());
+    std::vector<Evaluation> trusted;
+    int untrusted = 0;
+    for (const SuiteResult& r : results) {
+      trusted.push_back(r.trusted[e]);
+      untrusted += r.untrusted_runs[e];
+    }
+    const Evaluation t = Combine(trusted, suite);
+    std::printf(
+        "  trust check: %d runs untrusted; the trusted runs: false immobilized %.3f %% of "
+        "samples, v RMSE %.4f m/s, v NEES inside 95 %% %.1f %%\n",
+        untrusted, 100.0 * t.false_immobilized_fraction(), t.velocity_rmse,
+        100.0 * t.nees_within_95_fraction());
   }
   if (smoother) {
     int fallbacks = 0;

@@ -264,6 +264,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   }
   d.solution.ekf.stats.innovations.clear();  // not kept: the report has what it needs
   d.used_fallback = d.solution.used_fallback;
+  d.trust = CheckTrust(log, d.solution.estimates);
   d.notes = d.solution.notes;
   d.fitted_effects = d.solution.effects;
   d.corrected = options.corrected;
@@ -407,6 +408,7 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   for (size_t i = 0; i < d.model_effects.size(); ++i) out << (i ? ", " : "") << d.model_effects[i];
   out << ")\n";
   for (const std::string& note : d.notes) out << "  note: " << note << "\n";
+  out << "  " << DescribeTrust(d.trust);
   for (const EffectEstimate& e : d.fitted_effects) {
     out << "  fitted " << e.name << " = " << e.value << " +- " << e.sd << "\n";
   }
@@ -634,6 +636,8 @@ nlohmann::json ToJson(const Diagnosis& d) {
                   {"disturbance_rmse", d.truth.disturbance_rmse}};
   }
   j["used_fallback"] = d.used_fallback;
+  j["trusted"] = d.trust.trusted;
+  j["trust_warnings"] = d.trust.warnings;
   j["notes"] = d.notes;
   return j;
 }

@@ -16,6 +16,7 @@
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "solvers/batch_smoother.h"
+#include "solvers/trust_check.h"
 #include "workbench/model_residuals.h"
 #include "workbench/path_force_test.h"
 #include "workbench/robust_statistics.h"
@@ -136,6 +137,9 @@ struct Diagnosis {
   std::vector<EffectEstimate> fitted_effects;  // the model's own effects, as the smoother fit them
   std::vector<EffectEstimate> corrected;       // sensor effects corrected in the log
   bool used_fallback = false;
+  // The solution against the log's own wheels and GNSS (solvers/trust_check.h): a diagnosis of
+  // an untrusted solution may blame the wrong effect.
+  TrustReport trust;
   std::vector<std::string> notes;
   ModelResiduals residuals;  // for plots
   SmootherResult solution;   // for plots

@@ -1,0 +1,129 @@
+#include "solvers/trust_check.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace slipgraph {
+
+bool TrustOptions::IsValid(std::string* error) const {
+  if (!(wheel_scale >= 1.0 && wheel_margin_mps >= 0.0 && min_speed_mps >= 0.0)) {
+    *error = "TrustOptions: wheel_scale >= 1, wheel_margin_mps and min_speed_mps >= 0";
+    return false;
+  }
+  if (!(suspect_fraction >= 0.0 && suspect_fraction <= 1.0 && gnss_run_limit > 0.0 &&
+        gnss_window >= 1 && gnss_window_limit > 0.0 && min_gnss_fixes >= 1)) {
+    *error =
+        "TrustOptions: suspect_fraction in [0, 1], gnss_run_limit and gnss_window_limit > 0, "
+        "gnss_window and min_gnss_fixes >= 1";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+bool OffTheWheels(const WardEstimate& e, double radius_m, const TrustOptions& o) {
+  const double v = e.x[ward::kVbx];
+  const double left = radius_m * e.x[ward::kOmegaLeft];
+  const double right = radius_m * e.x[ward::kOmegaRight];
+  const double faster = std::max(std::abs(left), std::abs(right));
+  if (std::abs(v) > o.wheel_scale * faster + o.wheel_margin_mps) return true;
+  const bool both_turn =
+      std::abs(left) > o.min_speed_mps && std::abs(right) > o.min_speed_mps && left * right > 0.0;
+  return both_turn && std::abs(v) > o.min_speed_mps && v * left < 0.0;
+}
+
+}  // namespace
+
+TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& estimates,
+                       const TrustOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  TrustReport report;
+  report.suspect.assign(estimates.size(), 0.0);
+  if (estimates.empty()) return report;
+  long off = 0;
+  for (size_t k = 0; k < estimates.size(); ++k) {
+    if (!OffTheWheels(estimates[k], log.vehicle.wheel_radius_m, options)) continue;
+    report.suspect[k] = 1.0;
+    ++off;
+  }
+  report.off_wheels_fraction = static_cast<double>(off) / estimates.size();
+
+  // The GNSS fixes' z and the estimate each is compared with.
+  std::vector<double> z;
+  std::vector<size_t> at;
+  size_t k = 0;
+  for (const GpsSample& fix : log.gps) {
+    if (!std::isfinite(fix.vx) || !std::isfinite(fix.vy) || fix.t < estimates.front().t ||
+        fix.t > estimates.back().t) {
+      continue;
+    }
+    while (k + 1 < estimates.size() && estimates[k + 1].t <= fix.t) ++k;
+    const size_t nearest =
+        k + 1 < estimates.size() && estimates[k + 1].t - fix.t < fix.t - estimates[k].t ? k + 1 : k;
+    const WardEstimate& e = estimates[nearest];
+    const double sd_g =
+        std::isfinite(fix.sd_v) && fix.sd_v > 0.0 ? fix.sd_v : log.vehicle.sensors.gps_sd_v_mps;
+    const double v = e.x[ward::kVbx], sd_v = e.sd[ward::kVbx];
+    const double scale =
+        std::sqrt(4.0 * v * v * (sd_g * sd_g + sd_v * sd_v) + 4.0 * sd_g * sd_g * sd_g * sd_g);
+    if (!(scale > 0.0) || !std::isfinite(scale)) continue;
+    z.push_back((fix.vx * fix.vx + fix.vy * fix.vy - 2.0 * sd_g * sd_g - v * v) / scale);
+    at.push_back(nearest);
+  }
+  report.gnss_fixes = z.size();
+  if (z.size() >= static_cast<size_t>(options.min_gnss_fixes)) {
+    double sum = 0.0;
+    for (double value : z) sum += value;
+    report.gnss_run_z = sum / std::sqrt(static_cast<double>(z.size()));
+  }
+  const size_t window = static_cast<size_t>(options.gnss_window);
+  bool window_off = false;
+  for (size_t first = 0; first + window <= z.size(); ++first) {
+    double mean = 0.0;
+    for (size_t i = first; i < first + window; ++i) mean += z[i] / window;
+    if (!(std::abs(mean) <= report.gnss_worst_window)) report.gnss_worst_window = std::abs(mean);
+    if (std::abs(mean) <= options.gnss_window_limit) continue;
+    window_off = true;
+    for (size_t j = at[first]; j <= at[first + window - 1]; ++j) report.suspect[j] = 1.0;
+  }
+
+  char line[256];
+  if (report.off_wheels_fraction > options.suspect_fraction) {
+    std::snprintf(line, sizeof(line),
+                  "the velocity is off both wheels' speeds (beyond %.1f x the faster + %.2f m/s, "
+                  "or against both) on %.1f %% of the samples",
+                  options.wheel_scale, options.wheel_margin_mps,
+                  100.0 * report.off_wheels_fraction);
+    report.warnings.push_back(line);
+  }
+  if (std::abs(report.gnss_run_z) > options.gnss_run_limit || window_off) {
+    std::snprintf(line, sizeof(line),
+                  "the speed disagrees with GNSS: over the run z %.1f (limit %.1f), over %d fixes "
+                  "at worst %.2f (limit %.2f): the velocity has drifted or its sd are too small",
+                  report.gnss_run_z, options.gnss_run_limit, options.gnss_window,
+                  report.gnss_worst_window, options.gnss_window_limit);
+    report.warnings.push_back(line);
+  }
+  report.trusted = report.warnings.empty();
+  return report;
+}
+
+std::string DescribeTrust(const TrustReport& report) {
+  std::ostringstream out;
+  char figures[200];
+  std::snprintf(figures, sizeof(figures),
+                "off the wheels %.2f %% of samples; GNSS speed z over the run %.1f, over a "
+                "window at worst %.2f (%zu fixes)",
+                100.0 * report.off_wheels_fraction, report.gnss_run_z, report.gnss_worst_window,
+                report.gnss_fixes);
+  out << "trust: " << (report.trusted ? "no sign of trouble" : "NOT TRUSTED") << " (" << figures
+      << ")\n";
+  for (const std::string& warning : report.warnings) out << "  WARNING: " << warning << "\n";
+  return out.str();
+}
+
+}  // namespace slipgraph

@@ -1,0 +1,59 @@
+// Whether a run's estimates can be trusted, judged from the log alone (no truth): a model far
+// from the robot can leave a filter or a smoother sure of a velocity that every wheel and every
+// GNSS fix contradicts, and report convergence and a tight sd around it. Two checks:
+//
+//   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
+//     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
+//     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";
+//   GNSS: each fix's squared ground speed against the estimate's at the nearest estimate,
+//     z = (|g|^2 - 2 sd_g^2 - v^2) / sqrt(4 v^2 (sd_g^2 + sd_v^2) + 4 sd_g^4), which is zero-mean
+//     with unit variance when the two agree (the 2 sd_g^2 removes the noise's bias of |g|^2: a
+//     noisy fix's speed is never below zero). A velocity that drifts off leaves a run of z of one
+//     sign: the run's sum / sqrt(n) above gnss_run_limit, or the mean over any gnss_window fixes
+//     above gnss_window_limit, mark the run; the window's estimates are marked.
+//
+// A run is untrusted when more than suspect_fraction of its samples are off the wheels or the
+// GNSS NIS is over its limit. The marks go to the estimate file (column `suspect`).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "io/drive_log.h"
+#include "io/state_estimate.h"
+
+namespace slipgraph {
+
+struct TrustOptions {
+  double wheel_scale = 1.5;        // |v| above this x the faster side's |r w| ...
+  double wheel_margin_mps = 0.3;   // ... plus this: off the wheels
+  double min_speed_mps = 0.1;      // the sign check needs body and wheels faster than this
+  double suspect_fraction = 0.01;  // more samples off the wheels than this: untrusted
+  double gnss_run_limit = 4.0;     // sum z / sqrt(n) over the run
+  int gnss_window = 10;            // fixes
+  double gnss_window_limit = 2.0;  // mean z over a window (2 sqrt(10) = 6.3 sd of it)
+  int min_gnss_fixes = 5;          // fewer fixes: no GNSS verdict on the run
+
+  bool IsValid(std::string* error) const;
+};
+
+struct TrustReport {
+  bool trusted = true;
+  std::vector<std::string> warnings;  // one line each, why it is not trusted
+  // Per estimate: 1 where it is off the wheels or inside a GNSS window that disagrees, else 0.
+  std::vector<double> suspect;
+  double off_wheels_fraction = 0.0;
+  double gnss_run_z = std::nan("");         // sum z / sqrt(n); NaN without enough fixes
+  double gnss_worst_window = std::nan("");  // the largest |mean z| over gnss_window fixes
+  size_t gnss_fixes = 0;
+};
+
+// Throws std::invalid_argument for invalid options.
+TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& estimates,
+                       const TrustOptions& options = {});
+
+// For the terminal: "trust: ..." with the figures, then one line per warning.
+std::string DescribeTrust(const TrustReport& report);
+
+}  // namespace slipgraph

@@ -1,0 +1,125 @@
+// The trust check (solvers/trust_check.h) on synthetic runs: estimates that agree with the
+// wheels and with GNSS pass, at rest as well as moving; a velocity that drifted off while the
+// wheels and GNSS agree with each other, or one an order of magnitude off the wheels, does not.
+#include "solvers/trust_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+namespace slipgraph {
+namespace {
+
+constexpr double kRadius = 0.25;
+
+// 60 s at 100 Hz: the true speed `speed(t)`, the estimate `estimate(t)` with sd 0.01, wheels at
+// the true speed, and 1 Hz GNSS with 0.1 m/s noise per axis (heading 30 deg).
+struct SyntheticRun {
+  DriveLog log;
+  std::vector<WardEstimate> estimates;
+};
+
+template <typename Speed, typename Estimate>
+SyntheticRun MakeRun(Speed speed, Estimate estimate, uint64_t seed) {
+  SyntheticRun run;
+  run.log.vehicle.wheel_radius_m = kRadius;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  for (int k = 0; k <= 6000; ++k) {
+    const double t = 0.01 * k;
+    WardEstimate e;
+    e.t = t;
+    e.x[ward::kVbx] = estimate(t);
+    e.sd[ward::kVbx] = 0.01;
+    e.x[ward::kOmegaLeft] = e.x[ward::kOmegaRight] = speed(t) / kRadius;
+    run.estimates.push_back(e);
+    if (k % 100 == 0) {
+      GpsSample fix;
+      fix.t = t;
+      fix.vx = speed(t) * std::cos(M_PI / 6.0) + noise(rng);
+      fix.vy = speed(t) * std::sin(M_PI / 6.0) + noise(rng);
+      fix.sd_v = 0.1;
+      run.log.gps.push_back(fix);
+    }
+  }
+  return run;
+}
+
+double Marked(const TrustReport& report) {
+  double marked = 0.0;
+  for (double s : report.suspect) marked += s;
+  return marked / report.suspect.size();
+}
+
+TEST(TrustCheck, AgreeingEstimatesPassMovingAndAtRest) {
+  for (uint64_t seed = 1; seed <= 5; ++seed) {
+    const auto moving = [](double t) { return t < 5.0 ? 0.0 : 0.8; };
+    const SyntheticRun a = MakeRun(moving, moving, seed);
+    const TrustReport ra = CheckTrust(a.log, a.estimates);
+    EXPECT_TRUE(ra.trusted) << seed << ": " << DescribeTrust(ra);
+    EXPECT_EQ(ra.gnss_fixes, 61u);
+    EXPECT_LT(std::abs(ra.gnss_run_z), 4.0);
+    // At rest a noisy fix's speed is biased up (its mean square is 2 sd^2): taken out.
+    const auto rest = [](double) { return 0.0; };
+    const SyntheticRun b = MakeRun(rest, rest, seed);
+    const TrustReport rb = CheckTrust(b.log, b.estimates);
+    EXPECT_TRUE(rb.trusted) << seed << ": " << DescribeTrust(rb);
+    EXPECT_EQ(Marked(rb), 0.0);
+  }
+}
+
+// A velocity that drifts to zero over 20 s while the wheels and GNSS say 0.3 m/s is caught,
+// and the samples where it is off are marked.
+TEST(TrustCheck, AVelocityThatDriftedOffGnssAndWheelsIsNotTrusted) {
+  const auto truth = [](double t) { return t < 5.0 ? 0.0 : 0.3; };
+  const auto drifted = [](double t) {
+    return t < 5.0 ? 0.0 : std::max(0.0, 0.3 - 0.015 * (t - 5.0));
+  };
+  const SyntheticRun run = MakeRun(truth, drifted, 7);
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_FALSE(report.trusted);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("GNSS"), std::string::npos);
+  EXPECT_GT(report.gnss_run_z, 4.0);
+  // Marked where it is far off (the last half), not at the start.
+  EXPECT_EQ(report.suspect[100], 0.0);
+  EXPECT_EQ(report.suspect[5500], 1.0);
+  EXPECT_NE(DescribeTrust(report).find("NOT TRUSTED"), std::string::npos);
+}
+
+TEST(TrustCheck, AVelocityOffTheWheelsIsNotTrustedEvenWithoutGnss) {
+  const auto truth = [](double) { return 1.0; };
+  const auto reversed = [](double t) { return t < 30.0 ? 1.0 : -2.9; };
+  SyntheticRun run = MakeRun(truth, reversed, 3);
+  run.log.gps.clear();
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_FALSE(report.trusted);
+  EXPECT_TRUE(std::isnan(report.gnss_run_z));
+  EXPECT_NEAR(report.off_wheels_fraction, 0.5, 0.01);
+  EXPECT_EQ(report.suspect[1000], 0.0);
+  EXPECT_EQ(report.suspect[4000], 1.0);
+  // A held robot (body still, wheels spinning) is not off the wheels: that is immobilization.
+  const auto held = [](double) { return 0.0; };
+  SyntheticRun stuck = MakeRun(truth, held, 3);
+  stuck.log.gps.clear();
+  EXPECT_TRUE(CheckTrust(stuck.log, stuck.estimates).trusted);
+}
+
+TEST(TrustCheck, InvalidOptionsAreRefused) {
+  const auto still = [](double) { return 0.0; };
+  const SyntheticRun run = MakeRun(still, still, 1);
+  TrustOptions options;
+  options.wheel_scale = 0.5;
+  EXPECT_THROW(CheckTrust(run.log, run.estimates, options), std::invalid_argument);
+  options = TrustOptions();
+  options.gnss_window = 0;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("gnss_window"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace slipgraph
