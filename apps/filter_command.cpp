@@ -9,6 +9,7 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
     EstimatorRunOptions run;
     bool no_gps = false;
     bool single_law = false;
+    bool gnss_fading = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
@@ -18,8 +19,13 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
                 "One filter on the user's tire law (the paper's), also when vehicle.yaml lists the "
                 "soils it was fitted over (law_samples: by default a bank of filters, one per law, "
                 "weighed by their GNSS likelihood)");
+  cmd->add_flag("--gnss-fading", options->gnss_fading,
+                "Fading memory on GNSS: widen the filter's covariance when its GNSS innovations "
+                "keep one sign, so that GNSS pulls a drifting velocity back (EkfOptions::"
+                "gnss_fading_*; docs/mismatch.md)");
   cmd->callback([options, status]() {
     FilterRunOptions run_options;
+    if (options->gnss_fading) run_options.ekf.gnss_fading_fixes = 2.0;
     run_options.use_gps = !options->no_gps;
     run_options.multiple_model = !options->single_law;
     RunEstimatorOverLogs(options->run,

@@ -8,7 +8,9 @@
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
-//     vibration, gnss, radius, relaxation): an ablation.
+//     vibration, gnss, radius, relaxation): an ablation;
+//   --fading-fixes N, --fading-threshold T: the front end's GNSS fading memory (EkfOptions;
+//     N = 0: off), for choosing them on seeds the figures are not reported on.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -43,6 +45,8 @@ struct SuiteResult {
 // --without: the mismatch ingredients taken back out of a mismatch suite's scenarios, each
 // restored to the matched suite's (an ablation: which ingredient costs what).
 std::vector<std::string> g_without;
+// --fading-fixes, --fading-threshold: the front end's GNSS fading memory (EkfOptions).
+EkfOptions g_ekf;
 
 bool Without(const std::string& ingredient) {
   return std::find(g_without.begin(), g_without.end(), ingredient) != g_without.end();
@@ -90,11 +94,13 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool smoother) {
     const ModelConfig model = DefaultModelConfig(log.vehicle);
     for (int e = kEkfGnss; e <= kEkfNoGnss; ++e) {
       FilterRunOptions options;
+      options.ekf = g_ekf;
       options.use_gps = e == kEkfGnss;
       score(e, log, RunEkf(log, model, options).estimates);
     }
     if (smoother) {
       BatchSmootherOptions options;
+      options.filter.ekf = g_ekf;
       options.problem.stiffness_prior_sd = 0.15;  // as `smooth` and `compare` run it
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
@@ -140,6 +146,10 @@ int main(int argc, char** argv) {
         g_without.push_back(list.substr(start, comma - start));
         start = comma + 1;
       }
+    } else if (std::strcmp(argv[i], "--fading-fixes") == 0 && has_value) {
+      g_ekf.gnss_fading_fixes = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--fading-threshold") == 0 && has_value) {
+      g_ekf.gnss_fading_threshold = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoother") == 0) {
       smoother = true;
     } else {

@@ -67,6 +67,13 @@ bool EkfOptions::IsValid(std::string* error) const {
       return false;
     }
   }
+  if (!(gnss_fading_fixes >= 0.0 && (gnss_fading_fixes == 0.0 || gnss_fading_fixes >= 1.0) &&
+        gnss_fading_threshold > 0.0 && gnss_fading_max >= 1.0)) {
+    *error =
+        "gnss_fading_fixes must be 0 (off) or at least 1, gnss_fading_threshold positive, "
+        "gnss_fading_max at least 1";
+    return false;
+  }
   return true;
 }
 
@@ -461,6 +468,18 @@ void WardEkf::AddGps(const GpsSample& gps) {
   nu(0) = along - x_(kVbx);
   H(0, kVbx) = 1.0;
   r(0) = sd * sd;
+  if (options_.gnss_fading_fixes > 0.0) {
+    const double s = P_(kVbx, kVbx) + r(0);
+    const double z = nu(0) / std::sqrt(s);
+    const double weight = 1.0 / options_.gnss_fading_fixes;
+    gnss_innovation_ema_ += weight * (z - gnss_innovation_ema_);
+    if (std::abs(gnss_innovation_ema_) > options_.gnss_fading_threshold &&
+        z * gnss_innovation_ema_ > 1.0) {
+      const double scale = std::min(options_.gnss_fading_max, z * z);
+      P_ *= scale;
+      ++stats_.gnss_fading;
+    }
+  }
   static const std::vector<const char*> kGnss = {"gnss"};
   Update(nu, H, r, options_.gps_gate_chi2, options_.gps_max_consecutive_rejections, &stats_.gps,
          &gps_rejections_, &kGnss);

@@ -240,6 +240,42 @@ TEST(WardEkf, OptionsAreValidated) {
   EXPECT_TRUE(options.IsValid(&error));
   options.initial_sd[2] = 0.0;
   EXPECT_FALSE(options.IsValid(&error));
+  options = EkfOptions();
+  options.gnss_fading_fixes = 0.5;  // an EMA over less than one fix
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("gnss_fading"), std::string::npos);
+}
+
+// Fading memory on GNSS (EkfOptions::gnss_fading_*) on three ward21m runs of seed 2 whose
+// velocity drifts off while the wheels and GNSS agree (a peaked tire law and a slowly wrong
+// AHRS the model lacks; docs/mismatch.md). Measured: false immobilized 41.5 % of samples
+// without it, 9.7 % with it, velocity RMSE 0.154 -> 0.057 m/s. The control: on three matched
+// ward21 runs it changes neither the detections nor, beyond 5 %, the velocity error.
+TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlone) {
+  const auto suite = [](const std::vector<const char*>& names, uint64_t seed, bool fading) {
+    std::vector<Evaluation> runs;
+    for (const char* name : names) {
+      const DriveLog log = testing::SimulatedScenario(name, seed);
+      FilterRunOptions options;
+      if (fading) options.ekf.gnss_fading_fixes = 2.0;
+      const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle), options);
+      runs.push_back(Evaluate(log, EstimateTable(result.estimates)));
+    }
+    return Combine(runs, "runs");
+  };
+  const std::vector<const char*> drifting = {"ward21m/06", "ward21m/10", "ward21m/21"};
+  const Evaluation without = suite(drifting, 2, false), with = suite(drifting, 2, true);
+  std::printf("ward21m seed 2, runs 06 10 21: false %.3f -> %.3f, v RMSE %.4f -> %.4f\n",
+              without.false_immobilized_fraction(), with.false_immobilized_fraction(),
+              without.velocity_rmse, with.velocity_rmse);
+  EXPECT_GT(without.false_immobilized_fraction(), 0.2);
+  EXPECT_LT(with.false_immobilized_fraction(), 0.5 * without.false_immobilized_fraction());
+  EXPECT_LT(with.velocity_rmse, 0.7 * without.velocity_rmse);
+  const std::vector<const char*> matched = {"ward21/01", "ward21/02", "ward21/03"};
+  const Evaluation a = suite(matched, 1, false), b = suite(matched, 1, true);
+  EXPECT_EQ(b.detected(), a.detected());
+  EXPECT_EQ(b.false_immobilized_samples, a.false_immobilized_samples);
+  EXPECT_LT(b.velocity_rmse, 1.05 * a.velocity_rmse);
 }
 
 }  // namespace
