@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <utility>
@@ -33,7 +34,9 @@ struct Fixture {
   ForceTerm second = MakeForceTerm<TestShape>("test_shape_2", "-", 1.0, "");
   std::vector<double> x = {0.7, 0.01, -0.2, 6.5, 7.1, 0.3, 0.002};
   std::vector<double> offsets = {0.05, -0.001};
-  std::vector<double> theta = {30.0, 0.1, 2.0, 0.02, 0.05, -0.2};
+  // One magnitude per model effect, load transfer's included (the factor reads the whole block).
+  std::array<double, kModelEffectCount> theta = {30.0, 0.1, 2.0, 0.02, 0.05, -0.2, 1.5};
+  static_assert(kModelEffectCount == 7, "give the new effect a magnitude above");
   std::vector<double> phi = {0.4, -1.3};
   EffectWindowWeights windows{1.0, 1.0};
   Fixture() {

@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 
 #include "io/plausibility.h"
@@ -25,6 +26,17 @@ inline std::string AlteredMapping(const std::string& mapping_path, const std::st
   const std::string path = ::testing::TempDir() + "/" + name;
   std::ofstream(path) << text;
   return path;
+}
+
+// The report named `name` (a StreamReport, an InnovationReport: anything with a `name`); fails
+// the test when there is none, so that an assertion on it cannot silently not run.
+template <typename Reports>
+const typename Reports::value_type& Named(const Reports& reports, const std::string& name) {
+  for (const auto& report : reports) {
+    if (report.name == name) return report;
+  }
+  ADD_FAILURE() << "no report named '" << name << "'";
+  throw std::out_of_range(name);
 }
 
 inline bool Mentions(const Plausibility& p, const std::string& text) {

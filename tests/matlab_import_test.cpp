@@ -101,21 +101,16 @@ TEST_F(MatlabImport, SmootherAndDiagnoseRunThroughAndSayWhereTheModelFails) {
   }
   // Bounds stated in docs/real_logs.md: the encoders within their stated noise; the GNSS
   // velocity (central differences of 10 Hz fixes) and the gyro far outside theirs, and said.
-  for (const StreamReport& s : d.streams) {
-    if (s.name == "encoder_left" || s.name == "encoder_right") {
-      EXPECT_LT(s.rms, 1.0);
-    }
-    if (s.name == "gnss" || s.name == "gyro") {
-      EXPECT_GT(s.rms, 3.0) << s.name;
-      EXPECT_FALSE(s.consistent) << s.name;
-    }
+  for (const char* name : {"encoder_left", "encoder_right"}) {
+    EXPECT_LT(testing::Named(d.streams, name).rms, 1.0) << name;
+  }
+  for (const char* name : {"gnss", "gyro"}) {
+    const StreamReport& s = testing::Named(d.streams, name);
+    EXPECT_GT(s.rms, 3.0) << name;
+    EXPECT_FALSE(s.consistent) << name;
   }
   // The EKF's GNSS innovations: NIS mean about 190, 39 % inside the 95 % bound.
-  for (const InnovationReport& f : d.filter) {
-    if (f.name == "gnss") {
-      EXPECT_GT(f.nis_mean, 20.0);
-    }
-  }
+  EXPECT_GT(testing::Named(d.filter, "gnss").nis_mean, 20.0);
 }
 
 TEST_F(MatlabImport, DivergenceIsCaughtAndReportedNotANaN) {

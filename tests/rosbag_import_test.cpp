@@ -104,25 +104,18 @@ TEST_F(HuskyBag, FilterSmootherAndDiagnoseRunThrough) {
   }
   // Bounds stated in docs/real_logs.md: GNSS and encoder residuals near their stated noise; the
   // model is not consistent everywhere on this log, and says where.
-  for (const StreamReport& s : d.streams) {
-    if (s.name == "gnss") {
-      EXPECT_LT(s.rms, 2.0);
-    }
-    if (s.name == "encoder_left" || s.name == "encoder_right") {
-      EXPECT_LT(s.rms, 1.0);
-    }
+  EXPECT_LT(testing::Named(d.streams, "gnss").rms, 2.0);
+  for (const char* name : {"encoder_left", "encoder_right"}) {
+    EXPECT_LT(testing::Named(d.streams, name).rms, 1.0) << name;
   }
   EXPECT_FALSE(d.failures.empty());
   EXPECT_FALSE(d.candidates.empty());
   // The EKF's GNSS innovations: NIS mean 2.2, 82 % inside the 95 % bound (docs/real_logs.md).
   ASSERT_EQ(d.filter.size(), 5u);
-  for (const InnovationReport& f : d.filter) {
-    if (f.name == "gnss") {
-      EXPECT_GT(f.nis_mean, 1.3);
-      EXPECT_LT(f.nis_mean, 4.0);
-      EXPECT_FALSE(f.white);
-    }
-  }
+  const InnovationReport& gnss = testing::Named(d.filter, "gnss");
+  EXPECT_GT(gnss.nis_mean, 1.3);
+  EXPECT_LT(gnss.nis_mean, 4.0);
+  EXPECT_FALSE(gnss.white);
 }
 
 }  // namespace
