@@ -15,6 +15,7 @@
 #include "io/log_reader.h"
 #include "io/yaml_config.h"
 #include "solvers/batch_smoother.h"
+#include "solvers/trust_check.h"
 #include "solvers/window_smoother.h"
 
 namespace slipgraph {
@@ -36,7 +37,9 @@ std::string Format(const char* format, double value) {
   return buffer;
 }
 
-std::vector<std::string> Row(const std::string& name, const Evaluation& ev, double seconds) {
+// untrusted / logs: how many of the logs the trust check (solvers/trust_check.h) failed.
+std::vector<std::string> Row(const std::string& name, const Evaluation& ev, double seconds,
+                             int untrusted, int logs) {
   return {name,
           Format("%.4f", ev.velocity_rmse),
           Format("%.3f", ev.disturbance_rmse),
@@ -45,12 +48,14 @@ std::vector<std::string> Row(const std::string& name, const Evaluation& ev, doub
           Format("%.3f", 100.0 * ev.false_immobilized_fraction()),
           Format("%.2f", ev.velocity_mean_nees),
           Format("%.1f", 100.0 * ev.nees_within_95_fraction()),
-          Format("%.2f", seconds)};
+          Format("%.2f", seconds),
+          logs == 1 ? (untrusted == 0 ? "yes" : "NO")
+                    : std::to_string(logs - untrusted) + "/" + std::to_string(logs)};
 }
 
 const std::vector<std::string> kHeader = {
     "estimator",           "v RMSE m/s",  "a_dist RMSE m/s^2",    "detected", "mean delay s",
-    "false immobilized %", "v NEES mean", "NEES within 95 % (%)", "time s"};
+    "false immobilized %", "v NEES mean", "NEES within 95 % (%)", "time s",   "trusted"};
 
 void PrintTable(const std::vector<std::vector<std::string>>& rows, std::ostream& out) {
   out << "|";
@@ -153,6 +158,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     HtmlReport html("slipgraph compare: " + name);
     std::map<std::string, std::vector<Evaluation>> by_estimator;
     std::map<std::string, double> seconds;
+    std::map<std::string, int> untrusted;  // logs the trust check failed, per estimator
     const std::vector<std::string> names = {"EKF", "window", "batch"};
     for (const std::string& log_dir : ListLogs(path)) {
       const DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
@@ -188,7 +194,9 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
           const Evaluation ev = Evaluate(log, EstimateTable(run.estimates));
           by_estimator[run.name].push_back(ev);
           seconds[run.name] += run.seconds;
-          rows.push_back(Row(run.name, ev, run.seconds));
+          const int bad = CheckTrust(log, run.estimates).trusted ? 0 : 1;
+          untrusted[run.name] += bad;
+          rows.push_back(Row(run.name, ev, run.seconds, bad, 1));
         }
         html.Table(kHeader, rows);
       } else {
@@ -200,7 +208,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     if (!by_estimator.empty()) {
       std::vector<std::vector<std::string>> rows;
       for (const std::string& estimator : names) {
-        rows.push_back(Row(estimator, Combine(by_estimator[estimator], name), seconds[estimator]));
+        rows.push_back(Row(estimator, Combine(by_estimator[estimator], name), seconds[estimator],
+                           untrusted[estimator], static_cast<int>(by_estimator[estimator].size())));
       }
       char prior[32];
       std::snprintf(prior, sizeof(prior), "%g", options->stiffness_sd);
@@ -210,14 +219,17 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                     prior + "; --stiffness-sd 0: the law as given)"
               : "the batch keeps the tire law as given";
       std::cout << name << " (" << by_estimator["EKF"].size()
-                << " log(s)) against truth; window and batch times include their EKF run; "
+                << " log(s)) against truth; window and batch times include the EKF run they start "
+                   "from; trusted: the estimates hold against the log's own wheels and GNSS; "
                 << batch_law << "\n";
       PrintTable(rows, std::cout);
       HtmlReport summary = html;  // the summary goes first on the page
       HtmlReport page("slipgraph compare: " + name);
       page.Heading("All logs", 2);
       page.Paragraph(std::to_string(by_estimator["EKF"].size()) +
-                     " log(s). Window and batch times include their own EKF run. The window "
+                     " log(s). Window and batch times include the EKF run they start from. "
+                     "Trusted: the estimates hold against the log's own wheels and GNSS "
+                     "(solvers/trust_check.h). The window "
                      "smoother's estimates are each state's value as it left the window "
                      "(lag = window length). The window keeps the tire law as given; " +
                      batch_law + ".");
