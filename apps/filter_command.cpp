@@ -25,7 +25,7 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
                 "gnss_fading_*; docs/mismatch.md)");
   cmd->callback([options, status]() {
     FilterRunOptions run_options;
-    if (options->gnss_fading) run_options.ekf.gnss_fading_fixes = 2.0;
+    if (options->gnss_fading) run_options.ekf.gnss_fading_fixes = kGnssFadingFixes;
     run_options.use_gps = !options->no_gps;
     run_options.multiple_model = !options->single_law;
     RunEstimatorOverLogs(options->run,

@@ -157,7 +157,7 @@ SimResult SimulateDiffDrive(const Scenario& sc, uint64_t seed) {
       r_eff[side] = r_true * (1.0 - sc.mismatch.radius_load_sensitivity * load);
       const double surface = r_eff[side] * state.omega_radps[side];
       kappa[side] = RelaxSlipRatio(kappa[side], SteadySlipRatio(surface, v_fwd[side]), v_fwd[side],
-                                   sc.mismatch.relaxation_length_m, dt);
+                                   surface, sc.mismatch.relaxation_length_m, dt);
       traction[side] = PeakedTractionForceN(n_front[side], kappa[side], *peaked);
       rolling_front[side] = PeakedRollingForceN(n_front[side], v_fwd[side], *peaked);
       rolling_side[side] =

@@ -6,7 +6,9 @@
 // velocity it pulls harder the slower the robot goes, and it falls once the wheel spins.
 //
 //   kappa_ss = v_rel / max(|r w|, |v_fwd|, v_floor)            (steady-state slip ratio)
-//   d kappa / dt = (|v_fwd| + v_floor) / L (kappa_ss - kappa)   (relaxation over length L)
+//   d kappa / dt = (max(|v_fwd|, |r w|) + v_floor) / L (kappa_ss - kappa)
+//                                                               (relaxation over length L of
+//                                                               tread or ground passing)
 //   F = N D sin(C atan(B kappa - E (B kappa - atan(B kappa))))  (traction, N)
 //   F_roll = -N (c0 + c1 |v_fwd|) tanh(v_fwd / v_floor)         (rolling resistance, N)
 //
@@ -38,10 +40,13 @@ inline double SteadySlipRatio(double surface_speed_mps, double v_fwd_mps) {
   return v_rel / scale;
 }
 
-// One explicit step of the slip ratio's relaxation toward kappa_ss over length_m of rolling.
-inline double RelaxSlipRatio(double kappa, double kappa_ss, double v_fwd_mps, double length_m,
-                             double dt_s) {
-  const double rate = (std::abs(v_fwd_mps) + kPeakedSpeedFloorMps) / length_m;
+// One explicit step of the slip ratio's relaxation toward kappa_ss over length_m of tread or
+// ground passing the contact (a wheel spinning in place builds its slip as fast as one rolling).
+// The step never overshoots (at most the whole way), so it is stable at any dt.
+inline double RelaxSlipRatio(double kappa, double kappa_ss, double v_fwd_mps,
+                             double surface_speed_mps, double length_m, double dt_s) {
+  const double speed = std::max(std::abs(v_fwd_mps), std::abs(surface_speed_mps));
+  const double rate = (speed + kPeakedSpeedFloorMps) / length_m;
   return kappa + std::min(1.0, rate * dt_s) * (kappa_ss - kappa);
 }
 

@@ -22,7 +22,8 @@ struct LinearizedBlock {
 
 // An order of the blocks that depends on their values only, never on where they sit in memory
 // (the problem hands them out by address): the sums below then come out the same, to the bit,
-// in every run and build. Blocks equal in every value contribute the same in any order.
+// in every run and build. Blocks equal in every value add the same numbers in any order; only
+// the order of the kept blocks they alone reach can then follow the problem's.
 bool ValueOrder(const LinearizedBlock& a, const LinearizedBlock& b) {
   const auto by_value = [](const auto& x, const auto& y) {
     if (x.size() != y.size()) return x.size() < y.size();

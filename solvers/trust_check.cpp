@@ -26,6 +26,7 @@ namespace {
 
 bool OffTheWheels(const WardEstimate& e, double radius_m, const TrustOptions& o) {
   const double v = e.x[ward::kVbx];
+  if (!std::isfinite(v)) return true;  // no velocity at all: nothing to trust
   const double left = radius_m * e.x[ward::kOmegaLeft];
   const double right = radius_m * e.x[ward::kOmegaRight];
   const double faster = std::max(std::abs(left), std::abs(right));
@@ -65,13 +66,19 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     const size_t nearest =
         k + 1 < estimates.size() && estimates[k + 1].t - fix.t < fix.t - estimates[k].t ? k + 1 : k;
     const WardEstimate& e = estimates[nearest];
-    const double sd_g =
+    const double sd_gnss_mps =
         std::isfinite(fix.sd_v) && fix.sd_v > 0.0 ? fix.sd_v : log.vehicle.sensors.gps_sd_v_mps;
-    const double v = e.x[ward::kVbx], sd_v = e.sd[ward::kVbx];
+    const double v_mps = e.x[ward::kVbx], sd_v_mps = e.sd[ward::kVbx];
+    // The fix's speed in 3-D when it has a vertical velocity (the body's speed on a grade), its
+    // noise's bias (sd^2 per axis) and variance (2 sd^4 per axis) with it.
+    const bool vertical = std::isfinite(fix.vz);
+    const double axes = vertical ? 3.0 : 2.0;
+    const double speed_sq = fix.vx * fix.vx + fix.vy * fix.vy + (vertical ? fix.vz * fix.vz : 0.0);
+    const double var_g = sd_gnss_mps * sd_gnss_mps;
     const double scale =
-        std::sqrt(4.0 * v * v * (sd_g * sd_g + sd_v * sd_v) + 4.0 * sd_g * sd_g * sd_g * sd_g);
+        std::sqrt(4.0 * v_mps * v_mps * (var_g + sd_v_mps * sd_v_mps) + 2.0 * axes * var_g * var_g);
     if (!(scale > 0.0) || !std::isfinite(scale)) continue;
-    z.push_back((fix.vx * fix.vx + fix.vy * fix.vy - 2.0 * sd_g * sd_g - v * v) / scale);
+    z.push_back((speed_sq - axes * var_g - v_mps * v_mps) / scale);
     at.push_back(nearest);
   }
   report.gnss_fixes = z.size();

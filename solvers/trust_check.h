@@ -5,9 +5,10 @@
 //   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
 //     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
 //     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";
-//   GNSS: each fix's squared ground speed against the estimate's at the nearest estimate,
-//     z = (|g|^2 - 2 sd_g^2 - v^2) / sqrt(4 v^2 (sd_g^2 + sd_v^2) + 4 sd_g^4), which is zero-mean
-//     with unit variance when the two agree (the 2 sd_g^2 removes the noise's bias of |g|^2: a
+//   GNSS: each fix's squared ground speed (3-D when it has a vertical velocity, over k = 3 or 2
+//     axes) against the estimate's at the nearest estimate,
+//     z = (|g|^2 - k sd_g^2 - v^2) / sqrt(4 v^2 (sd_g^2 + sd_v^2) + 2 k sd_g^4), which is zero-mean
+//     with unit variance when the two agree (the k sd_g^2 removes the noise's bias of |g|^2: a
 //     noisy fix's speed is never below zero). A velocity that drifts off leaves a run of z of one
 //     sign: the run's sum / sqrt(n) above gnss_run_limit, or the mean over any gnss_window fixes
 //     above gnss_window_limit, mark the run; the window's estimates are marked.

@@ -468,15 +468,17 @@ void WardEkf::AddGps(const GpsSample& gps) {
   nu(0) = along - x_(kVbx);
   H(0, kVbx) = 1.0;
   r(0) = sd * sd;
-  if (options_.gnss_fading_fixes > 0.0) {
+  // Fading memory (EkfOptions::gnss_fading_*): not for a fix the gate would reject (an
+  // outlier must not open the covariance for itself), never shrinking P, and not in a bank of
+  // filters, whose weights are each fix's likelihood under the filter's own covariance.
+  if (options_.gnss_fading_fixes > 0.0 && !scoring_ && !options_.track_log_likelihood) {
     const double s = P_(kVbx, kVbx) + r(0);
     const double z = nu(0) / std::sqrt(s);
     const double weight = 1.0 / options_.gnss_fading_fixes;
     gnss_innovation_ema_ += weight * (z - gnss_innovation_ema_);
     if (std::abs(gnss_innovation_ema_) > options_.gnss_fading_threshold &&
-        z * gnss_innovation_ema_ > 1.0) {
-      const double scale = std::min(options_.gnss_fading_max, z * z);
-      P_ *= scale;
+        z * gnss_innovation_ema_ > 1.0 && std::abs(z) > 1.0 && z * z <= options_.gps_gate_chi2) {
+      P_ *= std::min(options_.gnss_fading_max, z * z);
       ++stats_.gnss_fading;
     }
   }

@@ -32,6 +32,9 @@
 
 namespace slipgraph {
 
+// The fading memory's EMA length `filter --gnss-fading` uses (EkfOptions::gnss_fading_fixes).
+constexpr double kGnssFadingFixes = 4.0;
+
 struct EkfOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   // Innovation gates as chi-square thresholds on the Mahalanobis distance (per update);
@@ -57,14 +60,14 @@ struct EkfOptions {
   // normalized by their predicted sd, z = nu / sqrt(h P h' + r), averaged over about
   // gnss_fading_fixes fixes (an EMA). A consistent filter's average is about 0; a velocity
   // drifting off (a tire law or an AHRS the model does not have) leaves a run of one sign. When
-  // the average passes gnss_fading_threshold and the fix agrees with it (z times the average
-  // above 1), P is scaled by z^2 (at most gnss_fading_max) before the update, so that the fix
-  // can pull the velocity back. Off by default (0 fixes); `filter --gnss-fading` sets 2 fixes
-  // and threshold 1, chosen on ward21m and ward21 seeds 1-10 (docs/mismatch.md): on seeds 11-20
-  // ward21m's false immobilized samples fell from 6.9 to 2.4 %, ward21's rose from 0.000 to
-  // 0.016 %. Not yet the default: the smoother and the workbench start from this filter.
+  // the average passes gnss_fading_threshold and a fix with |z| > 1 agrees with it (z times the
+  // average above 1) and passes the gate, P is scaled by z^2 (at most gnss_fading_max) before
+  // the update, so that the fix can pull the velocity back. Single filters only (a bank weighs
+  // its filters by each fix's likelihood under their own covariance). Off by default (0 fixes);
+  // `filter --gnss-fading` sets kGnssFadingFixes, chosen on held-out suites and not the default
+  // yet because the smoother and the workbench start from this filter (docs/mismatch.md).
   double gnss_fading_fixes = 0.0;
-  double gnss_fading_threshold = 1.0;
+  double gnss_fading_threshold = 0.5;
   double gnss_fading_max = 100.0;
   // Sum the sensor measurements' log-likelihood for TakeLogLikelihood() (a bank of filters
   // weighing their models sets it); off, no logarithm is taken in the updates.

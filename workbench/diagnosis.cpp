@@ -184,9 +184,7 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
   if (!without.used_fallback) smoother.start = &without.estimates;  // a few iterations from there
   // The cost to 1e-7 of itself (about 0.001 on these logs) is enough for a likelihood ratio.
   smoother.function_tolerance = 1e-7;
-  // One term away from the solution: Gauss-Newton-sized steps from the start
-  // (BatchSmootherOptions::initial_trust_region_radius).
-  smoother.initial_trust_region_radius = 1e8;
+  smoother.initial_trust_region_radius = options.fit_initial_trust_region_radius;
   const SmootherResult fit = SmoothBatch(log, with, without.ekf, smoother);
   Fit out;
   if (fit.used_fallback) return out;

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <random>
 
 #include "factors/ward_dynamics.h"
@@ -433,6 +434,9 @@ EffectSignature ForceTermSignature(const ForceTerm& term) {
 
 const std::vector<EffectSignature>& EffectSignatures() {
   // Registered force terms without a signature of their own get the graph test of their shape.
+  // Guarded: two diagnoses may run at once in a user's program.
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
   for (const ForceTerm& term : ForceTerms()) {
     if (std::none_of(Registry().begin(), Registry().end(),
                      [&](const EffectSignature& s) { return s.effect == term.name; })) {
