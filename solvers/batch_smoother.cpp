@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 #include "factors/force_term.h"
 #include "factors/model_effects.h"
@@ -11,6 +12,17 @@
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
+
+bool BatchSmootherOptions::IsValid(std::string* error) const {
+  if (max_iterations < 1 || threads < 1 || !(function_tolerance > 0.0) ||
+      !(initial_trust_region_radius > 0.0) || !(min_immobilized_s >= 0.0)) {
+    *error =
+        "BatchSmootherOptions: max_iterations, threads, function_tolerance and "
+        "initial_trust_region_radius must be positive, min_immobilized_s non-negative";
+    return false;
+  }
+  return true;
+}
 
 WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter) {
   options.use_gps = filter.use_gps;
@@ -263,6 +275,8 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
 
 SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
                            const BatchSmootherOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   if (!options.regate_decay_prior || !options.problem.decay_gate_slip.empty()) {
     return SmoothBatchOnce(log, model, ekf, options);
   }

@@ -57,6 +57,9 @@ struct BatchSmootherOptions {
   // estimate's first-order shift dx, and the sum of dx dx' is added to the states' covariance (a
   // Schmidt consider covariance: the law is not refitted, its error is counted).
   bool consider_law_uncertainty = true;
+
+  // The solver's settings (the filter's and the problem's are checked where they are used).
+  bool IsValid(std::string* error) const;
 };
 
 // A model effect's estimated magnitude (factors/model_effects.h), in the catalogue's unit.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "evaluation/evaluation.h"
 #include "sim/scenarios.h"
@@ -238,6 +239,17 @@ TEST(BatchSmoother, ReGatedDecayPriorLowersTheDisturbanceError) {
   EXPECT_LT(a.velocity_rmse, 1.05 * b.velocity_rmse);
   EXPECT_EQ(a.detected(), 3);
   EXPECT_EQ(a.false_immobilized_samples, 0);
+}
+
+TEST(BatchSmoother, InvalidOptionsAreRefused) {
+  BatchSmootherOptions options;
+  std::string error;
+  EXPECT_TRUE(options.IsValid(&error));
+  options.initial_trust_region_radius = 0.0;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("initial_trust_region_radius"), std::string::npos);
+  const DriveLog log;
+  EXPECT_THROW(SmoothBatch(log, ModelConfig(), FilterResult(), options), std::invalid_argument);
 }
 
 }  // namespace

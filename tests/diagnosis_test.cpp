@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "model/effect_catalogue.h"
 #include "sim/scenarios.h"
@@ -316,6 +317,20 @@ TEST(Diagnosis, OutsideTheCatalogueIsUnexplainedWithSegments) {
     }
   }
   EXPECT_GT(covered, 60.0);  // of the 80 s the robot moves
+}
+
+TEST(Diagnosis, InvalidOptionsAreRefused) {
+  DiagnosisOptions options;
+  std::string error;
+  EXPECT_TRUE(options.IsValid(&error));
+  options.threads = 0;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("threads"), std::string::npos);
+  options = DiagnosisOptions();
+  options.smoother.max_iterations = 0;  // the smoother's own settings are checked too
+  EXPECT_FALSE(options.IsValid(&error));
+  const DriveLog log;
+  EXPECT_THROW(Diagnose(log, ModelConfig(), options), std::invalid_argument);
 }
 
 }  // namespace

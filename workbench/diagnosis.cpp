@@ -7,6 +7,8 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "evaluation/html_report.h"
@@ -157,8 +159,12 @@ void RunConcurrently(size_t count, int threads, const Job& job) {
     }
   };
   std::vector<std::thread> pool;
-  for (size_t t = 1; t < std::min<size_t>(std::max(1, threads), count); ++t) {
-    pool.emplace_back(work);
+  try {
+    for (size_t t = 1; t < std::min<size_t>(std::max(1, threads), count); ++t) {
+      pool.emplace_back(work);
+    }
+  } catch (const std::system_error&) {
+    // No more threads to be had: the ones running and this one share the jobs.
   }
   work();
   for (std::thread& thread : pool) thread.join();
@@ -239,7 +245,24 @@ void FitAndCompare(const DriveLog& log, const ModelConfig& model, const Smoother
 
 }  // namespace
 
+bool DiagnosisOptions::IsValid(std::string* error) const {
+  if (!(alpha > 0.0 && alpha < 1.0)) {
+    *error = "DiagnosisOptions: alpha must lie in (0, 1)";
+    return false;
+  }
+  if (!(window_s > 0.0) || whiteness_lags < 1 || threads < 1 ||
+      !(fit_initial_trust_region_radius > 0.0)) {
+    *error =
+        "DiagnosisOptions: window_s, whiteness_lags, threads and fit_initial_trust_region_radius "
+        "must be positive";
+    return false;
+  }
+  return smoother.IsValid(error);
+}
+
 Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   Diagnosis d;
   d.log = log.directory;
   d.model_effects = model.effects;

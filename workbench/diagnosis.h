@@ -50,6 +50,8 @@ struct DiagnosisOptions {
   // (BatchSmootherOptions::initial_trust_region_radius): 2-5 iterations against 7-9 at Ceres's
   // default on the bundled log.
   double fit_initial_trust_region_radius = 1e8;
+
+  bool IsValid(std::string* error) const;
 };
 
 struct StreamReport {
