@@ -12,13 +12,11 @@
 //   --fading-fixes N, --fading-threshold T: the front end's GNSS fading memory (EkfOptions;
 //     N = 0: off), for choosing them on seeds the figures are not reported on.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "evaluation/evaluation.h"
@@ -26,6 +24,7 @@
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
+#include "solvers/run_concurrently.h"
 #include "solvers/trust_check.h"
 
 namespace slipgraph {
@@ -163,16 +162,8 @@ int main(int argc, char** argv) {
   }
   const size_t count = static_cast<size_t>(last - first + 1);
   std::vector<SuiteResult> results(count);
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t i = next++; i < count; i = next++) {
-      results[i] = RunSuite(suite, first + i, smoother);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& thread : pool) thread.join();
+  RunConcurrently(count, threads,
+                  [&](size_t i) { results[i] = RunSuite(suite, first + i, smoother); });
 
   const int shown = smoother ? kEstimatorCount : kBatchGnss;
   std::printf(

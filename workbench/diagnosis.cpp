@@ -1,19 +1,16 @@
 #include "workbench/diagnosis.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <iomanip>
 #include <set>
 #include <sstream>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
 
 #include "evaluation/html_report.h"
 #include "factors/model_effects.h"
 #include "factors/ward_state.h"
+#include "solvers/run_concurrently.h"
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
@@ -141,36 +138,6 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   c.dispersion = std::max(1.0, model_precision / precision);
   c.p_value = std::min(1.0, NormalTwoSided(z) * searched);
   return c;
-}
-
-// job(i) for i in [0, count) on `threads` threads, each taking the next i; the first exception
-// (by i) is rethrown once all have finished. The jobs write only their own results.
-template <typename Job>
-void RunConcurrently(size_t count, int threads, const Job& job) {
-  std::vector<std::exception_ptr> errors(count);
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    for (size_t i = next++; i < count; i = next++) {
-      try {
-        job(i);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  try {
-    for (size_t t = 1; t < std::min<size_t>(std::max(1, threads), count); ++t) {
-      pool.emplace_back(work);
-    }
-  } catch (const std::system_error&) {
-    // No more threads to be had: the ones running and this one share the jobs.
-  }
-  work();
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
 }
 
 // One fit: the smoother with `effect` switched on (on `windows` when it acts on windows), from
