@@ -93,10 +93,6 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   return result;
 }
 
-void WriteEkfEstimates(const FilterResult& result, const std::string& path) {
-  WriteEstimates(result.estimates, path);
-}
-
 std::string DescribeFilterRun(const FilterResult& result) {
   std::ostringstream out;
   out << "streams used:";

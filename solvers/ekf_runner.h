@@ -39,8 +39,6 @@ struct FilterResult {
 FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
                     const FilterRunOptions& options = {});
 
-void WriteEkfEstimates(const FilterResult& result, const std::string& path);
-
 // One paragraph for the terminal: streams used, counts, rejections, weak constraints.
 std::string DescribeFilterRun(const FilterResult& result);
 

@@ -88,13 +88,11 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     report.gnss_run_z = sum / std::sqrt(static_cast<double>(z.size()));
   }
   const size_t window = static_cast<size_t>(options.gnss_window);
-  bool window_off = false;
   for (size_t first = 0; first + window <= z.size(); ++first) {
     double mean = 0.0;
     for (size_t i = first; i < first + window; ++i) mean += z[i] / window;
     if (!(std::abs(mean) <= report.gnss_worst_window)) report.gnss_worst_window = std::abs(mean);
     if (std::abs(mean) <= options.gnss_window_limit) continue;
-    window_off = true;
     for (size_t j = at[first]; j <= at[first + window - 1]; ++j) report.suspect[j] = 1.0;
   }
 
@@ -107,7 +105,8 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
                   100.0 * report.off_wheels_fraction);
     report.warnings.push_back(line);
   }
-  if (std::abs(report.gnss_run_z) > options.gnss_run_limit || window_off) {
+  if (std::abs(report.gnss_run_z) > options.gnss_run_limit ||
+      report.gnss_worst_window > options.gnss_window_limit) {
     std::snprintf(line, sizeof(line),
                   "the speed disagrees with GNSS: over the run z %.1f (limit %.1f), over %d fixes "
                   "at worst %.2f (limit %.2f): the velocity has drifted or its sd are too small",

@@ -153,7 +153,6 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
   with.effects.push_back(effect);
   for (const auto& [t0, t1] : windows) with.effect_windows.push_back({effect, t0, t1});
   BatchSmootherOptions smoother = options.smoother;
-  smoother.filter.ekf.record_innovations = false;
   if (!without.used_fallback) smoother.start = &without.estimates;  // a few iterations from there
   // The cost to 1e-7 of itself (about 0.001 on these logs) is enough for a likelihood ratio.
   smoother.function_tolerance = 1e-7;
