@@ -112,6 +112,7 @@ std::string DescribeFilterRun(const FilterResult& result) {
         << result.stats.weak_constraints[i];
   }
   out << "\n  IMU samples for offset initialisation: " << result.stats.offset_init_samples
+      << (result.stats.offset_moving_start ? " (moving: offsets compensated by the wheels)" : "")
       << ", late measurements: " << result.stats.late_measurements << "\n";
   if (result.stats.divergence_resets > 0) {
     out << "  DIVERGED " << result.stats.divergence_resets

@@ -283,8 +283,13 @@ void WardEkf::AddImu(const ImuSample& imu) {
   const bool ax_ok = IsFinite(imu.ax), gz_ok = IsFinite(imu.gz);
   if (!offsets_.ready()) {
     if (ax_ok && gz_ok) {
-      offsets_.Add(imu.t, imu.ax, imu.gz, GravityAlongX(), at_rest);
+      offsets_.Add(imu.t, imu.ax, imu.gz, GravityAlongX(), at_rest, last_wheel_motion_);
       ++stats_.offset_init_samples;
+      if (offsets_.ready() && offsets_.moving_start()) {
+        stats_.offset_moving_start = true;
+        P_(kAccelBias, kAccelBias) += offsets_.init_sd()[0] * offsets_.init_sd()[0];
+        P_(kGyroBias, kGyroBias) += offsets_.init_sd()[1] * offsets_.init_sd()[1];
+      }
     }
     return;
   }
@@ -378,6 +383,9 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
     last_wheels_t_ = t_;
     const bool still = std::abs(omega_left) < options_.wheel_still_radps &&
                        std::abs(omega_right) < options_.wheel_still_radps;
+    last_wheel_motion_ = {
+        0.5 * params_.wheel_radius_m * (omega_left + omega_right),
+        params_.wheel_radius_m * (omega_right - omega_left) / params_.track_width_m, still};
     if (!still) {
       wheels_stopped_since_ = 1e300;
     } else if (wheels_stopped_since_ > t_) {

@@ -88,6 +88,9 @@ struct EkfStats {
   std::array<long, kWeakConstraintCount> weak_constraints{};  // applications per constraint
   long late_measurements = 0;  // stamped before the filter's time: applied at the filter time
   long offset_init_samples = 0;
+  // The wheels turned during those samples: the offsets were motion-compensated from the wheels
+  // (solvers/imu_offsets.h) and the bias states opened by their uncertainty.
+  bool offset_moving_start = false;
   // Times the state or covariance became non-finite (a model far from the data can make the
   // stiff tire law blow up): the filter went back to its last finite state, covariance inflated.
   long divergence_resets = 0;
@@ -192,6 +195,7 @@ class WardEkf {
   double previous_slip_ema_ = 0.0;
   double last_wheels_t_ = -1e300;
   double wheels_stopped_since_ = 1e300;  // time both wheels first read still, 1e300: moving
+  WheelMotion last_wheel_motion_;        // the latest encoder reading, for the offsets' start
   int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
   EkfStats stats_;
   double log_likelihood_ = 0.0;  // since the last TakeLogLikelihood()

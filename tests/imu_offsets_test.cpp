@@ -37,5 +37,55 @@ TEST(ImuOffsets, AtRestSamplesWaitTheGuardAndAreDroppedWhenMotionFollows) {
   EXPECT_NEAR(offsets.accel_x_mps2(), 0.2, 1e-12);
 }
 
+TEST(ImuOffsets, AMovingStartSubtractsTheWheelsAccelerationAndYawRate) {
+  // 100 samples over 1 s: offsets 0.1 m/s^2 and 0.01 rad/s; the body accelerates at 0.5 m/s^2
+  // and turns at 0.2 rad/s throughout, and the wheels see both.
+  ImuOffsetEstimator offsets(100, 200.0);
+  for (int i = 0; i < 100; ++i) {
+    const double t = 0.01 * i;
+    offsets.Add(t, 0.1 + 0.5, 0.01 + 0.2, 0.0, false, {0.5 * t, 0.2, false});
+  }
+  ASSERT_TRUE(offsets.ready());
+  EXPECT_TRUE(offsets.moving_start());
+  EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-9);
+  EXPECT_NEAR(offsets.gyro_z_radps(), 0.01, 1e-12);
+  EXPECT_NEAR(offsets.init_sd()[0], 0.05, 1e-9);
+  EXPECT_NEAR(offsets.init_sd()[1], 0.04, 1e-12);
+
+  // Control: the same samples with the wheels still (a rest start) keep the plain mean, which
+  // carries the motion.
+  ImuOffsetEstimator at_rest(100, 200.0);
+  for (int i = 0; i < 100; ++i) at_rest.Add(0.01 * i, 0.6, 0.21, 0.0, true, {0.0, 0.0, true});
+  EXPECT_FALSE(at_rest.moving_start());
+  EXPECT_NEAR(at_rest.accel_x_mps2(), 0.6, 1e-12);
+  EXPECT_EQ(at_rest.init_sd()[0], 0.0);
+}
+
+TEST(ImuOffsets, ARestShorterThanTheInitialSamplesIsUsedWhenTheWheelsTurn) {
+  // 100 initial samples at 100 Hz; the wheels turn at 0.5 s. The rest's samples but the last
+  // tenth of a second (0.41 s and later carry the start the encoders have not seen yet).
+  ImuOffsetEstimator offsets(100, 200.0);
+  for (int i = 0; i < 50; ++i) {
+    const double t = 0.01 * i;
+    offsets.Add(t, t < 0.405 ? 0.1 : 0.5, 0.01, 0.0, true, {0.0, 0.0, true});
+  }
+  EXPECT_FALSE(offsets.ready());
+  offsets.Add(0.5, 0.9, 0.01, 0.0, false, {0.05, 0.0, false});
+  ASSERT_TRUE(offsets.ready());
+  EXPECT_FALSE(offsets.moving_start());
+  EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-12);
+
+  // Too short a rest (0.2 s < 100 / 4 samples): the motion is compensated over 100 samples.
+  ImuOffsetEstimator short_rest(100, 200.0);
+  for (int i = 0; i < 20; ++i) short_rest.Add(0.01 * i, 0.1, 0.0, 0.0, true, {0.0, 0.0, true});
+  for (int i = 20; i < 100; ++i) {
+    const double t = 0.01 * i;
+    short_rest.Add(t, 0.1 + 0.5, 0.0, 0.0, false, {0.5 * (t - 0.195), 0.0, false});
+  }
+  ASSERT_TRUE(short_rest.ready());
+  EXPECT_TRUE(short_rest.moving_start());
+  EXPECT_NEAR(short_rest.accel_x_mps2(), 0.1, 0.02);
+}
+
 }  // namespace
 }  // namespace slipgraph

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "io/measurement_stream.h"
 #include "sim/scenarios.h"
@@ -41,6 +42,23 @@ inline double MeanTruth(const DriveLog& log, double t0, double t1,
     if (s.t >= t0 && s.t <= t1) sum += f(s), ++n;
   }
   return n > 0 ? sum / n : std::nan("");
+}
+
+// f of the truth sample nearest in time to each estimate (truth and estimates sorted by t).
+template <typename Estimate>
+std::vector<double> TruthAt(const DriveLog& log, const std::vector<Estimate>& estimates,
+                            const std::function<double(const TruthSample&)>& f) {
+  std::vector<double> out;
+  out.reserve(estimates.size());
+  size_t j = 0;
+  for (const Estimate& e : estimates) {
+    while (j + 1 < log.truth.size() &&
+           std::abs(log.truth[j + 1].t - e.t) <= std::abs(log.truth[j].t - e.t)) {
+      ++j;
+    }
+    out.push_back(log.truth.empty() ? std::nan("") : f(log.truth[j]));
+  }
+  return out;
 }
 
 // Feeds a log's merged streams to a filter with the WardEkf interface (WardEkf,
