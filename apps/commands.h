@@ -23,5 +23,6 @@ void RegisterCalibrateCommand(CLI::App* app, int* status);
 void RegisterSinkageCommand(CLI::App* app, int* status);
 void RegisterImportCommand(CLI::App* app, int* status);
 void RegisterDiagnoseCommand(CLI::App* app, int* status);
+void RegisterIdentifyCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

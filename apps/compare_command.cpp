@@ -161,8 +161,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::map<std::string, int> untrusted;  // logs the trust check failed, per estimator
     const std::vector<std::string> names = {"EKF", "window", "batch"};
     for (const std::string& log_dir : ListLogs(path)) {
-      const DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
-      const ModelConfig model = ModelForLog(log, options->model);
+      DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
+      const ModelConfig model = ModelForLog(&log, options->model);
       std::vector<EstimatorRun> runs(3);
       FilterRunOptions filter;
       filter.use_gps = !options->no_gps;

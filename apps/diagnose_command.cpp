@@ -69,8 +69,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     int unexplained = 0;
     std::string html;
     for (const std::string& log_dir : ListLogs(path)) {
-      const DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
-      const ModelConfig model = ModelForLog(log, options->model);
+      DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
+      const ModelConfig model = ModelForLog(&log, options->model);
       const Diagnosis before = Diagnose(log, model, diagnosis);
       PrintDiagnosis(before, text);
       nlohmann::json j = ToJson(before);

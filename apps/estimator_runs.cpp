@@ -21,9 +21,11 @@ DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad) {
   return log;
 }
 
-ModelConfig ModelForLog(const DriveLog& log, const std::string& model_path) {
-  return model_path.empty() ? DefaultModelConfig(log.vehicle)
-                            : ReadModelYaml(model_path, log.vehicle);
+ModelConfig ModelForLog(DriveLog* log, const std::string& model_path) {
+  const ModelConfig model = model_path.empty() ? DefaultModelConfig(log->vehicle)
+                                               : ReadModelYaml(model_path, log->vehicle);
+  ApplyCalibration(model, log);
+  return model;
 }
 
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
@@ -51,8 +53,8 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
   if (out.empty()) out = name + "_" + options.name + (suite ? "" : ".csv");
   if (suite) fs::create_directories(out);
   for (const std::string& log_dir : logs) {
-    const DriveLog log = ReadLogWithWarnings(log_dir, options.skip_bad);
-    const ModelConfig model = ModelForLog(log, options.model);
+    DriveLog log = ReadLogWithWarnings(log_dir, options.skip_bad);
+    const ModelConfig model = ModelForLog(&log, options.model);
     const std::string file =
         suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
     std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";

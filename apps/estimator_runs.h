@@ -44,8 +44,9 @@ using Estimator = std::function<EstimatorOutput(const DriveLog& log, const Model
 // Reads a log for a subcommand, printing the reader's warnings (rows skipped, keys defaulted) to
 // stderr.
 DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad);
-// The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it.
-ModelConfig ModelForLog(const DriveLog& log, const std::string& model_path);
+// The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it, with its
+// calibration (wheel radii, effective track) applied to the log.
+ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
 // --skip-bad, --out); the caller adds its own and sets the callback.

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterSinkageCommand(&app, &status);
   slipgraph::RegisterImportCommand(&app, &status);
   slipgraph::RegisterDiagnoseCommand(&app, &status);
+  slipgraph::RegisterIdentifyCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
   try {
     app.parse(argc, argv);

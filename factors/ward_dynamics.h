@@ -70,10 +70,16 @@ inline AttitudeLoads<A> ComputeAttitudeLoads(const Attitude<A>& attitude, const 
   return loads;
 }
 
+// The tire forces with the laws given as functions: traction_n(N, v_rel), eq. (8), and
+// rolling_per_n(v_fwd), eq. (9) per newton of load. ComputeTireForces below passes the model's
+// laws; identifying the law passes laws whose coefficients are parameter blocks
+// (factors/law_accelerometer_factor.h).
 // T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
 // keeps the trigonometry of the normal forces out of the automatic differentiation).
-template <typename T, typename A>
-inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads, const Params& p) {
+template <typename T, typename A, typename Traction, typename Rolling>
+inline TireForces<T> ComputeTireForcesWith(const T* x, const AttitudeLoads<A>& loads,
+                                           const Params& p, const Traction& traction_n,
+                                           const Rolling& rolling_per_n) {
   const T half_track_yaw = 0.5 * p.track_width_m * x[kYawRate];
   const T v_fwd_left = x[kVbx] - half_track_yaw;
   const T v_fwd_right = x[kVbx] + half_track_yaw;
@@ -85,11 +91,11 @@ inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads
   TireForces<T> out;
   out.v_rel_left_mps = TireRelativeVelocityMps(x[kOmegaLeft], p.wheel_radius_m, v_fwd_left);
   out.v_rel_right_mps = TireRelativeVelocityMps(x[kOmegaRight], p.wheel_radius_m, v_fwd_right);
-  out.traction_left_n = TractionForceN(driven_left_n, out.v_rel_left_mps, p.tire);
-  out.traction_right_n = TractionForceN(driven_right_n, out.v_rel_right_mps, p.tire);
+  out.traction_left_n = traction_n(driven_left_n, out.v_rel_left_mps);
+  out.traction_right_n = traction_n(driven_right_n, out.v_rel_right_mps);
   // Eq. (9) is linear in N: one evaluation per side serves every wheel on it.
-  const T rolling_per_n_left = RollingResistancePerNewton(v_fwd_left, p.rolling);
-  const T rolling_per_n_right = RollingResistancePerNewton(v_fwd_right, p.rolling);
+  const T rolling_per_n_left = rolling_per_n(v_fwd_left);
+  const T rolling_per_n_right = rolling_per_n(v_fwd_right);
   const T rolling_left_n = roll_left_n * rolling_per_n_left;
   const T rolling_right_n = roll_right_n * rolling_per_n_right;
 
@@ -103,6 +109,13 @@ inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads
       p.track_width_m / (2.0 * p.yaw_inertia_kgm2) *
       (out.traction_right_n + yaw_roll_right_n - out.traction_left_n - yaw_roll_left_n);
   return out;
+}
+
+template <typename T, typename A>
+inline TireForces<T> ComputeTireForces(const T* x, const AttitudeLoads<A>& loads, const Params& p) {
+  return ComputeTireForcesWith(
+      x, loads, p, [&p](const A& n, const T& v_rel) { return TractionForceN(n, v_rel, p.tire); },
+      [&p](const T& v_fwd) { return RollingResistancePerNewton(v_fwd, p.rolling); });
 }
 
 template <typename T, typename A>

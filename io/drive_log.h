@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "model/model_config.h"
 #include "model/vehicle.h"
 
 namespace slipgraph {
@@ -108,5 +109,15 @@ struct DriveLog {
   bool Has(const std::string& file_name) const;
   int wheel_count() const { return static_cast<int>(WheelNames(vehicle.type).size()); }
 };
+
+// The samples of every stream with t in [t_begin, t_end), and the events that overlap it
+// (clipped to it); vehicle, files and warnings as the log's. For cross-validation: fit on one
+// part of a drive, score on another.
+DriveLog SliceLog(const DriveLog& log, double t_begin, double t_end);
+
+// The model file's calibration (ModelConfig::calibration) applied to the log: each wheel's speed
+// scaled by its side's radius scale (the estimators then read it as the speed of a wheel of
+// vehicle.yaml's radius), the vehicle's track set to the effective track when one is given.
+void ApplyCalibration(const ModelConfig& model, DriveLog* log);
 
 }  // namespace slipgraph

@@ -249,6 +249,10 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
        {{"init_samples", &init_samples, false},
         {"ema_samples", &m.offset_ema_samples, false},
         {"rest_guard", &m.offset_rest_guard_s, false}}},
+      {"calibration",
+       {{"wheel_radius_scale_left", &m.calibration.wheel_radius_scale_left, false},
+        {"wheel_radius_scale_right", &m.calibration.wheel_radius_scale_right, false},
+        {"track_width", &m.calibration.track_width_m, false}}},
       {"tire_uncertainty",
        {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
         {"slip_relative_sd", &m.tire_uncertainty.slip_relative_sd, false},
@@ -429,6 +433,9 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
                       {"ema_samples", m.offset_ema_samples},
                       {"rest_guard", m.offset_rest_guard_s}});
+  section("calibration", {{"wheel_radius_scale_left", m.calibration.wheel_radius_scale_left},
+                          {"wheel_radius_scale_right", m.calibration.wheel_radius_scale_right},
+                          {"track_width", m.calibration.track_width_m}});
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
                                {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},
                                {"slip_floor", m.tire_uncertainty.slip_floor_mps},

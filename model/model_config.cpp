@@ -67,6 +67,16 @@ bool ModelConfig::IsValid(std::string* error) const {
   for (const auto& field : positive) {
     if (!CheckPositive(field.name, field.value, error)) return false;
   }
+  for (double scale : {calibration.wheel_radius_scale_left, calibration.wheel_radius_scale_right}) {
+    if (!(scale >= 0.5 && scale <= 2.0)) {
+      *error = "calibration.wheel_radius_scale_left and _right must be within [0.5, 2]";
+      return false;
+    }
+  }
+  if (!(calibration.track_width_m >= 0.0)) {
+    *error = "calibration.track_width must be non-negative (0: vehicle.yaml's)";
+    return false;
+  }
   if (tire_uncertainty.slip_relative_sd < 0.0 || tire_uncertainty.slip_floor_mps < 0.0) {
     *error = "tire_uncertainty.slip_relative_sd and slip_floor must be non-negative";
     return false;

@@ -86,9 +86,20 @@ struct TireLawUncertainty {
   double correlation_time_s = 0.0;
 };
 
+// What the model file may correct in vehicle.yaml's geometry (`slipgraph identify` writes it):
+// each side's effective rolling radius as a scale of vehicle.yaml's wheel_radius, and the
+// effective track (a skid-steer turns as if its track were wider than its wheels are apart).
+// Applied to a log by ApplyCalibration (io/drive_log.h) before any estimator sees it.
+struct CalibrationConfig {
+  double wheel_radius_scale_left = 1.0;
+  double wheel_radius_scale_right = 1.0;
+  double track_width_m = 0.0;  // 0: vehicle.yaml's
+};
+
 struct ModelConfig {
   double gravity_mps2 = 9.80665;
   TireLawUncertainty tire_uncertainty;
+  CalibrationConfig calibration;
   TireParams tire;        // from vehicle.yaml unless the model file overrides it
   RollingParams rolling;  // from vehicle.yaml unless the model file overrides it
   // The uncertainty (sd) of those coefficients, when the law is a fit that the terrain may not

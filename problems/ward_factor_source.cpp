@@ -16,6 +16,7 @@
 #include "factors/force_terms_accelerometer_factor.h"
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"
+#include "factors/law_accelerometer_factor.h"
 #include "factors/oppose_motion_prior.h"
 #include "factors/rate_bound_prior.h"
 #include "factors/state_walk_factor.h"
@@ -248,7 +249,10 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
                                              tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {
-      if (force_terms != nullptr) {
+      if (globals.law != nullptr) {
+        Add("accelerometer", LawAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
+            nullptr, x, offsets, globals.law, globals.radius_error);
+      } else if (force_terms != nullptr) {
         // The sample's attitude is c's already: no second look-up.
         const ForceTermContext context{imu.t, c.attitude, imu.ax};
         Add("accelerometer",

@@ -136,6 +136,11 @@ struct GlobalBlocks {
   // The slip-stiffness nodes (stiffness_node_count() contiguous blocks of one), or null when
   // the stiffness is the law's (WardProblemOptions::stiffness_prior_sd = 0). Not with effects.
   double* stiffness = nullptr;
+  // The tire and rolling laws' coefficients (kLawCoefficientCount) and the two sides' radius
+  // errors as unknowns (factors/law_accelerometer_factor.h), or null when they are the model's.
+  // Both or neither; not with effects, force terms or the stiffness walk.
+  double* law = nullptr;
+  double* radius_error = nullptr;
 };
 
 class WardFactorSource {

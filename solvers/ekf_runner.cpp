@@ -112,7 +112,10 @@ std::string DescribeFilterRun(const FilterResult& result) {
         << result.stats.weak_constraints[i];
   }
   out << "\n  IMU samples for offset initialisation: " << result.stats.offset_init_samples
-      << (result.stats.offset_moving_start ? " (moving: offsets compensated by the wheels)" : "")
+      << (result.stats.offset_implausible_start
+              ? " (moving, the wheels' acceleration not the body's: accelerometer offset from 0)"
+          : result.stats.offset_moving_start ? " (moving: offsets compensated by the wheels)"
+                                             : "")
       << ", late measurements: " << result.stats.late_measurements << "\n";
   if (result.stats.divergence_resets > 0) {
     out << "  DIVERGED " << result.stats.divergence_resets

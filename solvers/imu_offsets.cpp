@@ -8,6 +8,12 @@ namespace {
 // How late the encoders see a start (their first counts): at-rest samples this close to the
 // first motion are dropped.
 constexpr double kStartSeenLateS = 0.1;
+// A moving start's accelerometer offset is uncertain by at least this (the slip's change over the
+// initial samples that the wheels do not show).
+constexpr double kMovingStartSdMps2 = 0.03;
+// The largest accelerometer offset taken as plausible: a MEMS offset plus about 1.5 degrees of
+// mounting tilt.
+constexpr double kMaxPlausibleOffsetMps2 = 0.3;
 
 }  // namespace
 
@@ -91,7 +97,14 @@ void ImuOffsetEstimator::FinishInitialisation() {
     const double yaw_rate = sum_yaw / n;
     accel -= body_accel;
     gyro -= yaw_rate;
-    init_sd_ = {0.1 * std::abs(body_accel), 0.2 * std::abs(yaw_rate)};
+    init_sd_ = {0.1 * std::abs(body_accel) + kMovingStartSdMps2, 0.2 * std::abs(yaw_rate)};
+    if (std::abs(accel) > kMaxPlausibleOffsetMps2) {
+      // The wheels' acceleration was not the body's (a slip that changed: a hold-back, a wheel
+      // spinning up): no offset that large is plausible. Zero, with a typical offset's sd.
+      accel = 0.0;
+      init_sd_[0] = kMaxPlausibleOffsetMps2;
+      implausible_ = true;
+    }
   }
   accel_.Reset(accel);
   gyro_.Reset(gyro);

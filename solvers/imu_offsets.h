@@ -11,8 +11,10 @@
 // wheels (r w forward, r (w_r - w_l) / c in yaw: slip changes little over a second or two) and
 // subtracted. The wheels' forward speed at each end is the mean over a tenth of the interval, so
 // encoder noise does not enter twice. A moving start leaves the offsets less certain than a rest:
-// init_sd() says by how much (a tenth of the removed acceleration, a fifth of the removed yaw
-// rate), and the filter opens its bias states by that.
+// init_sd() says by how much (0.03 m/s^2 and a tenth of the removed acceleration, a fifth of the
+// removed yaw rate), and the filter opens its bias states by that. A compensated accelerometer
+// offset above 0.3 m/s^2 says the slip changed (a hold-back at the start): it starts at zero,
+// with that sd.
 //
 // "At rest" is known late at both ends: the encoders read still (below the filter's threshold,
 // which their quantization sets) while the body already creeps off, so the first samples of a
@@ -55,6 +57,9 @@ class ImuOffsetEstimator {
   double gyro_z_radps() const { return gyro_.value(); }
   // True when the wheels turned before a rest long enough (the offsets are motion-compensated).
   bool moving_start() const { return moving_start_; }
+  // A moving start whose compensated accelerometer offset was implausibly large (the slip changed
+  // during the initial samples): the offset starts at zero instead.
+  bool implausible_start() const { return implausible_; }
   // The initial offsets' extra uncertainty from a moving start, [accel m/s^2, gyro rad/s]; zero
   // after a rest start.
   const std::array<double, 2>& init_sd() const { return init_sd_; }
@@ -75,6 +80,7 @@ class ImuOffsetEstimator {
   int count_ = 0;
   std::vector<InitSample> init_;
   bool moving_start_ = false;
+  bool implausible_ = false;
   std::array<double, 2> init_sd_{0.0, 0.0};
   ExponentialMovingAverage accel_, gyro_;
   std::deque<Pending> pending_;  // at-rest samples younger than rest_guard_s

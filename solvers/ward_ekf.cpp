@@ -287,6 +287,7 @@ void WardEkf::AddImu(const ImuSample& imu) {
       ++stats_.offset_init_samples;
       if (offsets_.ready() && offsets_.moving_start()) {
         stats_.offset_moving_start = true;
+        stats_.offset_implausible_start = offsets_.implausible_start();
         P_(kAccelBias, kAccelBias) += offsets_.init_sd()[0] * offsets_.init_sd()[0];
         P_(kGyroBias, kGyroBias) += offsets_.init_sd()[1] * offsets_.init_sd()[1];
       }
@@ -352,6 +353,16 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
     x_(kOmegaLeft) = omega_left;
     x_(kOmegaRight) = omega_right;
     wheels_initialised_ = true;
+    if (std::abs(omega_left) >= options_.wheel_still_radps ||
+        std::abs(omega_right) >= options_.wheel_still_radps) {
+      // A log that starts in motion: the body moves as its wheels roll, give or take a slip of
+      // up to a fifth (not the rest the initial state assumes).
+      const double r = params_.wheel_radius_m;
+      x_(kVbx) = 0.5 * r * (omega_left + omega_right);
+      x_(kYawRate) = r * (omega_right - omega_left) / params_.track_width_m;
+      P_(kVbx, kVbx) = std::max(P_(kVbx, kVbx), std::pow(0.2 * x_(kVbx), 2));
+      P_(kYawRate, kYawRate) = std::max(P_(kYawRate, kYawRate), std::pow(0.3 * x_(kYawRate), 2));
+    }
   }
   Begin(t);
   stats_.wheels.dropped_components += (left_ok ? 0 : 1) + (right_ok ? 0 : 1);

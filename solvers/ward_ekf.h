@@ -91,6 +91,7 @@ struct EkfStats {
   // The wheels turned during those samples: the offsets were motion-compensated from the wheels
   // (solvers/imu_offsets.h) and the bias states opened by their uncertainty.
   bool offset_moving_start = false;
+  bool offset_implausible_start = false;  // ... and the compensation failed: started at zero
   // Times the state or covariance became non-finite (a model far from the data can make the
   // stiff tire law blow up): the filter went back to its last finite state, covariance inflated.
   long divergence_resets = 0;

@@ -49,7 +49,7 @@ TEST(ImuOffsets, AMovingStartSubtractsTheWheelsAccelerationAndYawRate) {
   EXPECT_TRUE(offsets.moving_start());
   EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-9);
   EXPECT_NEAR(offsets.gyro_z_radps(), 0.01, 1e-12);
-  EXPECT_NEAR(offsets.init_sd()[0], 0.05, 1e-9);
+  EXPECT_NEAR(offsets.init_sd()[0], 0.03 + 0.05, 1e-9);
   EXPECT_NEAR(offsets.init_sd()[1], 0.04, 1e-12);
 
   // Control: the same samples with the wheels still (a rest start) keep the plain mean, which
@@ -85,6 +85,18 @@ TEST(ImuOffsets, ARestShorterThanTheInitialSamplesIsUsedWhenTheWheelsTurn) {
   ASSERT_TRUE(short_rest.ready());
   EXPECT_TRUE(short_rest.moving_start());
   EXPECT_NEAR(short_rest.accel_x_mps2(), 0.1, 0.02);
+}
+
+TEST(ImuOffsets, AnImplausibleCompensatedOffsetStartsAtZero) {
+  // Held back from the first sample: the wheels keep their speed while the body decelerates at
+  // 0.7 m/s^2. The compensated offset (-0.6) is no sensor's: zero, with a typical offset's sd.
+  ImuOffsetEstimator offsets(100, 200.0);
+  for (int i = 0; i < 100; ++i)
+    offsets.Add(0.01 * i, 0.1 - 0.7, 0.0, 0.0, false, {1.0, 0.0, false});
+  ASSERT_TRUE(offsets.ready());
+  EXPECT_TRUE(offsets.implausible_start());
+  EXPECT_EQ(offsets.accel_x_mps2(), 0.0);
+  EXPECT_NEAR(offsets.init_sd()[0], 0.3, 1e-12);
 }
 
 }  // namespace

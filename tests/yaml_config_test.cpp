@@ -93,6 +93,9 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {decay_alpha: 1.5}\n"), LagrVehicle()),
                InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("tire: {C1: -1}\n"), LagrVehicle()), InputError);
+  EXPECT_THROW(
+      ReadModelYaml(WriteModel("calibration: {wheel_radius_scale_left: 0}\n"), LagrVehicle()),
+      InputError);
 }
 
 TEST(YamlConfig, WrittenModelReadsBackTheSame) {
@@ -100,6 +103,8 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.tire.C2 = -0.02;
   m.weak_constraints.decay_alpha = 0.7;
   m.effects = {"quadratic_drag", "imu_mounting_pitch"};
+  m.calibration.wheel_radius_scale_right = 0.97;
+  m.calibration.track_width_m = 0.81;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -107,6 +112,9 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.weak_constraints.decay_alpha, 0.7);
   EXPECT_EQ(back.effects, m.effects);
   EXPECT_EQ(back.offset_init_samples, m.offset_init_samples);
+  EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_left, 1.0);
+  EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_right, 0.97);
+  EXPECT_DOUBLE_EQ(back.calibration.track_width_m, 0.81);
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {

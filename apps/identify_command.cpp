@@ -1,0 +1,124 @@
+// `slipgraph identify LOG...`: the robot's model from its own logs (solvers/model_identification.h)
+// fitted on the first part of each log and scored on the rest, written as a model file that
+// every other subcommand takes with --model.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "apps/commands.h"
+#include "apps/estimator_runs.h"
+#include "io/yaml_config.h"
+#include "solvers/model_identification.h"
+
+namespace slipgraph {
+namespace {
+
+std::string Figure(double value, int precision = 3) {
+  if (!std::isfinite(value)) return "-";
+  std::ostringstream out;
+  out << std::setprecision(precision) << value;
+  return out.str();
+}
+
+void PrintScores(const std::string& name, const ModelScore& nominal, const ModelScore& fitted,
+                 std::ostream& out) {
+  out << "  " << name << ": GNSS NIS mean " << Figure(nominal.gnss_nis_mean) << " -> "
+      << Figure(fitted.gnss_nis_mean) << " (" << fitted.gnss_fixes << " fixes), flagged "
+      << Figure(100.0 * nominal.flagged_fraction) << " % -> "
+      << Figure(100.0 * fitted.flagged_fraction) << " %";
+  if (std::isfinite(fitted.velocity_rmse)) {
+    out << "; against truth: v RMSE " << Figure(nominal.velocity_rmse) << " -> "
+        << Figure(fitted.velocity_rmse) << " m/s, false immobilized "
+        << Figure(100.0 * nominal.false_immobilized_fraction) << " % -> "
+        << Figure(100.0 * fitted.false_immobilized_fraction) << " %";
+  }
+  out << "\n";
+}
+
+}  // namespace
+
+void RegisterIdentifyCommand(CLI::App* app, int* status) {
+  struct Options {
+    std::vector<std::string> logs;
+    std::string model, out;
+    double train = 0.5;
+    bool no_gps = false, skip_bad = false;
+    IdentifyOptions identify;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app->add_subcommand(
+      "identify",
+      "Identify the robot's model from its logs: tire and rolling laws, wheel radii, effective "
+      "track, IMU offsets, sensor noise; fitted on the first part of each log, scored on the rest");
+  cmd->add_option("LOG", options->logs, "One or more logs of the same robot")->required();
+  cmd->add_option("--model", options->model, "Model YAML to start from (default: the nominal)");
+  cmd->add_option("--out", options->out, "Model YAML to write (default ./<first log>_model.yaml)");
+  cmd->add_option("--train", options->train,
+                  "Fraction of each log (from its start) to fit on; the rest is held out and "
+                  "scored. 1: fit on everything, no score")
+      ->check(CLI::Range(0.05, 1.0))
+      ->capture_default_str();
+  cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
+  cmd->add_flag("--fit-radius", options->identify.fit_radius,
+                "Fit each side's rolling radius with the law (seen only against GNSS ground "
+                "speed, where it is one with the mean slip)");
+  cmd->add_option("--threads", options->identify.threads, "Solver threads")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->callback([options, status]() {
+    namespace fs = std::filesystem;
+    std::vector<DriveLog> train, held_out;
+    ModelConfig model;
+    for (size_t i = 0; i < options->logs.size(); ++i) {
+      const DriveLog log = ReadLogWithWarnings(options->logs[i], options->skip_bad);
+      if (i == 0) {
+        model = options->model.empty() ? DefaultModelConfig(log.vehicle)
+                                       : ReadModelYaml(options->model, log.vehicle);
+      }
+      if (log.wheels.size() < 2) {
+        std::cerr << "identify: " << options->logs[i] << ": no wheel data\n";
+        *status = 1;
+        return;
+      }
+      const double t0 = log.wheels.front().t, t1 = log.wheels.back().t;
+      const double split = options->train >= 1.0 ? t1 + 1.0 : t0 + options->train * (t1 - t0);
+      train.push_back(SliceLog(log, -1e300, split));
+      if (options->train < 1.0) held_out.push_back(SliceLog(log, split, 1e300));
+    }
+    options->identify.use_gps = !options->no_gps;
+    std::cerr << "identify: fitting on " << train.size() << " log(s)"
+              << (options->train < 1.0
+                      ? " (the first " + Figure(100.0 * options->train) + " % of each)"
+                      : "")
+              << "\n";
+    const IdentificationResult result = IdentifyModel(train, model, options->identify);
+    std::cout << DescribeIdentification(result);
+    if (!held_out.empty()) {
+      std::cout << "held out (the model file's values -> the identified):\n";
+      for (size_t i = 0; i < held_out.size(); ++i) {
+        PrintScores(options->logs[i], ScoreModel(held_out[i], model, !options->no_gps),
+                    ScoreModel(held_out[i], result.model, !options->no_gps), std::cout);
+      }
+    }
+    const std::string out = options->out.empty()
+                                ? fs::path(options->logs[0]).filename().string() + "_model.yaml"
+                                : options->out;
+    std::ofstream file(out);
+    WriteModelYaml(result.model, file);
+    file.close();
+    if (!file) {
+      std::cerr << "identify: cannot write " << out << "\n";
+      *status = 1;
+      return;
+    }
+    std::cout << "model: " << out << " (use it with --model)\n";
+    *status = 0;
+  });
+}
+
+}  // namespace slipgraph

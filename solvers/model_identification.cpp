@@ -1,0 +1,386 @@
+#include "solvers/model_identification.h"
+
+#include <ceres/covariance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "evaluation/evaluation.h"
+#include "io/estimate_file.h"
+#include "io/measurement_stream.h"
+#include "solvers/batch_smoother.h"
+#include "solvers/ekf_runner.h"
+
+namespace slipgraph {
+namespace {
+
+// The noise sd of a sampled signal from its second differences at lag 2 (see the header): their
+// RMS over those within 5 robust sd (1.4826 x the median absolute difference) of zero, so that
+// spikes and steps do not count. Not the median itself: a quantized signal's differences take a
+// few discrete values, and their median is one of them.
+double SecondDifferenceSd(const std::vector<double>& x, size_t lag, long* used) {
+  std::vector<double> d;
+  for (size_t k = lag; k + lag < x.size(); ++k) {
+    const double value = x[k + lag] - 2.0 * x[k] + x[k - lag];
+    if (std::isfinite(value)) d.push_back(std::abs(value));
+  }
+  *used = 0;
+  if (d.size() < 10) return std::nan("");
+  std::vector<double> sorted = d;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double robust = 1.4826 * sorted[sorted.size() / 2];
+  double sum_sq = 0.0;
+  for (double v : d) {
+    if (robust == 0.0 || v <= 5.0 * robust) sum_sq += v * v, ++*used;
+  }
+  return *used > 0 ? std::sqrt(sum_sq / *used / 6.0) : std::nan("");
+}
+
+void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
+                         std::vector<NoiseEstimate>* out) {
+  struct Signal {
+    const char* name;
+    double* value;
+    size_t lag;  // 2 for speeds differenced from counts (see the header)
+    std::vector<std::vector<double>> series;
+  };
+  Signal accel{"measurement_noise.imu_sd_accel", &model->measurement.imu_sd_accel_mps2, 1, {}};
+  Signal gyro{"measurement_noise.imu_sd_gyro", &model->measurement.imu_sd_gyro_radps, 1, {}};
+  Signal wheels{
+      "measurement_noise.wheels_sd_omega", &model->measurement.wheels_sd_omega_radps, 2, {}};
+  // GNSS at 1 Hz: lag 1 (two seconds) already holds some of the robot's own speed changes.
+  Signal gnss{"measurement_noise.gps_sd_v", &model->measurement.gps_sd_v_mps, 1, {}};
+  for (const DriveLog& log : logs) {
+    std::vector<double> ax, gz, left, right;
+    for (const ImuSample& s : log.imu) ax.push_back(s.ax), gz.push_back(s.gz);
+    for (const WheelSample& w : log.wheels) {
+      const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
+      left.push_back(s.left_radps), right.push_back(s.right_radps);
+    }
+    // GNSS: the ground speed while moving (its components turn with the robot; its noise along
+    // the course is the components' sd; below 0.3 m/s the norm's noise is not Gaussian), less
+    // the wheels' mean surface speed at the fix, which takes the robot's own speed changes out.
+    std::vector<double> speed;
+    for (const GpsSample& g : log.gps) {
+      const double v = std::hypot(g.vx, g.vy);
+      const long i = LatestAtOrBefore(log.wheels, g.t);
+      double wheel = std::nan("");
+      if (i >= 0 && g.t - log.wheels[i].t <= 0.05) {
+        const SideSpeeds s = DrivenSideSpeeds(log.wheels[i], log.vehicle.type);
+        wheel = 0.5 * log.vehicle.wheel_radius_m * std::abs(s.left_radps + s.right_radps);
+      }
+      speed.push_back(v > 0.3 ? v - wheel : std::nan(""));
+    }
+    gnss.series.push_back(speed);
+    accel.series.push_back(ax);
+    gyro.series.push_back(gz);
+    wheels.series.push_back(left);
+    wheels.series.push_back(right);
+  }
+  for (Signal* signal : {&accel, &gyro, &wheels, &gnss}) {
+    // Pooled over the series: the samples' weighted mean of the variances.
+    double weighted = 0.0;
+    long total = 0;
+    for (const std::vector<double>& series : signal->series) {
+      long used = 0;
+      const double sd = SecondDifferenceSd(series, signal->lag, &used);
+      if (std::isfinite(sd)) weighted += sd * sd * used, total += used;
+    }
+    NoiseEstimate e{signal->name, *signal->value, *signal->value, total, "kept (too few samples)"};
+    // GNSS at 1-10 Hz: a few minutes of fixes; the others sample at 50-100 Hz.
+    const long needed = signal == &gnss ? 30 : 100;
+    if (total >= needed && weighted > 0.0) {
+      double variance = weighted / total;
+      if (signal == &gnss) {
+        // Less the wheels' share: r sd_w / sqrt(2) of the mean surface speed (estimated above).
+        const double r = logs[0].vehicle.wheel_radius_m;
+        const double wheel_sd = r * model->measurement.wheels_sd_omega_radps / std::sqrt(2.0);
+        variance = std::max(0.25 * variance, variance - wheel_sd * wheel_sd);
+      }
+      e.value = std::sqrt(variance);
+      e.method = "second difference";
+      *signal->value = e.value;
+    }
+    out->push_back(e);
+  }
+}
+
+// u = r (w_r - w_l) = c (yaw rate - a) over the wheel samples with the nearest IMU sample: least
+// squares of u on the gyro with an intercept (a: the gyro's offset). That way round because the
+// gyro is the precise one (encoder noise in a regressor would bias c up: 0.82 m for a 0.55 m
+// track on the bundled log). NaN when the drive turns too little.
+// The wheels' rolling radius against GNSS ground speed: |v_gnss| = (1 + e) r |w_mean| through
+// the origin, over the fixes while the wheels turn (mean surface speed above 0.3 m/s), with the
+// wheel sample nearest each fix. e includes the mean slip (the law's steady slip, a percent or
+// two on soft ground). sd from the fit's scatter. NaN with fewer than 10 fixes.
+double GnssRadiusError(const std::vector<DriveLog>& logs, double* sd, long* used) {
+  double suu = 0.0, suv = 0.0, svv = 0.0;
+  long n = 0;
+  for (const DriveLog& log : logs) {
+    const double r = log.vehicle.wheel_radius_m;
+    for (const GpsSample& g : log.gps) {
+      const long i = LatestAtOrBefore(log.wheels, g.t);
+      if (i < 0 || g.t - log.wheels[i].t > 0.05) continue;
+      const SideSpeeds s = DrivenSideSpeeds(log.wheels[i], log.vehicle.type);
+      const double u = 0.5 * r * std::abs(s.left_radps + s.right_radps);
+      const double v = std::hypot(g.vx, g.vy);
+      if (!std::isfinite(u) || !std::isfinite(v) || u < 0.3) continue;
+      suu += u * u, suv += u * v, svv += v * v, ++n;
+    }
+  }
+  *used = n;
+  *sd = std::nan("");
+  if (n < 10) return std::nan("");
+  const double slope = suv / suu;
+  const double residual_sq = std::max(0.0, svv - 2.0 * slope * suv + slope * slope * suu);
+  *sd = std::sqrt(residual_sq / (n - 1) / suu);
+  return slope - 1.0;
+}
+
+double EffectiveTrack(const std::vector<DriveLog>& logs, long* used) {
+  double su = 0.0, sg = 0.0, sgg = 0.0, sug = 0.0;
+  long n = 0, turning = 0;
+  for (const DriveLog& log : logs) {
+    const double r = log.vehicle.wheel_radius_m;
+    for (const WheelSample& w : log.wheels) {
+      const long i = LatestAtOrBefore(log.imu, w.t);
+      if (i < 0 || w.t - log.imu[i].t > 0.05) continue;
+      const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
+      const double u = r * (s.right_radps - s.left_radps);
+      const double g = log.imu[i].gz;
+      if (!std::isfinite(u) || !std::isfinite(g)) continue;
+      su += u, sg += g, sgg += g * g, sug += u * g, ++n;
+      if (std::abs(g) > 0.05) ++turning;
+    }
+  }
+  *used = n;
+  if (n < 100 || turning < 100) return std::nan("");
+  const double cov_ug = sug - su * sg / n, var_g = sgg - sg * sg / n;
+  if (!(var_g > 0.0) || !(cov_ug > 0.0)) return std::nan("");
+  return cov_ug / var_g;
+}
+
+}  // namespace
+
+IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
+                                   const ModelConfig& input_model, const IdentifyOptions& options) {
+  if (input_logs.empty()) throw std::invalid_argument("identify needs at least one log");
+  IdentificationResult result;
+  ModelConfig model = input_model;
+  model.effects.clear();  // an effect and the law would explain the same force
+  model.effect_windows.clear();
+  if (!input_model.effects.empty()) {
+    result.notes.push_back("the model's effects are left out: the law is fitted without them");
+  }
+  std::vector<DriveLog> logs = input_logs;
+  for (DriveLog& log : logs) ApplyCalibration(model, &log);
+
+  // 1. Sensor noise.
+  EstimateSensorNoise(logs, &model, &result.noise);
+
+  // 2. The effective track.
+  const VehicleType type = logs[0].vehicle.type;
+  result.effective_track_m = EffectiveTrack(logs, &result.track_samples);
+  if (std::isfinite(result.effective_track_m) && type == VehicleType::kSkidSteer) {
+    model.calibration.track_width_m = result.effective_track_m;
+    for (DriveLog& log : logs) log.vehicle.track_width_m = result.effective_track_m;
+    result.notes.push_back("skid-steer: the model takes the effective track");
+  } else if (!std::isfinite(result.effective_track_m)) {
+    result.notes.push_back("effective track: the drive turns too little to tell");
+  }
+
+  result.gnss_radius_error =
+      GnssRadiusError(logs, &result.gnss_radius_error_sd, &result.gnss_radius_fixes);
+
+  // 3. Laws, radii and offsets in one problem, from one EKF per log.
+  std::vector<FilterResult> runs;
+  FilterRunOptions filter;
+  filter.use_gps = options.use_gps;
+  filter.multiple_model = false;
+  for (const DriveLog& log : logs) runs.push_back(RunEkf(log, model, filter));
+  std::vector<const DriveLog*> log_pointers;
+  std::vector<const std::vector<WardEstimate>*> initial;
+  for (size_t i = 0; i < logs.size(); ++i) {
+    if (runs[i].estimates.empty()) {
+      throw std::invalid_argument(logs[i].directory + ": no wheel data to identify from");
+    }
+    log_pointers.push_back(&logs[i]);
+    initial.push_back(&runs[i].estimates);
+  }
+  WardProblemOptions problem_options = WithFilterSettings(WardProblemOptions{}, filter);
+  // The law is what is sought: the accelerometer factors carry the sensor's noise and a small
+  // share of the law's error only (not the model's stated law uncertainty, which describes a law
+  // taken as given), and the disturbance walks slowly, so the law, not a_dist, explains the
+  // forces; the walk's Huber loss still lets a hold-back's step through.
+  ModelConfig fit_model = model;
+  fit_model.tire_uncertainty = options.law_residual;
+  problem_options.tire_law_correlation_time_s = options.law_residual.correlation_time_s;
+  fit_model.process.a_dist_mps3_per_sqrt_hz = options.disturbance_walk_mps3_per_sqrt_hz;
+  std::unique_ptr<IdentificationProblem> problem =
+      BuildIdentificationProblem(log_pointers, fit_model, initial, problem_options, options.priors);
+  if (!options.fit_radius) {
+    problem->problem->SetParameterBlockConstant(problem->radius_error.data());
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = options.threads;
+  // A relative cost change of 1e-5 is a tenth of a unit of log-likelihood on a minute's log: the
+  // law's bounds and the robust losses make the last digits slow (tr_ratio about 0.3).
+  solver.function_tolerance = 1e-5;
+  ceres::Solve(solver, problem->problem.get(), &result.summary);
+  result.converged = result.summary.termination_type == ceres::CONVERGENCE;
+  if (!result.converged) {
+    result.notes.push_back(
+        "the solve did not converge (" +
+        std::string(ceres::TerminationTypeToString(result.summary.termination_type)) +
+        "): the values are the last iterate");
+  }
+  for (const IdentificationLogBlocks& blocks : problem->logs)
+    result.offsets.push_back(blocks.offsets);
+
+  // Their covariance.
+  const int count = kLawCoefficientCount + 2;
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Constant(count, count, std::nan(""));
+  {
+    ceres::Covariance::Options covariance_options;
+    covariance_options.num_threads = options.threads;
+    covariance_options.algorithm_type = ceres::SPARSE_QR;
+    ceres::Covariance estimator(covariance_options);
+    double* law = problem->law.data();
+    double* radius = problem->radius_error.data();
+    const std::vector<std::pair<const double*, const double*>> pairs = {
+        {law, law}, {law, radius}, {radius, radius}};
+    if (estimator.Compute(pairs, problem->problem.get())) {
+      Eigen::Matrix<double, kLawCoefficientCount, kLawCoefficientCount, Eigen::RowMajor> ll;
+      Eigen::Matrix<double, kLawCoefficientCount, 2, Eigen::RowMajor> lr;
+      Eigen::Matrix<double, 2, 2, Eigen::RowMajor> rr;
+      estimator.GetCovarianceBlock(law, law, ll.data());
+      estimator.GetCovarianceBlock(law, radius, lr.data());
+      estimator.GetCovarianceBlock(radius, radius, rr.data());
+      covariance.topLeftCorner<kLawCoefficientCount, kLawCoefficientCount>() = ll;
+      covariance.topRightCorner<kLawCoefficientCount, 2>() = lr;
+      covariance.bottomLeftCorner<2, kLawCoefficientCount>() = lr.transpose();
+      covariance.bottomRightCorner<2, 2>() = rr;
+      const Eigen::VectorXd sd = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+      result.correlation = covariance.cwiseQuotient(sd * sd.transpose());
+    } else {
+      result.notes.push_back("the parameters' covariance was not recovered: no sd");
+    }
+  }
+  const std::array<double, kLawCoefficientCount> nominal_law =
+      LawCoefficients(model.tire, model.rolling);
+  for (int i = 0; i < kLawCoefficientCount; ++i) {
+    result.parameters.push_back({LawCoefficientNames()[i], nominal_law[i], problem->law[i],
+                                 std::sqrt(covariance(i, i)), options.priors.law_sd[i]});
+  }
+  for (int side = 0; side < 2 && options.fit_radius; ++side) {
+    const int i = kLawCoefficientCount + side;
+    result.parameters.push_back({side == 0 ? "radius_error.left" : "radius_error.right", 0.0,
+                                 problem->radius_error[side], std::sqrt(covariance(i, i)),
+                                 options.priors.radius_error_sd});
+  }
+  if (result.correlation.size() > 0) {
+    const int kept = static_cast<int>(result.parameters.size());
+    result.correlation = result.correlation.topLeftCorner(kept, kept).eval();
+  }
+  SetLawCoefficients(problem->law, &model.tire, &model.rolling);
+  // The law is now the data's: its soils' spread no longer describes its error.
+  model.law_samples.clear();
+  model.calibration.wheel_radius_scale_left *= 1.0 + problem->radius_error[0];
+  model.calibration.wheel_radius_scale_right *= 1.0 + problem->radius_error[1];
+
+  std::string error;
+  if (!model.IsValid(&error)) result.notes.push_back("the identified model is invalid: " + error);
+  result.model = model;
+  return result;
+}
+
+std::string DescribeIdentification(const IdentificationResult& r) {
+  std::ostringstream out;
+  out << std::setprecision(4);
+  out << "parameters (prior sd: the data identify a parameter whose sd is under half of it):\n";
+  for (const IdentifiedParameter& p : r.parameters) {
+    out << "  " << std::left << std::setw(20) << p.name << std::right << " " << std::setw(9)
+        << p.nominal << " -> " << std::setw(9) << p.value << " +- " << std::setw(9) << p.sd
+        << "  (prior sd " << p.prior_sd << ") "
+        << (std::isfinite(p.sd) ? (p.identified() ? "identified" : "NOT identified: the prior's")
+                                : "no sd")
+        << "\n";
+  }
+  if (r.correlation.size() > 0) {
+    for (int i = 0; i < r.correlation.rows(); ++i) {
+      for (int j = i + 1; j < r.correlation.cols(); ++j) {
+        if (std::abs(r.correlation(i, j)) >= 0.8) {
+          out << "  correlated: " << r.parameters[i].name << " and " << r.parameters[j].name << " ("
+              << std::setprecision(2) << r.correlation(i, j) << std::setprecision(4)
+              << "): the data see their combination, not each\n";
+        }
+      }
+    }
+  }
+  out << "noise:\n";
+  for (const NoiseEstimate& e : r.noise) {
+    out << "  " << std::left << std::setw(36) << e.name << std::right << " " << std::setw(9)
+        << e.nominal << " -> " << std::setw(9) << e.value << "  (" << e.method << ", " << e.samples
+        << " samples)\n";
+  }
+  out << "wheel radius against GNSS ground speed: ";
+  if (std::isfinite(r.gnss_radius_error)) {
+    out << std::showpos << 100.0 * r.gnss_radius_error << std::noshowpos << " +- "
+        << 100.0 * r.gnss_radius_error_sd << " % (" << r.gnss_radius_fixes
+        << " fixes; the mean slip is in it: not applied)\n";
+  } else {
+    out << "too few fixes while driving\n";
+  }
+  out << "effective track: ";
+  if (std::isfinite(r.effective_track_m)) {
+    out << r.effective_track_m << " m (" << r.track_samples << " samples)\n";
+  } else {
+    out << "not identified\n";
+  }
+  for (size_t i = 0; i < r.offsets.size(); ++i) {
+    out << "log " << i + 1 << " IMU offsets: c_ax " << r.offsets[i][0] << " m/s^2, c_gz "
+        << r.offsets[i][1] << " rad/s\n";
+  }
+  out << "solve: " << r.summary.iterations.size() << " iterations, "
+      << (r.converged ? "converged" : "NOT converged") << ", " << r.summary.total_time_in_seconds
+      << " s\n";
+  for (const std::string& note : r.notes) out << "  note: " << note << "\n";
+  return out.str();
+}
+
+ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool use_gps) {
+  DriveLog log = input_log;
+  ApplyCalibration(model, &log);
+  FilterRunOptions run;  // as `filter` runs it (a bank when the model has law samples)
+  run.use_gps = use_gps;
+  run.ekf.record_innovations = true;
+  const FilterResult result = RunEkf(log, model, run);
+  ModelScore score;
+  const auto it = result.stats.innovations.find("gnss");
+  if (it != result.stats.innovations.end()) {
+    double sum = 0.0;
+    for (double z : it->second.normalized) {
+      if (std::isfinite(z)) sum += z * z, ++score.gnss_fixes;
+    }
+    if (score.gnss_fixes > 0) score.gnss_nis_mean = sum / score.gnss_fixes;
+  }
+  long flagged = 0;
+  for (const WardEstimate& e : result.estimates) flagged += e.slip.immobilized ? 1 : 0;
+  if (!result.estimates.empty()) {
+    score.flagged_fraction = static_cast<double>(flagged) / result.estimates.size();
+  }
+  if (!log.truth.empty() && !result.estimates.empty()) {
+    const Evaluation ev = Evaluate(log, EstimateTable(result.estimates));
+    score.velocity_rmse = ev.velocity_rmse;
+    score.false_immobilized_fraction = ev.false_immobilized_fraction();
+  }
+  return score;
+}
+
+}  // namespace slipgraph
