@@ -37,13 +37,16 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
   cmd->add_option("--model", run->model, "Model YAML overriding the vehicle's nominal values");
   cmd->add_flag("--no-gps", *no_gps, "Leave GNSS out");
   cmd->add_flag("--skip-bad", run->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->add_flag("--strict", run->strict,
+                "Exit with status 3 when the trust check fails on a log (estimates still "
+                "written)");
   cmd->add_option("--out", run->out,
                   "Estimate CSV (a suite: a directory, one CSV per log); default ./<log>_" + name +
                       ".csv or ./<suite>_" + name + "/");
   return cmd;
 }
 
-void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate) {
+int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate) {
   namespace fs = std::filesystem;
   const std::string path = options.log.empty() ? DefaultLogPath() : options.log;
   const std::vector<std::string> logs = ListLogs(path);
@@ -52,6 +55,7 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
   std::string out = options.out;
   if (out.empty()) out = name + "_" + options.name + (suite ? "" : ".csv");
   if (suite) fs::create_directories(out);
+  int untrusted = 0;
   for (const std::string& log_dir : logs) {
     DriveLog log = ReadLogWithWarnings(log_dir, options.skip_bad);
     const ModelConfig model = ModelForLog(&log, options.model);
@@ -65,6 +69,7 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
               << (trust.trusted ? ""
                                 : "  the estimate file's column `suspect` marks the samples\n");
     output.extra.push_back({"suspect", trust.suspect});
+    untrusted += trust.trusted ? 0 : 1;
     WriteEstimates(output.estimates, file, output.extra);
     if (!log.truth.empty()) {
       Evaluation ev = Evaluate(log, ReadNumericTable(file));
@@ -72,6 +77,12 @@ void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& e
       PrintEvaluation(ev, std::cout);
     }
   }
+  if (options.strict && untrusted > 0) {
+    std::cerr << options.name << ": --strict: " << untrusted << " of " << logs.size()
+              << " log(s) not trusted\n";
+    return kUntrustedExit;
+  }
+  return 0;
 }
 
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver) {

@@ -29,7 +29,14 @@ struct EstimatorRunOptions {
   std::string out;    // empty: ./<log>_<name>.csv, or ./<suite>_<name>/ for a suite
   bool skip_bad = false;
   std::string name;  // "filter", "smooth": the default output suffix and report prefix
+  // A log whose estimates fail the trust check (solvers/trust_check.h) is an error, not only a
+  // warning: RunEstimatorOverLogs then returns kUntrustedExit.
+  bool strict = false;
 };
+
+// The exit status of an estimator subcommand run with --strict when a log's estimates are not
+// trusted (its outputs are still written).
+constexpr int kUntrustedExit = 3;
 
 // What an estimator gives for one log: its estimates and any columns of its own.
 struct EstimatorOutput {
@@ -49,12 +56,14 @@ DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad);
 ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
-// --skip-bad, --out); the caller adds its own and sets the callback.
+// --skip-bad, --strict, --out); the caller adds its own and sets the callback.
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               const std::string& description, EstimatorRunOptions* run,
                               bool* no_gps);
 
-void RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate);
+// Returns the subcommand's exit status: 0, or kUntrustedExit with options.strict when any log's
+// estimates were not trusted.
+int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate);
 
 // --solver chain|ceres: how the sliding window solves (online, compare).
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver);

@@ -28,13 +28,12 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
     if (options->gnss_fading) run_options.ekf.gnss_fading_fixes = kGnssFadingFixes;
     run_options.use_gps = !options->no_gps;
     run_options.multiple_model = !options->single_law;
-    RunEstimatorOverLogs(options->run,
-                         [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
-                           const FilterResult result = RunEkf(log, model, run_options);
-                           report << DescribeFilterRun(result);
-                           return EstimatorOutput{result.estimates, {}};
-                         });
-    *status = 0;
+    *status = RunEstimatorOverLogs(
+        options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
+          const FilterResult result = RunEkf(log, model, run_options);
+          report << DescribeFilterRun(result);
+          return EstimatorOutput{result.estimates, {}};
+        });
   });
 }
 

@@ -46,6 +46,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     std::vector<std::string> logs;
     std::string model, out;
     double train = 0.5;
+    std::string part = "first";
     bool no_gps = false, skip_bad = false;
     IdentifyOptions identify;
   };
@@ -61,6 +62,11 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
                   "Fraction of each log (from its start) to fit on; the rest is held out and "
                   "scored. 1: fit on everything, no score")
       ->check(CLI::Range(0.05, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--train-part", options->part,
+                  "Which part of each log to fit on: the first (default) or the last --train "
+                  "fraction; the other part is scored")
+      ->check(CLI::IsMember({"first", "last"}))
       ->capture_default_str();
   cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
   cmd->add_flag("--fit-radius", options->identify.fit_radius,
@@ -86,9 +92,12 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
         return;
       }
       const double t0 = log.wheels.front().t, t1 = log.wheels.back().t;
-      const double split = options->train >= 1.0 ? t1 + 1.0 : t0 + options->train * (t1 - t0);
-      train.push_back(SliceLog(log, -1e300, split));
-      if (options->train < 1.0) held_out.push_back(SliceLog(log, split, 1e300));
+      const bool first = options->part == "first";
+      const double fraction = first ? options->train : 1.0 - options->train;
+      const double split = options->train >= 1.0 ? t1 + 1.0 : t0 + fraction * (t1 - t0);
+      DriveLog before = SliceLog(log, -1e300, split), after = SliceLog(log, split, 1e300);
+      train.push_back(first ? before : after);
+      if (options->train < 1.0) held_out.push_back(first ? after : before);
     }
     options->identify.use_gps = !options->no_gps;
     std::cerr << "identify: fitting on " << train.size() << " log(s)"

@@ -51,7 +51,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
       "final, from_filter 1 where a failed window left the EKF's estimate.");
   cmd->callback([options, status]() {
     options->window.filter.use_gps = !options->no_gps;
-    RunEstimatorOverLogs(
+    *status = RunEstimatorOverLogs(
         options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
           WindowSmootherOptions window = options->window;
           if (options->advance_velocity) {
@@ -88,7 +88,6 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
           output.extra = std::move(extra);
           return output;
         });
-    *status = 0;
   });
 }
 

@@ -44,8 +44,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     base_options.problem.stiffness_prior_sd = options->stiffness_sd;
     base_options.filter.use_gps = !options->no_gps;
     base_options.threads = options->threads;
-    RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
-                                           std::ostream& report) {
+    *status = RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
+                                                     std::ostream& report) {
       BatchSmootherOptions smoother_options = base_options;
       if (options->advance_velocity) {
         WilcoxGraphOptions graph;
@@ -75,7 +75,6 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
       // a_dist: every external force, the model's effect terms included.
       return EstimatorOutput{DisturbanceWithEffects(result, log, model), {}};
     });
-    *status = 0;
   });
 }
 

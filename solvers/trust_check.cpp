@@ -12,6 +12,10 @@ bool TrustOptions::IsValid(std::string* error) const {
     *error = "TrustOptions: wheel_scale >= 1, wheel_margin_mps and min_speed_mps >= 0";
     return false;
   }
+  if (!(scale_window_s > 0.0 && min_mean_slip < 0.0)) {
+    *error = "TrustOptions: scale_window_s > 0 and min_mean_slip < 0";
+    return false;
+  }
   if (!(suspect_fraction >= 0.0 && suspect_fraction <= 1.0 && gnss_run_limit > 0.0 &&
         gnss_window >= 1 && gnss_window_limit > 0.0 && min_gnss_fixes >= 1)) {
     *error =
@@ -52,6 +56,35 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     ++off;
   }
   report.off_wheels_fraction = static_cast<double>(off) / estimates.size();
+
+  // The wheels' scale: consecutive windows of scale_window_s, over their samples that move.
+  const double radius = log.vehicle.wheel_radius_m;
+  bool scale_failed = false;
+  for (size_t first = 0; first < estimates.size();) {
+    size_t end = first;
+    double sum = 0.0;
+    long moving = 0;
+    while (end < estimates.size() &&
+           estimates[end].t < estimates[first].t + options.scale_window_s) {
+      const WardEstimate& e = estimates[end];
+      const double left = radius * e.x[ward::kOmegaLeft], right = radius * e.x[ward::kOmegaRight];
+      const double surface = 0.5 * (left + right);
+      if (left * right > 0.0 && std::min(std::abs(left), std::abs(right)) > options.min_speed_mps &&
+          std::isfinite(e.x[ward::kVbx])) {
+        sum += (surface - e.x[ward::kVbx]) / surface, ++moving;
+      }
+      ++end;
+    }
+    if (2 * moving > static_cast<long>(end - first)) {
+      const double mean = sum / moving;
+      if (!(mean >= report.lowest_window_slip)) report.lowest_window_slip = mean;
+      if (mean < options.min_mean_slip) {
+        scale_failed = true;
+        for (size_t j = first; j < end; ++j) report.suspect[j] = 1.0;
+      }
+    }
+    first = end;
+  }
 
   // The GNSS fixes' z and the estimate each is compared with.
   std::vector<double> z;
@@ -105,6 +138,14 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
                   100.0 * report.off_wheels_fraction);
     report.warnings.push_back(line);
   }
+  if (scale_failed) {
+    std::snprintf(line, sizeof(line),
+                  "the body runs ahead of its wheels: mean apparent slip %.0f %% over %.0f s "
+                  "(limit %.0f %%): a wheel radius or twist conversion is off, or the velocity is",
+                  100.0 * report.lowest_window_slip, options.scale_window_s,
+                  100.0 * options.min_mean_slip);
+    report.warnings.push_back(line);
+  }
   if (std::abs(report.gnss_run_z) > options.gnss_run_limit ||
       report.gnss_worst_window > options.gnss_window_limit) {
     std::snprintf(line, sizeof(line),
@@ -120,12 +161,12 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
 
 std::string DescribeTrust(const TrustReport& report) {
   std::ostringstream out;
-  char figures[200];
+  char figures[256];
   std::snprintf(figures, sizeof(figures),
-                "off the wheels %.2f %% of samples; GNSS speed z over the run %.1f, over a "
-                "window at worst %.2f (%zu fixes)",
-                100.0 * report.off_wheels_fraction, report.gnss_run_z, report.gnss_worst_window,
-                report.gnss_fixes);
+                "off the wheels %.2f %% of samples; lowest apparent slip over a window %.0f %%; "
+                "GNSS speed z over the run %.1f, over a window at worst %.2f (%zu fixes)",
+                100.0 * report.off_wheels_fraction, 100.0 * report.lowest_window_slip,
+                report.gnss_run_z, report.gnss_worst_window, report.gnss_fixes);
   out << "trust: " << (report.trusted ? "no sign of trouble" : "NOT TRUSTED") << " (" << figures
       << ")\n";
   for (const std::string& warning : report.warnings) out << "  WARNING: " << warning << "\n";

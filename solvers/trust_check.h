@@ -2,6 +2,11 @@
 // from the robot can leave a filter or a smoother sure of a velocity that every wheel and every
 // GNSS fix contradicts, and report convergence and a tight sd around it. Two checks:
 //
+//   wheels' scale: over any window of scale_window_s with both wheels turning one way at above
+//     min_speed_mps, the mean apparent slip (r w - v) / r w (r w the sides' mean surface speed)
+//     below min_mean_slip (the body faster than its wheels turn). A robot runs ahead of its
+//     wheels only downhill while braking; seconds of it on the flat say the wheel radius, the
+//     twist conversion or the velocity is wrong;
 //   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
 //     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
 //     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";
@@ -13,8 +18,9 @@
 //     sign: the run's sum / sqrt(n) above gnss_run_limit, or the mean over any gnss_window fixes
 //     above gnss_window_limit, mark the run; the window's estimates are marked.
 //
-// A run is untrusted when more than suspect_fraction of its samples are off the wheels or the
-// GNSS NIS is over its limit. The marks go to the estimate file (column `suspect`).
+// A run is untrusted when more than suspect_fraction of its samples are off the wheels, a window
+// fails the wheels' scale check, or the GNSS speeds disagree beyond their limits. The marks go to
+// the estimate file (column `suspect`).
 #pragma once
 
 #include <cmath>
@@ -35,6 +41,8 @@ struct TrustOptions {
   int gnss_window = 10;            // fixes
   double gnss_window_limit = 2.0;  // mean z over a window (2 sqrt(10) = 6.3 sd of it)
   int min_gnss_fixes = 5;          // fewer fixes: no GNSS verdict on the run
+  double scale_window_s = 5.0;     // the wheels' scale check's window ...
+  double min_mean_slip = -0.2;     // ... and its limit on the mean apparent slip
 
   bool IsValid(std::string* error) const;
 };
@@ -45,6 +53,8 @@ struct TrustReport {
   // Per estimate: 1 where it is off the wheels or inside a GNSS window that disagrees, else 0.
   std::vector<double> suspect;
   double off_wheels_fraction = 0.0;
+  // The lowest mean apparent slip over a window of the wheels' scale check (NaN: no window).
+  double lowest_window_slip = std::nan("");
   double gnss_run_z = std::nan("");         // sum z / sqrt(n); NaN without enough fixes
   double gnss_worst_window = std::nan("");  // the largest |mean z| over gnss_window fixes
   size_t gnss_fixes = 0;

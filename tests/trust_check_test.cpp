@@ -146,5 +146,29 @@ TEST(TrustCheck, InvalidOptionsAreRefused) {
   EXPECT_NE(error.find("gnss_window"), std::string::npos);
 }
 
+TEST(TrustCheck, ABodyThatRunsAheadOfItsWheelsForSecondsIsNotTrusted) {
+  // From 20 to 32 s the wheels read 30 % slow (a twist converted with the wrong radius, say)
+  // while the estimate and GNSS follow the body: an apparent slip of -43 %. GNSS agrees, and
+  // 1.5 x the wheels is not exceeded: only the scale check sees it.
+  const auto truth = [](double) { return 1.0; };
+  SyntheticRun run = MakeRun(truth, truth, 1);
+  for (WardEstimate& e : run.estimates) {
+    if (e.t >= 20.0 && e.t < 32.0) e.x[ward::kOmegaLeft] = e.x[ward::kOmegaRight] *= 0.7;
+  }
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_FALSE(report.trusted);
+  EXPECT_NEAR(report.lowest_window_slip, 1.0 - 1.0 / 0.7, 0.01);
+  EXPECT_EQ(report.suspect[2500], 1.0);
+  EXPECT_EQ(report.suspect[1000], 0.0);
+  // Control: the wheels 30 % fast instead (a slip of 23 %, as on soft soil) is not a fault.
+  SyntheticRun slipping = MakeRun(truth, truth, 1);
+  for (WardEstimate& e : slipping.estimates) {
+    if (e.t >= 20.0 && e.t < 32.0) e.x[ward::kOmegaLeft] = e.x[ward::kOmegaRight] *= 1.3;
+  }
+  const TrustReport fine = CheckTrust(slipping.log, slipping.estimates);
+  EXPECT_TRUE(fine.trusted) << DescribeTrust(fine);
+  EXPECT_GT(fine.lowest_window_slip, -0.01);
+}
+
 }  // namespace
 }  // namespace slipgraph
