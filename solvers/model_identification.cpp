@@ -54,6 +54,9 @@ void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
       "measurement_noise.wheels_sd_omega", &model->measurement.wheels_sd_omega_radps, 2, {}};
   // GNSS at 1 Hz: lag 1 (two seconds) already holds some of the robot's own speed changes.
   Signal gnss{"measurement_noise.gps_sd_v", &model->measurement.gps_sd_v_mps, 1, {}};
+  // A drive too slow for that (fewer than 30 fixes above 0.3 m/s): the velocity's components,
+  // which a slow robot's turns hardly move.
+  Signal gnss_components{"measurement_noise.gps_sd_v", &model->measurement.gps_sd_v_mps, 1, {}};
   for (const DriveLog& log : logs) {
     std::vector<double> ax, gz, left, right;
     for (const ImuSample& s : log.imu) ax.push_back(s.ax), gz.push_back(s.gz);
@@ -76,33 +79,45 @@ void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
       speed.push_back(v > 0.3 ? v - wheel : std::nan(""));
     }
     gnss.series.push_back(speed);
+    std::vector<double> east, north;
+    for (const GpsSample& g : log.gps) east.push_back(g.vx), north.push_back(g.vy);
+    gnss_components.series.push_back(east);
+    gnss_components.series.push_back(north);
     accel.series.push_back(ax);
     gyro.series.push_back(gz);
     wheels.series.push_back(left);
     wheels.series.push_back(right);
   }
-  for (Signal* signal : {&accel, &gyro, &wheels, &gnss}) {
-    // Pooled over the series: the samples' weighted mean of the variances.
+  // Pooled over the series: the samples' weighted mean of the variances.
+  const auto pooled = [](const Signal& signal, long* total) {
     double weighted = 0.0;
-    long total = 0;
-    for (const std::vector<double>& series : signal->series) {
+    *total = 0;
+    for (const std::vector<double>& series : signal.series) {
       long used = 0;
-      const double sd = SecondDifferenceSd(series, signal->lag, &used);
-      if (std::isfinite(sd)) weighted += sd * sd * used, total += used;
+      const double sd = SecondDifferenceSd(series, signal.lag, &used);
+      if (std::isfinite(sd)) weighted += sd * sd * used, *total += used;
+    }
+    return *total > 0 ? weighted / *total : 0.0;
+  };
+  for (Signal* signal : {&accel, &gyro, &wheels, &gnss}) {
+    long total = 0;
+    double variance = pooled(*signal, &total);
+    std::string method = "second difference";
+    if (signal == &gnss && total < 30) {
+      variance = pooled(gnss_components, &total);
+      method = "second difference of the components (a slow drive)";
+    } else if (signal == &gnss && total > 0) {
+      // Less the wheels' share: r sd_w / sqrt(2) of the mean surface speed (estimated above).
+      const double r = logs[0].vehicle.wheel_radius_m;
+      const double wheel_sd = r * model->measurement.wheels_sd_omega_radps / std::sqrt(2.0);
+      variance = std::max(0.25 * variance, variance - wheel_sd * wheel_sd);
     }
     NoiseEstimate e{signal->name, *signal->value, *signal->value, total, "kept (too few samples)"};
     // GNSS at 1-10 Hz: a few minutes of fixes; the others sample at 50-100 Hz.
     const long needed = signal == &gnss ? 30 : 100;
-    if (total >= needed && weighted > 0.0) {
-      double variance = weighted / total;
-      if (signal == &gnss) {
-        // Less the wheels' share: r sd_w / sqrt(2) of the mean surface speed (estimated above).
-        const double r = logs[0].vehicle.wheel_radius_m;
-        const double wheel_sd = r * model->measurement.wheels_sd_omega_radps / std::sqrt(2.0);
-        variance = std::max(0.25 * variance, variance - wheel_sd * wheel_sd);
-      }
+    if (total >= needed && variance > 0.0) {
       e.value = std::sqrt(variance);
-      e.method = "second difference";
+      e.method = method;
       *signal->value = e.value;
     }
     out->push_back(e);
