@@ -12,18 +12,18 @@
 
 #include "factors/imu_factor.h"
 #include "tests/factor_check.h"
+#include "tests/ward_test_params.h"
 
 namespace slipgraph {
 namespace {
 
+// The LAGR robot with the law the user of ward21 states (the soils' mean), at a turning state.
 struct Fixture {
-  ward::Params params;
+  ward::Params params = testing::LagrParams();
   ward::Attitude<double> attitude{0.02, -0.05};
   std::vector<double> x = {0.7, 0.01, -0.2, 6.5, 7.1, 0.3, 0.002};
   std::vector<double> offsets = {0.05, -0.001};
   Fixture() {
-    params.mass_kg = 117.0;
-    params.wheel_radius_m = 0.25;
     params.tire = {0.475, 13.25, 0.068};
     params.rolling = {0.0625, 16.25, 0.02};
   }
