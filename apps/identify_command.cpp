@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
@@ -22,6 +23,55 @@ std::string Figure(double value, int precision = 3) {
   std::ostringstream out;
   out << std::setprecision(precision) << value;
   return out.str();
+}
+
+// JSON numbers: NaN (not measured) as null.
+nlohmann::json Number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nullptr;
+}
+
+nlohmann::json ToJson(const ModelScore& s) {
+  return {{"gnss_fixes", s.gnss_fixes},
+          {"gnss_nis_mean", Number(s.gnss_nis_mean)},
+          {"flagged_fraction", s.flagged_fraction},
+          {"velocity_rmse_mps", Number(s.velocity_rmse)},
+          {"false_immobilized_fraction", Number(s.false_immobilized_fraction)}};
+}
+
+nlohmann::json ToJson(const IdentificationResult& r) {
+  nlohmann::json j;
+  for (const IdentifiedParameter& p : r.parameters) {
+    j["parameters"].push_back({{"name", p.name},
+                               {"nominal", p.nominal},
+                               {"value", p.value},
+                               {"sd", Number(p.sd)},
+                               {"prior_sd", p.prior_sd},
+                               {"identified", std::isfinite(p.sd) && p.identified()},
+                               {"at_bound", p.at_bound}});
+  }
+  for (int i = 0; i < r.correlation.rows(); ++i) {
+    std::vector<nlohmann::json> row;
+    for (int k = 0; k < r.correlation.cols(); ++k) row.push_back(Number(r.correlation(i, k)));
+    j["correlation"].push_back(row);
+  }
+  for (const NoiseEstimate& e : r.noise) {
+    j["noise"].push_back({{"name", e.name},
+                          {"nominal", e.nominal},
+                          {"value", e.value},
+                          {"samples", e.samples},
+                          {"method", e.method}});
+  }
+  j["effective_track_m"] = Number(r.effective_track_m);
+  j["gnss_radius_error"] = {{"value", Number(r.gnss_radius_error)},
+                            {"sd", Number(r.gnss_radius_error_sd)},
+                            {"fixes", r.gnss_radius_fixes}};
+  for (const auto& offsets : r.offsets) {
+    j["imu_offsets"].push_back({{"accel_x_mps2", offsets[0]}, {"gyro_z_radps", offsets[1]}});
+  }
+  j["converged"] = r.converged;
+  j["iterations"] = r.summary.iterations.size();
+  j["notes"] = r.notes;
+  return j;
 }
 
 void PrintScores(const std::string& name, const ModelScore& nominal, const ModelScore& fitted,
@@ -44,7 +94,7 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
 void RegisterIdentifyCommand(CLI::App* app, int* status) {
   struct Options {
     std::vector<std::string> logs;
-    std::string model, out;
+    std::string model, out, json;
     double train = 0.5;
     std::string part = "first";
     bool no_gps = false, skip_bad = false;
@@ -76,6 +126,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  cmd->add_option("--json", options->json, "Write one JSON object to this file ('-': stdout)");
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     std::vector<DriveLog> train, held_out;
@@ -94,24 +145,34 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       const double t0 = log.wheels.front().t, t1 = log.wheels.back().t;
       const bool first = options->part == "first";
       const double fraction = first ? options->train : 1.0 - options->train;
-      const double split = options->train >= 1.0 ? t1 + 1.0 : t0 + fraction * (t1 - t0);
+      if (options->train >= 1.0) {
+        train.push_back(log);
+        continue;
+      }
+      const double split = t0 + fraction * (t1 - t0);
       DriveLog before = SliceLog(log, -1e300, split), after = SliceLog(log, split, 1e300);
       train.push_back(first ? before : after);
-      if (options->train < 1.0) held_out.push_back(first ? after : before);
+      held_out.push_back(first ? after : before);
     }
     options->identify.use_gps = !options->no_gps;
     std::cerr << "identify: fitting on " << train.size() << " log(s)"
-              << (options->train < 1.0
-                      ? " (the first " + Figure(100.0 * options->train) + " % of each)"
-                      : "")
+              << (options->train < 1.0 ? " (the " + options->part + " " +
+                                             Figure(100.0 * options->train) + " % of each)"
+                                       : "")
               << "\n";
     const IdentificationResult result = IdentifyModel(train, model, options->identify);
-    std::cout << DescribeIdentification(result);
+    std::ostream& text = options->json == "-" ? std::cerr : std::cout;
+    text << DescribeIdentification(result);
+    nlohmann::json json = ToJson(result);
     if (!held_out.empty()) {
-      std::cout << "held out (the model file's values -> the identified):\n";
+      text << "held out (the model file's values -> the identified):\n";
       for (size_t i = 0; i < held_out.size(); ++i) {
-        PrintScores(options->logs[i], ScoreModel(held_out[i], model, !options->no_gps),
-                    ScoreModel(held_out[i], result.model, !options->no_gps), std::cout);
+        const ModelScore nominal = ScoreModel(held_out[i], model, !options->no_gps);
+        const ModelScore identified = ScoreModel(held_out[i], result.model, !options->no_gps);
+        PrintScores(options->logs[i], nominal, identified, text);
+        json["held_out"].push_back({{"log", options->logs[i]},
+                                    {"nominal", ToJson(nominal)},
+                                    {"identified", ToJson(identified)}});
       }
     }
     const std::string out = options->out.empty()
@@ -125,7 +186,19 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       *status = 1;
       return;
     }
-    std::cout << "model: " << out << " (use it with --model)\n";
+    text << "model: " << out << " (use it with --model)\n";
+    json["model_file"] = out;
+    if (options->json == "-") {
+      std::cout << json.dump(2) << "\n";
+    } else if (!options->json.empty()) {
+      std::ofstream json_file(options->json);
+      json_file << json.dump(2) << "\n";
+      if (!json_file) {
+        std::cerr << "identify: cannot write " << options->json << "\n";
+        *status = 1;
+        return;
+      }
+    }
     *status = 0;
   });
 }

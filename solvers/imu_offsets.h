@@ -11,10 +11,12 @@
 // wheels (r w forward, r (w_r - w_l) / c in yaw: slip changes little over a second or two) and
 // subtracted. The wheels' forward speed at each end is the mean over a tenth of the interval, so
 // encoder noise does not enter twice. A moving start leaves the offsets less certain than a rest:
-// init_sd() says by how much (0.03 m/s^2 and a tenth of the removed acceleration, a fifth of the
-// removed yaw rate), and the filter opens its bias states by that. A compensated accelerometer
-// offset above 0.3 m/s^2 says the slip changed (a hold-back at the start): it starts at zero,
-// with that sd.
+// init_sd() says by how much (0.1 m/s^2 and a tenth of the removed acceleration, a fifth of the
+// removed yaw rate, all of it for a skid-steer), and the filter opens its bias states by that.
+// Samples before the wheels' first reading count neither as rest nor in a moving start's
+// means; with fewer than 10 read, the accelerometer offset starts at zero. A compensated
+// accelerometer offset above 0.3 m/s^2 says the slip changed (a hold-back at the start): it starts
+// at zero, with that sd.
 //
 // "At rest" is known late at both ends: the encoders read still (below the filter's threshold,
 // which their quantization sets) while the body already creeps off, so the first samples of a
@@ -35,7 +37,7 @@ namespace slipgraph {
 
 // What the wheels say about the body's motion at an IMU sample (the latest encoder reading):
 // forward speed r (w_l + w_r) / 2, yaw rate r (w_r - w_l) / c, and whether both read still.
-// NaN speeds: no reading yet (taken as still).
+// NaN speeds: no reading yet (not known to be at rest, and left out of a moving start's means).
 struct WheelMotion {
   double speed_mps = std::nan("");
   double yaw_rate_radps = std::nan("");
@@ -44,7 +46,10 @@ struct WheelMotion {
 
 class ImuOffsetEstimator {
  public:
-  ImuOffsetEstimator(int init_samples, double ema_samples, double rest_guard_s = 0.0);
+  // yaw_rate_relative_sd: how far the wheels' yaw rate r (w_r - w_l) / c may be off the body's
+  // (0.2; a skid-steer's is off by its effective track, about 1).
+  ImuOffsetEstimator(int init_samples, double ema_samples, double rest_guard_s = 0.0,
+                     double yaw_rate_relative_sd = 0.2);
 
   // One IMU sample at time t; gravity_along_x is g sin(phi) (phi uphill positive) at the sample;
   // at_rest says whether the robot is known to be stopped; wheels: the encoders' view of the
@@ -73,10 +78,11 @@ class ImuOffsetEstimator {
     WheelMotion wheels;
   };
   void FinishInitialisation();
-  void FinishAtRest(size_t rest_samples);
+  void FinishAtRest(size_t end);  // the wheel-read samples before init_[end]
 
   int init_samples_;
   double rest_guard_s_;
+  double yaw_rate_relative_sd_;
   int count_ = 0;
   std::vector<InitSample> init_;
   bool moving_start_ = false;

@@ -18,7 +18,7 @@
 namespace slipgraph {
 namespace {
 
-// The noise sd of a sampled signal from its second differences at lag 2 (see the header): their
+// The noise sd of a sampled signal from its second differences at lag `lag` (see the header): their
 // RMS over those within 5 robust sd (1.4826 x the median absolute difference) of zero, so that
 // spikes and steps do not count. Not the median itself: a quantized signal's differences take a
 // few discrete values, and their median is one of them.
@@ -61,8 +61,11 @@ void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
     std::vector<double> ax, gz, left, right;
     for (const ImuSample& s : log.imu) ax.push_back(s.ax), gz.push_back(s.gz);
     for (const WheelSample& w : log.wheels) {
+      // Stopped wheels read exactly 0 (a count difference of 0): no noise to see there.
       const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
-      left.push_back(s.left_radps), right.push_back(s.right_radps);
+      const bool stopped = s.left_radps == 0.0 && s.right_radps == 0.0;
+      left.push_back(stopped ? std::nan("") : s.left_radps);
+      right.push_back(stopped ? std::nan("") : s.right_radps);
     }
     // GNSS: the ground speed while moving (its components turn with the robot; its noise along
     // the course is the components' sd; below 0.3 m/s the norm's noise is not Gaussian), less
@@ -112,7 +115,8 @@ void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
       const double wheel_sd = r * model->measurement.wheels_sd_omega_radps / std::sqrt(2.0);
       variance = std::max(0.25 * variance, variance - wheel_sd * wheel_sd);
     }
-    NoiseEstimate e{signal->name, *signal->value, *signal->value, total, "kept (too few samples)"};
+    NoiseEstimate e{signal->name, *signal->value, *signal->value, total,
+                    total > 0 ? "kept (no spread seen)" : "kept (too few samples)"};
     // GNSS at 1-10 Hz: a few minutes of fixes; the others sample at 50-100 Hz.
     const long needed = signal == &gnss ? 30 : 100;
     if (total >= needed && variance > 0.0) {
@@ -124,10 +128,6 @@ void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
   }
 }
 
-// u = r (w_r - w_l) = c (yaw rate - a) over the wheel samples with the nearest IMU sample: least
-// squares of u on the gyro with an intercept (a: the gyro's offset). That way round because the
-// gyro is the precise one (encoder noise in a regressor would bias c up: 0.82 m for a 0.55 m
-// track on the bundled log). NaN when the drive turns too little.
 // The wheels' rolling radius against GNSS ground speed: |v_gnss| = (1 + e) r |w_mean| through
 // the origin, over the fixes while the wheels turn (mean surface speed above 0.3 m/s), with the
 // wheel sample nearest each fix. e includes the mean slip (the law's steady slip, a percent or
@@ -156,6 +156,10 @@ double GnssRadiusError(const std::vector<DriveLog>& logs, double* sd, long* used
   return slope - 1.0;
 }
 
+// u = r (w_r - w_l) = c (yaw rate - a) over the wheel samples with the nearest IMU sample: least
+// squares of u on the gyro with an intercept (a: the gyro's offset). That way round because the
+// gyro is the precise one (encoder noise in a regressor would bias c up: 0.82 m for a 0.55 m
+// track on the bundled log). NaN when the drive turns too little.
 double EffectiveTrack(const std::vector<DriveLog>& logs, long* used) {
   double su = 0.0, sg = 0.0, sgg = 0.0, sug = 0.0;
   long n = 0, turning = 0;
@@ -181,6 +185,24 @@ double EffectiveTrack(const std::vector<DriveLog>& logs, long* used) {
 
 }  // namespace
 
+bool IdentifyOptions::IsValid(std::string* error) const {
+  for (int i = 0; i < kLawCoefficientCount; ++i) {
+    if (!(priors.law_sd[i] > 0.0 && priors.law_min[i] < priors.law_max[i])) {
+      *error = "IdentifyOptions: each law prior sd > 0 and its minimum below its maximum";
+      return false;
+    }
+  }
+  if (!(priors.radius_error_sd > 0.0 && priors.radius_error_bound > 0.0 && max_iterations > 0 &&
+        threads > 0 && disturbance_walk_mps3_per_sqrt_hz > 0.0 && law_residual.relative_sd > 0.0 &&
+        law_residual.floor_mps2 > 0.0)) {
+    *error =
+        "IdentifyOptions: radius prior sd and bound, iterations, threads, the disturbance walk "
+        "and the law residual's relative sd and floor must be positive";
+    return false;
+  }
+  return true;
+}
+
 IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
                                    const ModelConfig& input_model, const IdentifyOptions& options) {
   if (input_logs.empty()) throw std::invalid_argument("identify needs at least one log");
@@ -191,6 +213,15 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   if (!input_model.effects.empty()) {
     result.notes.push_back("the model's effects are left out: the law is fitted without them");
   }
+  for (const DriveLog& log : input_logs) {
+    if (log.vehicle.type != input_logs[0].vehicle.type ||
+        log.vehicle.wheel_radius_m != input_logs[0].vehicle.wheel_radius_m) {
+      throw std::invalid_argument(log.directory + ": not the vehicle of " +
+                                  input_logs[0].directory + " (one robot's logs only)");
+    }
+  }
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   std::vector<DriveLog> logs = input_logs;
   for (DriveLog& log : logs) ApplyCalibration(model, &log);
 
@@ -208,8 +239,11 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
     result.notes.push_back("effective track: the drive turns too little to tell");
   }
 
-  result.gnss_radius_error =
-      GnssRadiusError(logs, &result.gnss_radius_error_sd, &result.gnss_radius_fixes);
+  result.gnss_radius_error = std::nan("");
+  if (options.use_gps) {
+    result.gnss_radius_error =
+        GnssRadiusError(logs, &result.gnss_radius_error_sd, &result.gnss_radius_fixes);
+  }
 
   // 3. Laws, radii and offsets in one problem, from one EKF per log.
   std::vector<FilterResult> runs;
@@ -290,14 +324,18 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   const std::array<double, kLawCoefficientCount> nominal_law =
       LawCoefficients(model.tire, model.rolling);
   for (int i = 0; i < kLawCoefficientCount; ++i) {
+    const double bound_gap = 1e-6 * (options.priors.law_max[i] - options.priors.law_min[i]);
     result.parameters.push_back({LawCoefficientNames()[i], nominal_law[i], problem->law[i],
-                                 std::sqrt(covariance(i, i)), options.priors.law_sd[i]});
+                                 std::sqrt(covariance(i, i)), options.priors.law_sd[i],
+                                 problem->law[i] <= options.priors.law_min[i] + bound_gap ||
+                                     problem->law[i] >= options.priors.law_max[i] - bound_gap});
   }
   for (int side = 0; side < 2 && options.fit_radius; ++side) {
     const int i = kLawCoefficientCount + side;
-    result.parameters.push_back({side == 0 ? "radius_error.left" : "radius_error.right", 0.0,
-                                 problem->radius_error[side], std::sqrt(covariance(i, i)),
-                                 options.priors.radius_error_sd});
+    result.parameters.push_back(
+        {side == 0 ? "radius_error.left" : "radius_error.right", 0.0, problem->radius_error[side],
+         std::sqrt(covariance(i, i)), options.priors.radius_error_sd,
+         std::abs(problem->radius_error[side]) >= options.priors.radius_error_bound * (1 - 1e-6)});
   }
   if (result.correlation.size() > 0) {
     const int kept = static_cast<int>(result.parameters.size());
@@ -309,7 +347,6 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   model.calibration.wheel_radius_scale_left *= 1.0 + problem->radius_error[0];
   model.calibration.wheel_radius_scale_right *= 1.0 + problem->radius_error[1];
 
-  std::string error;
   if (!model.IsValid(&error)) result.notes.push_back("the identified model is invalid: " + error);
   result.model = model;
   return result;
@@ -325,7 +362,7 @@ std::string DescribeIdentification(const IdentificationResult& r) {
         << "  (prior sd " << p.prior_sd << ") "
         << (std::isfinite(p.sd) ? (p.identified() ? "identified" : "NOT identified: the prior's")
                                 : "no sd")
-        << "\n";
+        << (p.at_bound ? ", AT ITS BOUND (its sd ignores the bound)" : "") << "\n";
   }
   if (r.correlation.size() > 0) {
     for (int i = 0; i < r.correlation.rows(); ++i) {

@@ -13,8 +13,8 @@
 //      wheels' surface speed, which takes the robot's own speed changes out (the wheels' share
 //      of the noise is then taken out too).
 //   2. Laws (radii on request) and offsets: one Ceres problem over every log, the parameters as
-//   blocks beside
-//      the states (problems/identification_problem.h), initialised from a single EKF per log
+//      blocks beside the states (problems/identification_problem.h), initialised from a single
+//      EKF per log
 //      (no bank: the law is what is sought). Their sd and correlations from the problem's
 //      covariance; a parameter whose sd is not under half its prior's is reported as not
 //      identified (the prior, not the data, set it).
@@ -54,6 +54,8 @@ struct IdentifyOptions {
   // the disturbance's walk while fitting (the model's is for tracking hold-backs).
   TireLawUncertainty law_residual{0.1, 0.0, 0.0, 0.05, 0.0};
   double disturbance_walk_mps3_per_sqrt_hz = 1.0;
+
+  bool IsValid(std::string* error) const;
 };
 
 struct IdentifiedParameter {
@@ -62,6 +64,7 @@ struct IdentifiedParameter {
   double value = 0.0;
   double sd = 0.0;  // NaN when the covariance was not recovered
   double prior_sd = 0.0;
+  bool at_bound = false;  // held by a bound: its sd (the covariance ignores bounds) says little
   // The data, not the prior, set it: its sd is under half the prior's.
   bool identified() const { return sd < 0.5 * prior_sd; }
 };
@@ -95,7 +98,8 @@ struct IdentificationResult {
   std::vector<std::string> notes;
 };
 
-// Throws std::invalid_argument when there is no log or a log has no wheel data.
+// Throws std::invalid_argument when there is no log, a log has no wheel data, the logs are not
+// of one vehicle, or the options are invalid.
 IdentificationResult IdentifyModel(const std::vector<DriveLog>& logs, const ModelConfig& model,
                                    const IdentifyOptions& options = {});
 
@@ -103,8 +107,9 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& logs, const Mode
 // correlations, the noise and the track.
 std::string DescribeIdentification(const IdentificationResult& result);
 
-// The front end (one EKF, the model's calibration applied) on a log, scored without truth and,
-// when the log has it, against truth.
+// The front end as `filter` runs it (a bank when the model has law samples; one EKF otherwise,
+// as for an identified model), the model's calibration applied, on a log: scored without truth
+// and, when the log has it, against truth.
 struct ModelScore {
   long gnss_fixes = 0;
   double gnss_nis_mean = std::nan("");  // mean squared normalized GNSS innovation (1: consistent)

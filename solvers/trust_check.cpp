@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/measurement_stream.h"
+
 namespace slipgraph {
 
 bool TrustOptions::IsValid(std::string* error) const {
@@ -12,8 +14,8 @@ bool TrustOptions::IsValid(std::string* error) const {
     *error = "TrustOptions: wheel_scale >= 1, wheel_margin_mps and min_speed_mps >= 0";
     return false;
   }
-  if (!(scale_window_s > 0.0 && min_mean_slip < 0.0)) {
-    *error = "TrustOptions: scale_window_s > 0 and min_mean_slip < 0";
+  if (!(scale_window_s > 0.0 && min_mean_slip < 0.0 && flat_pitch_rad > 0.0)) {
+    *error = "TrustOptions: scale_window_s > 0, min_mean_slip < 0 and flat_pitch_rad > 0";
     return false;
   }
   if (!(suspect_fraction >= 0.0 && suspect_fraction <= 1.0 && gnss_run_limit > 0.0 &&
@@ -57,20 +59,25 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
   }
   report.off_wheels_fraction = static_cast<double>(off) / estimates.size();
 
-  // The wheels' scale: consecutive windows of scale_window_s, over their samples that move.
+  // The wheels' scale: consecutive windows of scale_window_s, over their samples that move on
+  // the flat (a robot may run ahead of its wheels braking downhill).
   const double radius = log.vehicle.wheel_radius_m;
+  const auto on_the_flat = [&](double t) {
+    const long i = LatestAtOrBefore(log.attitude, t);
+    return i < 0 || !(std::abs(log.attitude[i].pitch) > options.flat_pitch_rad);
+  };
   bool scale_failed = false;
   for (size_t first = 0; first < estimates.size();) {
     size_t end = first;
     double sum = 0.0;
     long moving = 0;
-    while (end < estimates.size() &&
-           estimates[end].t < estimates[first].t + options.scale_window_s) {
+    while (end == first || (end < estimates.size() &&
+                            estimates[end].t < estimates[first].t + options.scale_window_s)) {
       const WardEstimate& e = estimates[end];
       const double left = radius * e.x[ward::kOmegaLeft], right = radius * e.x[ward::kOmegaRight];
       const double surface = 0.5 * (left + right);
       if (left * right > 0.0 && std::min(std::abs(left), std::abs(right)) > options.min_speed_mps &&
-          std::isfinite(e.x[ward::kVbx])) {
+          std::isfinite(e.x[ward::kVbx]) && on_the_flat(e.t)) {
         sum += (surface - e.x[ward::kVbx]) / surface, ++moving;
       }
       ++end;
@@ -141,7 +148,7 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
   if (scale_failed) {
     std::snprintf(line, sizeof(line),
                   "the body runs ahead of its wheels: mean apparent slip %.0f %% over %.0f s "
-                  "(limit %.0f %%): a wheel radius or twist conversion is off, or the velocity is",
+                  "(limit %.0f %%): a wheel radius or twist conversion is off, or the velocity",
                   100.0 * report.lowest_window_slip, options.scale_window_s,
                   100.0 * options.min_mean_slip);
     report.warnings.push_back(line);
@@ -161,12 +168,16 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
 
 std::string DescribeTrust(const TrustReport& report) {
   std::ostringstream out;
-  char figures[256];
+  char slip[64] = "no window moving";
+  if (std::isfinite(report.lowest_window_slip)) {
+    std::snprintf(slip, sizeof(slip), "a window %.0f %%", 100.0 * report.lowest_window_slip);
+  }
+  char figures[320];
   std::snprintf(figures, sizeof(figures),
-                "off the wheels %.2f %% of samples; lowest apparent slip over a window %.0f %%; "
-                "GNSS speed z over the run %.1f, over a window at worst %.2f (%zu fixes)",
-                100.0 * report.off_wheels_fraction, 100.0 * report.lowest_window_slip,
-                report.gnss_run_z, report.gnss_worst_window, report.gnss_fixes);
+                "off the wheels %.2f %% of samples; lowest apparent slip over %s; GNSS speed z "
+                "over the run %.1f, over a window at worst %.2f (%zu fixes)",
+                100.0 * report.off_wheels_fraction, slip, report.gnss_run_z,
+                report.gnss_worst_window, report.gnss_fixes);
   out << "trust: " << (report.trusted ? "no sign of trouble" : "NOT TRUSTED") << " (" << figures
       << ")\n";
   for (const std::string& warning : report.warnings) out << "  WARNING: " << warning << "\n";

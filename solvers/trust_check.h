@@ -1,8 +1,9 @@
 // Whether a run's estimates can be trusted, judged from the log alone (no truth): a model far
 // from the robot can leave a filter or a smoother sure of a velocity that every wheel and every
-// GNSS fix contradicts, and report convergence and a tight sd around it. Two checks:
+// GNSS fix contradicts, and report convergence and a tight sd around it. Three checks:
 //
-//   wheels' scale: over any window of scale_window_s with both wheels turning one way at above
+//   wheels' scale: over consecutive windows of scale_window_s, the samples on the flat (pitch
+//     within flat_pitch_rad, when the log has attitude) with both wheels turning one way above
 //     min_speed_mps, the mean apparent slip (r w - v) / r w (r w the sides' mean surface speed)
 //     below min_mean_slip (the body faster than its wheels turn). A robot runs ahead of its
 //     wheels only downhill while braking; seconds of it on the flat say the wheel radius, the
@@ -43,6 +44,7 @@ struct TrustOptions {
   int min_gnss_fixes = 5;          // fewer fixes: no GNSS verdict on the run
   double scale_window_s = 5.0;     // the wheels' scale check's window ...
   double min_mean_slip = -0.2;     // ... and its limit on the mean apparent slip
+  double flat_pitch_rad = 0.05;    // steeper samples are left out of it (about 3 degrees)
 
   bool IsValid(std::string* error) const;
 };

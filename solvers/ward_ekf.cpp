@@ -81,7 +81,8 @@ WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOpti
     : params_(MakeParams(vehicle, model)),
       model_(model),
       options_(options),
-      offsets_(model.offset_init_samples, model.offset_ema_samples, model.offset_rest_guard_s),
+      offsets_(model.offset_init_samples, model.offset_ema_samples, model.offset_rest_guard_s,
+               vehicle.type == VehicleType::kSkidSteer ? 1.0 : 0.2),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m) {
   for (int i = 0; i < kStateSize; ++i) P_(i, i) = options.initial_sd[i] * options.initial_sd[i];
   loads_ = ComputeAttitudeLoads(CurrentAttitude(), params_);

@@ -49,7 +49,7 @@ TEST(ImuOffsets, AMovingStartSubtractsTheWheelsAccelerationAndYawRate) {
   EXPECT_TRUE(offsets.moving_start());
   EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-9);
   EXPECT_NEAR(offsets.gyro_z_radps(), 0.01, 1e-12);
-  EXPECT_NEAR(offsets.init_sd()[0], 0.03 + 0.05, 1e-9);
+  EXPECT_NEAR(offsets.init_sd()[0], 0.1 + 0.05, 1e-9);
   EXPECT_NEAR(offsets.init_sd()[1], 0.04, 1e-12);
 
   // Control: the same samples with the wheels still (a rest start) keep the plain mean, which
@@ -97,6 +97,20 @@ TEST(ImuOffsets, AnImplausibleCompensatedOffsetStartsAtZero) {
   EXPECT_TRUE(offsets.implausible_start());
   EXPECT_EQ(offsets.accel_x_mps2(), 0.0);
   EXPECT_NEAR(offsets.init_sd()[0], 0.3, 1e-12);
+}
+
+TEST(ImuOffsets, SamplesBeforeTheWheelsFirstReadingAreNeitherRestNorMotion) {
+  // The IMU starts 0.3 s before the encoders on a robot already accelerating at 0.5 m/s^2:
+  // those samples are not a rest, and the motion is compensated over the ones the wheels saw.
+  ImuOffsetEstimator offsets(100, 200.0);
+  for (int i = 0; i < 100; ++i) {
+    const double t = 0.01 * i;
+    const WheelMotion wheels = t < 0.295 ? WheelMotion{} : WheelMotion{1.0 + 0.5 * t, 0.0, false};
+    offsets.Add(t, 0.1 + 0.5, 0.0, 0.0, false, wheels);
+  }
+  ASSERT_TRUE(offsets.ready());
+  EXPECT_TRUE(offsets.moving_start());
+  EXPECT_NEAR(offsets.accel_x_mps2(), 0.1, 1e-9);
 }
 
 }  // namespace

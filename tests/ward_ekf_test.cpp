@@ -108,7 +108,7 @@ TEST(WardEkf, ALogThatStartsMovingNeedsNoRest) {
   // offsets) or at once; a rest start would take the plain mean of that second, which carries
   // the start's acceleration (the control below). solvers/imu_offsets.h: the short rest is used,
   // or the wheels' acceleration is subtracted. Velocity error over the first seconds, with truth
-  // above 0.3 m/s, seeds 1-3: measured RMS 2.0-2.7 %, worst 5.1-7.0 % after the 0.5 s rest, RMS
+  // above 0.3 m/s, seeds 1-3: measured RMS 2.0-2.7 %, worst 5.2-7.1 % after the 0.5 s rest, RMS
   // 1.8-2.8 %, worst 7.0-10.7 % from the start (both in the ramp: the same drive after a 2 s
   // rest has its worst at 5.1 %, the filter's lag behind 0.8 m/s^2 on gravel).
   for (double rest_s : {0.5, 0.0}) {
