@@ -7,8 +7,7 @@
 // v = 0, stays the model's: the data at walking speeds do not see it), and x' the state with
 // each side's wheel speed scaled by (1 + e_side), e_side that side's rolling-radius error (as
 // the wheel_radius_error effect, per side). Eq. (8)'s rate At enters through the saturation's
-// argument: sgn(v)(1 - exp(-At |v|)) = sat(v At / At_0; At_0) for the model's At_0, so the
-// saturation keeps its one-exp Jet path.
+// argument with the model's At as the reference (TractionForceOf in factors/traction.h).
 //
 // Parameter blocks: x_k (7), IMU offsets [c_ax, c_gz] (2), law (5), radius errors [e_l, e_r]
 // (2). At the model's law and zero radius errors it is AccelerometerFactor exactly
@@ -59,12 +58,10 @@ inline ward::TireForces<T> TireForcesWithLaw(const T* x, const ward::AttitudeLoa
   return ward::ComputeTireForcesWith(
       state, loads, p,
       [&](const A& n, const T& v_rel) {
-        return n *
-               (law[kLawC1] * SignedSaturation(v_rel * (law[kLawAt] / at_reference), at_reference) +
-                law[kLawC2] * v_rel);
+        return TractionForceOf(n, v_rel, law[kLawC1], law[kLawAt], law[kLawC2], at_reference);
       },
       [&](const T& v_fwd) {
-        return -(law[kLawR1] * SignedSaturation(v_fwd, a_roll) + law[kLawR2] * v_fwd);
+        return RollingResistancePerNewtonOf(v_fwd, law[kLawR1], a_roll, law[kLawR2]);
       });
 }
 

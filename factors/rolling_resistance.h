@@ -15,9 +15,16 @@ namespace slipgraph {
 
 // The force per newton of normal load, -(R1 sign(v)(1 - exp(-A_roll |v|)) + R2 v): the law is
 // linear in N, so wheels sharing a forward speed share this factor.
+// R1 and R2 of any scalar S (a Ceres parameter block when the law is identified); A_roll a
+// constant.
+template <typename T, typename S>
+inline T RollingResistancePerNewtonOf(const T& v_fwd_mps, const S& r1, double a_roll, const S& r2) {
+  return -(r1 * SignedSaturation(v_fwd_mps, a_roll) + r2 * v_fwd_mps);
+}
+
 template <typename T>
 inline T RollingResistancePerNewton(const T& v_fwd_mps, const RollingParams& rolling) {
-  return -(rolling.R1 * SignedSaturation(v_fwd_mps, rolling.A_roll) + rolling.R2 * v_fwd_mps);
+  return RollingResistancePerNewtonOf(v_fwd_mps, rolling.R1, rolling.A_roll, rolling.R2);
 }
 
 // N and T may differ (e.g. a double normal force from measured attitude and a Jet velocity).

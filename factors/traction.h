@@ -13,10 +13,21 @@
 
 namespace slipgraph {
 
+// Eq. (8) with coefficients of any scalar S (a Ceres parameter block when the law is identified,
+// factors/law_accelerometer_factor.h). The rate At enters through the saturation's argument,
+// sgn(v)(1 - exp(-At |v|)) = sat(v At / At_ref; At_ref) for any positive constant At_ref, so the
+// saturation keeps its one-exp Jet path; with At_ref = At the argument is v exactly.
+template <typename N, typename T, typename S>
+inline T TractionForceOf(const N& normal_force_n, const T& v_rel_mps, const S& c1, const S& at,
+                         const S& c2, double at_reference) {
+  return normal_force_n *
+         (c1 * SignedSaturation(v_rel_mps * (at / at_reference), at_reference) + c2 * v_rel_mps);
+}
+
 // N and T may differ (e.g. a double normal force from measured attitude and a Jet velocity).
 template <typename N, typename T>
 inline T TractionForceN(const N& normal_force_n, const T& v_rel_mps, const TireParams& tire) {
-  return normal_force_n * (tire.C1 * SignedSaturation(v_rel_mps, tire.At) + tire.C2 * v_rel_mps);
+  return TractionForceOf(normal_force_n, v_rel_mps, tire.C1, tire.At, tire.C2, tire.At);
 }
 
 // Relative velocity of a tire, v_rel = r w - v_fwd (Ward & Iagnemma, below eq. 8).
