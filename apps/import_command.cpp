@@ -2,6 +2,7 @@
 // v7.3 file) into the drive-log format with a mapping file, then
 // run the plausibility checks on the result (a wrong mapping shows as a physical impossibility).
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 
 #include "apps/commands.h"
@@ -16,21 +17,40 @@ namespace slipgraph {
 void RegisterImportCommand(CLI::App* app, int* status) {
   struct Options {
     std::string source, out, mapping, vehicle;
+    bool list = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
       "import", "Convert a recording (a ROS 1 bag, or MATLAB v7.3 / HDF5) into a drive log");
   cmd->add_option("SOURCE", options->source, "The recording")->required()->check(CLI::ExistingFile);
-  cmd->add_option("--out", options->out, "Drive-log directory to write")->required();
+  cmd->add_flag("--list", options->list,
+                "List the recording's topics (type, count, rate) or variables (dimensions) and "
+                "stop: what a mapping file can name");
+  cmd->add_option("--out", options->out, "Drive-log directory to write");
   cmd->add_option("--mapping", options->mapping,
                   "Mapping YAML: which variable is which stream, and the source's conventions "
                   "(see data/mappings/)")
-      ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--vehicle", options->vehicle, "vehicle.yaml for the log")
-      ->required()
       ->check(CLI::ExistingFile);
   cmd->callback([options, status]() {
+    if (options->list) {
+      const std::vector<SourceEntry> entries =
+          IsRosBag(options->source) ? ListRosBag(options->source) : ListMatlab(options->source);
+      for (const SourceEntry& e : entries) {
+        std::cout << e.name << "  " << e.type << "  " << e.count
+                  << (e.rate_hz > 0.0 ? " messages, " : " values");
+        if (e.rate_hz > 0.0) std::cout << std::setprecision(3) << e.rate_hz << " Hz";
+        std::cout << "\n";
+      }
+      *status = 0;
+      return;
+    }
+    if (options->out.empty() || options->mapping.empty() || options->vehicle.empty()) {
+      std::cerr << "import: --out, --mapping and --vehicle are required (or --list)\n";
+      *status = 106;
+      return;
+    }
     std::vector<std::string> warnings;
     const Vehicle vehicle = ReadVehicleYaml(options->vehicle, &warnings);
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";

@@ -27,6 +27,39 @@ std::vector<double> Hdf5Matrix::Vector(const std::string& name) const {
   return values;
 }
 
+std::vector<std::pair<std::string, std::vector<unsigned long long>>> ListHdf5Datasets(
+    const std::string& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
+  if (file.id < 0) {
+    throw InputError(path, 0, "", "", "cannot open as HDF5 (a MATLAB v7.3 .mat file?)");
+  }
+  H5G_info_t info;
+  if (H5Gget_info(file.id, &info) < 0) throw InputError(path, 0, "", "", "cannot list its root");
+  std::vector<std::pair<std::string, std::vector<unsigned long long>>> out;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t size =
+        H5Lget_name_by_idx(file.id, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    if (size <= 0) continue;
+    std::string name(static_cast<size_t>(size), '\0');
+    H5Lget_name_by_idx(file.id, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), size + 1,
+                       H5P_DEFAULT);
+    {
+      const Handle object{H5Oopen(file.id, name.c_str(), H5P_DEFAULT), H5Oclose};
+      if (object.id < 0 || H5Iget_type(object.id) != H5I_DATASET) {
+        continue;  // groups (MATLAB's #refs#, structs) are not variables a mapping names
+      }
+    }
+    const Handle dataset{H5Dopen2(file.id, name.c_str(), H5P_DEFAULT), H5Dclose};
+    const Handle space{H5Dget_space(dataset.id), H5Sclose};
+    const int rank = H5Sget_simple_extent_ndims(space.id);
+    std::vector<hsize_t> dims(rank > 0 ? rank : 0);
+    if (rank > 0) H5Sget_simple_extent_dims(space.id, dims.data(), nullptr);
+    out.push_back({name, std::vector<unsigned long long>(dims.begin(), dims.end())});
+  }
+  return out;
+}
+
 Hdf5Matrix ReadHdf5Matrix(const std::string& path, const std::string& name) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions here, not prints
   const Handle file{H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace slipgraph {
@@ -16,6 +17,11 @@ struct Hdf5Matrix {
   // The values as one vector when the dataset is 1 x N or N x 1; throws otherwise.
   std::vector<double> Vector(const std::string& name) const;
 };
+
+// The root datasets of an HDF5 file: name and dimensions ("N x M"). Throws InputError when the
+// file is not HDF5.
+std::vector<std::pair<std::string, std::vector<unsigned long long>>> ListHdf5Datasets(
+    const std::string& path);
 
 // Throws InputError naming the file and the variable when it is missing or not numeric.
 Hdf5Matrix ReadHdf5Matrix(const std::string& path, const std::string& name);

@@ -31,6 +31,22 @@ std::vector<std::string> Names(const YAML::Node& node, const std::string& key,
 
 }  // namespace
 
+std::vector<SourceEntry> ListMatlab(const std::string& source) {
+  std::vector<SourceEntry> out;
+  for (const auto& [name, dims] : ListHdf5Datasets(source)) {
+    SourceEntry e;
+    e.name = name;
+    long count = dims.empty() ? 0 : 1;
+    for (size_t i = 0; i < dims.size(); ++i) {
+      e.type += (i > 0 ? " x " : "") + std::to_string(dims[i]);
+      count *= static_cast<long>(dims[i]);
+    }
+    e.count = count;
+    out.push_back(e);
+  }
+  return out;
+}
+
 DriveLog ImportMatlab(const std::string& source, const std::string& mapping_path,
                       const Vehicle& vehicle, ImportReport* report) {
   const YAML::Node mapping = LoadMappingFile(mapping_path);

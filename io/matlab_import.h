@@ -25,6 +25,17 @@ struct ImportReport {
   std::vector<std::string> lines;  // what was mapped how, one line each
 };
 
+// One topic or variable of a recording (`import --list`): its name, type (a ROS message type, or
+// an HDF5 dataset's dimensions), how many messages or values, and, for a topic, its rate.
+struct SourceEntry {
+  std::string name, type;
+  long count = 0;
+  double rate_hz = 0.0;  // 0: not a time series (a MATLAB variable)
+};
+
+// The root variables of a MATLAB v7.3 / HDF5 file. Throws InputError when it is not HDF5.
+std::vector<SourceEntry> ListMatlab(const std::string& source);
+
 // Throws InputError naming the mapping file and key, or the source and variable.
 DriveLog ImportMatlab(const std::string& source, const std::string& mapping_path,
                       const Vehicle& vehicle, ImportReport* report);

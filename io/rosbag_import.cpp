@@ -12,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <tuple>
 
 #include "io/input_error.h"
 #include "io/mapping_file.h"
@@ -53,6 +54,30 @@ Eigen::Matrix3d Rotation(const YAML::Node& node, const std::string& path) {
 }
 
 }  // namespace
+
+std::vector<SourceEntry> ListRosBag(const std::string& bag_path) {
+  std::vector<SourceEntry> out;
+  try {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
+    rosbag::View all(bag);
+    std::vector<std::pair<std::string, std::string>> topics;
+    for (const rosbag::ConnectionInfo* c : all.getConnections()) {
+      const std::pair<std::string, std::string> entry{c->topic, c->datatype};
+      if (std::find(topics.begin(), topics.end(), entry) == topics.end()) topics.push_back(entry);
+    }
+    std::sort(topics.begin(), topics.end());
+    for (const auto& [topic, type] : topics) {
+      rosbag::View view(bag, rosbag::TopicQuery(topic));
+      SourceEntry e{topic, type, static_cast<long>(view.size()), 0.0};
+      const double span = (view.getEndTime() - view.getBeginTime()).toSec();
+      if (e.count > 1 && span > 0.0) e.rate_hz = (e.count - 1) / span;
+      out.push_back(e);
+    }
+  } catch (const rosbag::BagException& e) {
+    throw InputError(bag_path, 0, "", "", std::string("ROS bag: ") + e.what());
+  }
+  return out;
+}
 
 bool IsRosBag(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -174,6 +199,16 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
     }
   } catch (const rosbag::BagException& e) {
     throw InputError(bag_path, 0, "", "", std::string("ROS bag: ") + e.what());
+  }
+  for (const auto& [key, topic, count] :
+       {std::tuple<const char*, std::string, long>{"imu.topic", imu_topic, imu_n},
+        {"wheels.topic", wheel_topic, wheel_n},
+        {"gps.topic", gps_topic, gps_n}}) {
+    if (!topic.empty() && count == 0) {
+      throw InputError(mapping_path, 0, key, topic,
+                       "no messages on this topic in " + bag_path +
+                           " (`slipgraph import --list` shows the bag's topics)");
+    }
   }
   const auto by_time = [](const auto& a, const auto& b) { return a.t < b.t; };
   std::stable_sort(log.imu.begin(), log.imu.end(), by_time);

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/drive_log.h"
 #include "io/matlab_import.h"  // ImportReport
@@ -31,6 +32,10 @@ namespace slipgraph {
 // Throws InputError naming the mapping file and key, or the bag and topic.
 DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_path,
                       const Vehicle& vehicle, ImportReport* report);
+
+// Every topic of a bag with its message type, count and rate. Throws InputError when the bag
+// cannot be read.
+std::vector<SourceEntry> ListRosBag(const std::string& bag_path);
 
 // True when the file starts with the ROS 1 bag header ("#ROSBAG V2.0").
 bool IsRosBag(const std::string& path);

@@ -85,6 +85,29 @@ TEST_F(HuskyBag, WrongMappingsAreNamed) {
   EXPECT_THROW(Import(MappingWith("yaw_offset", "yaw_ofset")), InputError);
 }
 
+TEST_F(HuskyBag, ListsItsTopicsAndAMappedTopicWithNoMessagesIsAnError) {
+  const std::vector<SourceEntry> topics = ListRosBag(kBag);
+  const auto find = [&](const std::string& name) -> const SourceEntry* {
+    for (const SourceEntry& e : topics) {
+      if (e.name == name) return &e;
+    }
+    return nullptr;
+  };
+  const SourceEntry* imu = find("/imu/data");
+  ASSERT_NE(imu, nullptr);
+  EXPECT_EQ(imu->type, "sensor_msgs/Imu");
+  EXPECT_EQ(imu->count, 11865);  // as the import reads
+  EXPECT_GT(imu->rate_hz, 10.0);
+  ASSERT_NE(find("/fix"), nullptr);
+  // A topic the bag does not have: an error naming the mapping key, not an empty stream.
+  try {
+    Import(MappingWith("gps: {topic: /fix", "gps: {topic: /gps/fix"));
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("gps.topic"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(HuskyBag, FilterSmootherAndDiagnoseRunThrough) {
   DriveLog log = Import(kMapping);
   log.directory = "husky";
