@@ -14,8 +14,11 @@ bool TrustOptions::IsValid(std::string* error) const {
     *error = "TrustOptions: wheel_scale >= 1, wheel_margin_mps and min_speed_mps >= 0";
     return false;
   }
-  if (!(scale_window_s > 0.0 && min_mean_slip < 0.0 && flat_pitch_rad > 0.0)) {
-    *error = "TrustOptions: scale_window_s > 0, min_mean_slip < 0 and flat_pitch_rad > 0";
+  if (!(scale_window_s > 0.0 && min_mean_slip < 0.0 && flat_pitch_rad > 0.0 &&
+        moving_flag_fraction >= 0.0 && moving_flag_fraction <= 1.0)) {
+    *error =
+        "TrustOptions: scale_window_s > 0, min_mean_slip < 0, flat_pitch_rad > 0 and "
+        "moving_flag_fraction in [0, 1]";
     return false;
   }
   if (!(suspect_fraction >= 0.0 && suspect_fraction <= 1.0 && gnss_run_limit > 0.0 &&
@@ -58,6 +61,33 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     ++off;
   }
   report.off_wheels_fraction = static_cast<double>(off) / estimates.size();
+
+  // Flagged immobilized while the GNSS fixes on both sides (each within 1.5 s) move: a held
+  // robot's fixes stop, and a fix from before a hold-back's onset does not count alone.
+  long flagged_moving = 0;
+  std::vector<size_t> flagged_moving_at;
+  const auto moving = [&](const GpsSample& fix) {
+    const double sd =
+        std::isfinite(fix.sd_v) && fix.sd_v > 0.0 ? fix.sd_v : log.vehicle.sensors.gps_sd_v_mps;
+    return std::hypot(fix.vx, fix.vy) > std::max(0.3, 3.0 * sd);
+  };
+  for (size_t j = 0; j < estimates.size(); ++j) {
+    if (!estimates[j].slip.immobilized) continue;
+    const long i = LatestAtOrBefore(log.gps, estimates[j].t);
+    if (i < 0 || i + 1 >= static_cast<long>(log.gps.size())) continue;
+    const GpsSample& before = log.gps[i];
+    const GpsSample& after = log.gps[i + 1];
+    if (estimates[j].t - before.t > 1.5 || after.t - estimates[j].t > 1.5) continue;
+    if (moving(before) && moving(after)) {
+      ++flagged_moving;
+      flagged_moving_at.push_back(j);
+    }
+  }
+  report.flagged_moving_fraction = static_cast<double>(flagged_moving) / estimates.size();
+  const bool flags_failed = report.flagged_moving_fraction > options.moving_flag_fraction;
+  if (flags_failed) {
+    for (size_t j : flagged_moving_at) report.suspect[j] = 1.0;
+  }
 
   // The wheels' scale: consecutive windows of scale_window_s, over their samples that move on
   // the flat (a robot may run ahead of its wheels braking downhill).
@@ -145,6 +175,13 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
                   100.0 * report.off_wheels_fraction);
     report.warnings.push_back(line);
   }
+  if (flags_failed) {
+    std::snprintf(line, sizeof(line),
+                  "%.1f %% of the samples are flagged immobilized while GNSS says the robot moves "
+                  "(limit %.1f %%): the detector's model does not fit this robot",
+                  100.0 * report.flagged_moving_fraction, 100.0 * options.moving_flag_fraction);
+    report.warnings.push_back(line);
+  }
   if (scale_failed) {
     std::snprintf(line, sizeof(line),
                   "the body runs ahead of its wheels: mean apparent slip %.0f %% over %.0f s "
@@ -172,12 +209,13 @@ std::string DescribeTrust(const TrustReport& report) {
   if (std::isfinite(report.lowest_window_slip)) {
     std::snprintf(slip, sizeof(slip), "a window %.0f %%", 100.0 * report.lowest_window_slip);
   }
-  char figures[320];
+  char figures[384];
   std::snprintf(figures, sizeof(figures),
-                "off the wheels %.2f %% of samples; lowest apparent slip over %s; GNSS speed z "
-                "over the run %.1f, over a window at worst %.2f (%zu fixes)",
-                100.0 * report.off_wheels_fraction, slip, report.gnss_run_z,
-                report.gnss_worst_window, report.gnss_fixes);
+                "off the wheels %.2f %% of samples; flagged while GNSS moves %.2f %%; lowest "
+                "apparent slip over %s; GNSS speed z over the run %.1f, over a window at worst "
+                "%.2f (%zu fixes)",
+                100.0 * report.off_wheels_fraction, 100.0 * report.flagged_moving_fraction, slip,
+                report.gnss_run_z, report.gnss_worst_window, report.gnss_fixes);
   out << "trust: " << (report.trusted ? "no sign of trouble" : "NOT TRUSTED") << " (" << figures
       << ")\n";
   for (const std::string& warning : report.warnings) out << "  WARNING: " << warning << "\n";

@@ -1,6 +1,6 @@
 // Whether a run's estimates can be trusted, judged from the log alone (no truth): a model far
 // from the robot can leave a filter or a smoother sure of a velocity that every wheel and every
-// GNSS fix contradicts, and report convergence and a tight sd around it. Three checks:
+// GNSS fix contradicts, and report convergence and a tight sd around it. Four checks:
 //
 //   wheels' scale: over consecutive windows of scale_window_s, the samples on the flat (pitch
 //     within flat_pitch_rad, when the log has attitude) with both wheels turning one way above
@@ -8,6 +8,9 @@
 //     below min_mean_slip (the body faster than its wheels turn). A robot runs ahead of its
 //     wheels only downhill while braking; seconds of it on the flat say the wheel radius, the
 //     twist conversion or the velocity is wrong;
+//   flagged while moving: samples flagged immobilized while the GNSS fixes on both sides of
+//     them (each within 1.5 s) say the robot moves (ground speed above max(0.3 m/s, 3 sd)); more
+//     than moving_flag_fraction of all samples is a detector fooled by its model;
 //   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
 //     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
 //     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";
@@ -34,17 +37,18 @@
 namespace slipgraph {
 
 struct TrustOptions {
-  double wheel_scale = 1.5;        // |v| above this x the faster side's |r w| ...
-  double wheel_margin_mps = 0.3;   // ... plus this: off the wheels
-  double min_speed_mps = 0.1;      // the sign check needs body and wheels faster than this
-  double suspect_fraction = 0.01;  // more samples off the wheels than this: untrusted
-  double gnss_run_limit = 4.0;     // sum z / sqrt(n) over the run
-  int gnss_window = 10;            // fixes
-  double gnss_window_limit = 2.0;  // mean z over a window (2 sqrt(10) = 6.3 sd of it)
-  int min_gnss_fixes = 5;          // fewer fixes: no GNSS verdict on the run
-  double scale_window_s = 5.0;     // the wheels' scale check's window ...
-  double min_mean_slip = -0.2;     // ... and its limit on the mean apparent slip
-  double flat_pitch_rad = 0.05;    // steeper samples are left out of it (about 3 degrees)
+  double wheel_scale = 1.5;            // |v| above this x the faster side's |r w| ...
+  double wheel_margin_mps = 0.3;       // ... plus this: off the wheels
+  double min_speed_mps = 0.1;          // the sign check needs body and wheels faster than this
+  double suspect_fraction = 0.01;      // more samples off the wheels than this: untrusted
+  double gnss_run_limit = 4.0;         // sum z / sqrt(n) over the run
+  int gnss_window = 10;                // fixes
+  double gnss_window_limit = 2.0;      // mean z over a window (2 sqrt(10) = 6.3 sd of it)
+  int min_gnss_fixes = 5;              // fewer fixes: no GNSS verdict on the run
+  double scale_window_s = 5.0;         // the wheels' scale check's window ...
+  double min_mean_slip = -0.2;         // ... and its limit on the mean apparent slip
+  double flat_pitch_rad = 0.05;        // steeper samples are left out of it (about 3 degrees)
+  double moving_flag_fraction = 0.05;  // flagged immobilized while GNSS moves: at most this
 
   bool IsValid(std::string* error) const;
 };
@@ -55,6 +59,8 @@ struct TrustReport {
   // Per estimate: 1 where it is off the wheels or inside a GNSS window that disagrees, else 0.
   std::vector<double> suspect;
   double off_wheels_fraction = 0.0;
+  // Samples flagged immobilized while GNSS says the robot moves, as a fraction of all samples.
+  double flagged_moving_fraction = 0.0;
   // The lowest mean apparent slip over a window of the wheels' scale check (NaN: no window).
   double lowest_window_slip = std::nan("");
   double gnss_run_z = std::nan("");         // sum z / sqrt(n); NaN without enough fixes

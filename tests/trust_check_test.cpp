@@ -170,5 +170,24 @@ TEST(TrustCheck, ABodyThatRunsAheadOfItsWheelsForSecondsIsNotTrusted) {
   EXPECT_GT(fine.lowest_window_slip, -0.01);
 }
 
+TEST(TrustCheck, FlaggedImmobilizedWhileGnssMovesIsNotTrusted) {
+  // 8 s of 60 flagged immobilized (13 %) while the robot drives at 1 m/s: GNSS says it moves.
+  const auto driving = [](double) { return 1.0; };
+  SyntheticRun run = MakeRun(driving, driving, 2);
+  for (WardEstimate& e : run.estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 28.0;
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_FALSE(report.trusted);
+  EXPECT_NEAR(report.flagged_moving_fraction, 8.0 / 60.0, 0.01);
+  EXPECT_EQ(report.suspect[2400], 1.0);
+  // Control: the same flags while the robot is held (GNSS and the estimate at 0 from 19.5 s to
+  // 28.5 s): a real immobilization.
+  const auto held = [](double t) { return t >= 19.5 && t < 28.5 ? 0.0 : 1.0; };
+  SyntheticRun holdback = MakeRun(held, held, 2);
+  for (WardEstimate& e : holdback.estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 28.0;
+  const TrustReport fine = CheckTrust(holdback.log, holdback.estimates);
+  EXPECT_EQ(fine.flagged_moving_fraction, 0.0);
+  EXPECT_TRUE(fine.trusted) << DescribeTrust(fine);
+}
+
 }  // namespace
 }  // namespace slipgraph
