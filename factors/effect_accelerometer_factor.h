@@ -10,6 +10,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/imu_factor.h"
 #include "factors/model_effects.h"
 
 namespace slipgraph {
@@ -18,18 +19,13 @@ struct EffectAccelerometerFactor {
   EffectAccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                             double accel_x_mps2, double sd_mps2,
                             const EffectWindowWeights& windows = {})
-      : params_(params),
-        attitude_(attitude),
-        loads_(ward::ComputeAttitudeLoads(attitude, params)),
-        measured_(accel_x_mps2),
-        sqrt_information_(1.0 / sd_mps2),
-        windows_(windows) {}
+      : reading_(params, attitude, accel_x_mps2, sd_mps2), attitude_(attitude), windows_(windows) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, const T* theta, T* residual) const {
-    const T predicted = TireBalanceWithEffects(x, attitude_, loads_, params_, theta, windows_) +
-                        offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
-    residual[0] = sqrt_information_ * (measured_ - predicted);
+    residual[0] = reading_.Residual(
+        TireBalanceWithEffects(x, attitude_, reading_.loads, reading_.params, theta, windows_), x,
+        offsets);
     return true;
   }
 
@@ -42,11 +38,8 @@ struct EffectAccelerometerFactor {
   }
 
  private:
-  ward::Params params_;
+  AccelerometerReading reading_;
   ward::Attitude<double> attitude_;
-  ward::AttitudeLoads<double> loads_;  // the attitude's normal forces and g sin(phi), once
-  double measured_;
-  double sqrt_information_;
   EffectWindowWeights windows_;
 };
 

@@ -14,19 +14,38 @@
 
 namespace slipgraph {
 
+// What every accelerometer factor of eq. (11) holds: the physics, the attitude's normal forces
+// and g sin(phi) (computed once), the reading and its weight. Residual() is the row given the
+// model's tire balance at the state (f_tire, with whatever terms a variant adds).
+struct AccelerometerReading {
+  AccelerometerReading(const ward::Params& params_in, const ward::Attitude<double>& attitude,
+                       double accel_x_mps2, double sd_mps2)
+      : params(params_in),
+        loads(ward::ComputeAttitudeLoads(attitude, params_in)),
+        measured(accel_x_mps2),
+        sqrt_information(1.0 / sd_mps2) {}
+
+  template <typename T>
+  T Residual(const T& tire_balance, const T* x, const T* offsets) const {
+    const T predicted = tire_balance + offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
+    return sqrt_information * (measured - predicted);
+  }
+
+  ward::Params params;
+  ward::AttitudeLoads<double> loads;
+  double measured;
+  double sqrt_information;
+};
+
 struct AccelerometerFactor {
   AccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                       double accel_x_mps2, double sd_mps2)
-      : params_(params),
-        loads_(ward::ComputeAttitudeLoads(attitude, params)),
-        measured_(accel_x_mps2),
-        sqrt_information_(1.0 / sd_mps2) {}
+      : reading_(params, attitude, accel_x_mps2, sd_mps2) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, T* residual) const {
-    const ward::TireForces<T> forces = ward::ComputeTireForces(x, loads_, params_);
-    const T predicted = forces.f_tire_mps2 + offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
-    residual[0] = sqrt_information_ * (measured_ - predicted);
+    const ward::TireForces<T> forces = ward::ComputeTireForces(x, reading_.loads, reading_.params);
+    residual[0] = reading_.Residual(forces.f_tire_mps2, x, offsets);
     return true;
   }
 
@@ -38,10 +57,7 @@ struct AccelerometerFactor {
   }
 
  private:
-  ward::Params params_;
-  ward::AttitudeLoads<double> loads_;  // the attitude's normal forces, once
-  double measured_;
-  double sqrt_information_;
+  AccelerometerReading reading_;
 };
 
 struct YawGyroFactor {

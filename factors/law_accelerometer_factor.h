@@ -18,6 +18,7 @@
 
 #include <array>
 
+#include "factors/imu_factor.h"
 #include "factors/ward_dynamics.h"
 
 namespace slipgraph {
@@ -68,17 +69,14 @@ inline ward::TireForces<T> TireForcesWithLaw(const T* x, const ward::AttitudeLoa
 struct LawAccelerometerFactor {
   LawAccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                          double accel_x_mps2, double sd_mps2)
-      : params_(params),
-        loads_(ward::ComputeAttitudeLoads(attitude, params)),
-        measured_(accel_x_mps2),
-        sqrt_information_(1.0 / sd_mps2) {}
+      : reading_(params, attitude, accel_x_mps2, sd_mps2) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, const T* law, const T* radius_error,
                   T* residual) const {
-    const ward::TireForces<T> forces = TireForcesWithLaw(x, loads_, params_, law, radius_error);
-    const T predicted = forces.f_tire_mps2 + offsets[0] + x[ward::kAccelBias] + x[ward::kAdist];
-    residual[0] = sqrt_information_ * (measured_ - predicted);
+    const ward::TireForces<T> forces =
+        TireForcesWithLaw(x, reading_.loads, reading_.params, law, radius_error);
+    residual[0] = reading_.Residual(forces.f_tire_mps2, x, offsets);
     return true;
   }
 
@@ -91,10 +89,7 @@ struct LawAccelerometerFactor {
   }
 
  private:
-  ward::Params params_;
-  ward::AttitudeLoads<double> loads_;
-  double measured_;
-  double sqrt_information_;
+  AccelerometerReading reading_;
 };
 
 }  // namespace slipgraph

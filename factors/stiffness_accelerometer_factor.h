@@ -16,6 +16,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/imu_factor.h"
 #include "factors/traction.h"
 #include "factors/ward_dynamics.h"
 
@@ -36,19 +37,14 @@ inline T TireBalanceWithStiffness(const T* x, const ward::AttitudeLoads<double>&
 struct StiffnessAccelerometerFactor {
   StiffnessAccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
                                double accel_x_mps2, double sd_mps2, double weight_b)
-      : params_(params),
-        loads_(ward::ComputeAttitudeLoads(attitude, params)),
-        measured_(accel_x_mps2),
-        sqrt_information_(1.0 / sd_mps2),
-        weight_b_(weight_b) {}
+      : reading_(params, attitude, accel_x_mps2, sd_mps2), weight_b_(weight_b) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, const T* theta_a, const T* theta_b,
                   T* residual) const {
     const T scale = T(1.0) + (1.0 - weight_b_) * theta_a[0] + weight_b_ * theta_b[0];
-    const T predicted = TireBalanceWithStiffness(x, loads_, params_, scale) + offsets[0] +
-                        x[ward::kAccelBias] + x[ward::kAdist];
-    residual[0] = sqrt_information_ * (measured_ - predicted);
+    residual[0] = reading_.Residual(
+        TireBalanceWithStiffness(x, reading_.loads, reading_.params, scale), x, offsets);
     return true;
   }
 
@@ -61,10 +57,7 @@ struct StiffnessAccelerometerFactor {
   }
 
  private:
-  ward::Params params_;
-  ward::AttitudeLoads<double> loads_;
-  double measured_;
-  double sqrt_information_;
+  AccelerometerReading reading_;
   double weight_b_;  // u: theta_b's share of the sample's theta
 };
 

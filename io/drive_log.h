@@ -45,6 +45,12 @@ struct GpsSample {
   double sd_xy = kMissing, sd_z = kMissing, sd_v = kMissing;
 };
 
+// A fix's velocity sd: its own when the row states a positive one, else `stated_mps` (the
+// model's or vehicle.yaml's).
+inline double GnssVelocitySd(const GpsSample& fix, double stated_mps) {
+  return std::isfinite(fix.sd_v) && fix.sd_v > 0.0 ? fix.sd_v : stated_mps;
+}
+
 struct PoseSample {
   double t = 0.0;
   double x = 0.0, y = 0.0, z = 0.0;

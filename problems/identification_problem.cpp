@@ -28,14 +28,12 @@ std::unique_ptr<IdentificationProblem> BuildIdentificationProblem(
     problem.SetParameterLowerBound(out->law.data(), i, priors.law_min[i]);
     problem.SetParameterUpperBound(out->law.data(), i, priors.law_max[i]);
   }
-  std::array<double, kLawCoefficientCount> law_mean = out->law;
   for (int i = 0; i < kLawCoefficientCount; ++i) {
-    law_mean[i] = std::clamp(law_mean[i], priors.law_min[i], priors.law_max[i]);
+    out->law[i] = std::clamp(out->law[i], priors.law_min[i], priors.law_max[i]);
   }
-  out->law = law_mean;
   added.push_back(
       {"law_prior", problem.AddResidualBlock(
-                        DiagonalPrior<kLawCoefficientCount>::Create(law_mean, priors.law_sd),
+                        DiagonalPrior<kLawCoefficientCount>::Create(out->law, priors.law_sd),
                         nullptr, out->law.data())});
   problem.AddParameterBlock(out->radius_error.data(), 2);
   for (int i = 0; i < 2; ++i) {

@@ -294,7 +294,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     } else {
       along = (w[0] + w[1] >= 0.0 ? 1.0 : -1.0) * std::hypot(g.vx, g.vy);
     }
-    const double sd = std::isfinite(g.sd_v) && g.sd_v > 0.0 ? g.sd_v : noise.gps_sd_v_mps;
+    const double sd = GnssVelocitySd(g, noise.gps_sd_v_mps);
     Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, x);
     ++counts->gnss;
   }

@@ -109,15 +109,16 @@ void ImuOffsetEstimator::FinishInitialisation() {
       mean_over(0, &t0, &v0);
       mean_over(seen.size() - end_count, &t1, &v1);
       const double body_accel = t1 > t0 ? (v1 - v0) / (t1 - t0) : 0.0;
-      double seen_accel = 0.0, seen_gyro = 0.0;
+      double seen_accel = 0.0, seen_gyro = 0.0, seen_yaw = 0.0;
       for (const InitSample* s : seen) {
         seen_accel += s->accel_offset;
-        seen_gyro += s->gyro_z - s->wheels.yaw_rate_radps;
+        seen_gyro += s->gyro_z;
+        seen_yaw += s->wheels.yaw_rate_radps;
       }
-      accel = seen_accel / seen.size() - body_accel;
-      gyro = seen_gyro / seen.size();
-      double mean_yaw = 0.0;
-      for (const InitSample* s : seen) mean_yaw += s->wheels.yaw_rate_radps / seen.size();
+      const double n_seen = static_cast<double>(seen.size());
+      const double mean_yaw = seen_yaw / n_seen;
+      accel = seen_accel / n_seen - body_accel;
+      gyro = seen_gyro / n_seen - mean_yaw;
       init_sd_ = {0.1 * std::abs(body_accel) + kMovingStartSdMps2,
                   yaw_rate_relative_sd_ * std::abs(mean_yaw)};
       if (std::abs(accel) > kMaxPlausibleOffsetMps2) {

@@ -40,6 +40,15 @@ double SecondDifferenceSd(const std::vector<double>& x, size_t lag, long* used) 
   return *used > 0 ? std::sqrt(sum_sq / *used / 6.0) : std::nan("");
 }
 
+// The driven sides' mean surface speed r |w_l + w_r| / 2 at the wheel sample at or within 0.05 s
+// before t; NaN when there is none.
+double WheelSurfaceSpeedAt(const DriveLog& log, double t) {
+  const long i = LatestAtOrBefore(log.wheels, t);
+  if (i < 0 || t - log.wheels[i].t > 0.05) return std::nan("");
+  const SideSpeeds s = DrivenSideSpeeds(log.wheels[i], log.vehicle.type);
+  return 0.5 * log.vehicle.wheel_radius_m * std::abs(s.left_radps + s.right_radps);
+}
+
 void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
                          std::vector<NoiseEstimate>* out) {
   struct Signal {
@@ -73,13 +82,7 @@ void EstimateSensorNoise(const std::vector<DriveLog>& logs, ModelConfig* model,
     std::vector<double> speed;
     for (const GpsSample& g : log.gps) {
       const double v = std::hypot(g.vx, g.vy);
-      const long i = LatestAtOrBefore(log.wheels, g.t);
-      double wheel = std::nan("");
-      if (i >= 0 && g.t - log.wheels[i].t <= 0.05) {
-        const SideSpeeds s = DrivenSideSpeeds(log.wheels[i], log.vehicle.type);
-        wheel = 0.5 * log.vehicle.wheel_radius_m * std::abs(s.left_radps + s.right_radps);
-      }
-      speed.push_back(v > 0.3 ? v - wheel : std::nan(""));
+      speed.push_back(v > 0.3 ? v - WheelSurfaceSpeedAt(log, g.t) : std::nan(""));
     }
     gnss.series.push_back(speed);
     std::vector<double> east, north;
@@ -136,12 +139,8 @@ double GnssRadiusError(const std::vector<DriveLog>& logs, double* sd, long* used
   double suu = 0.0, suv = 0.0, svv = 0.0;
   long n = 0;
   for (const DriveLog& log : logs) {
-    const double r = log.vehicle.wheel_radius_m;
     for (const GpsSample& g : log.gps) {
-      const long i = LatestAtOrBefore(log.wheels, g.t);
-      if (i < 0 || g.t - log.wheels[i].t > 0.05) continue;
-      const SideSpeeds s = DrivenSideSpeeds(log.wheels[i], log.vehicle.type);
-      const double u = 0.5 * r * std::abs(s.left_radps + s.right_radps);
+      const double u = WheelSurfaceSpeedAt(log, g.t);
       const double v = std::hypot(g.vx, g.vy);
       if (!std::isfinite(u) || !std::isfinite(v) || u < 0.3) continue;
       suu += u * u, suv += u * v, svv += v * v, ++n;

@@ -67,9 +67,8 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
   long flagged_moving = 0;
   std::vector<size_t> flagged_moving_at;
   const auto moving = [&](const GpsSample& fix) {
-    const double sd =
-        std::isfinite(fix.sd_v) && fix.sd_v > 0.0 ? fix.sd_v : log.vehicle.sensors.gps_sd_v_mps;
-    return std::hypot(fix.vx, fix.vy) > std::max(0.3, 3.0 * sd);
+    return std::hypot(fix.vx, fix.vy) >
+           std::max(0.3, 3.0 * GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps));
   };
   for (size_t j = 0; j < estimates.size(); ++j) {
     if (!estimates[j].slip.immobilized) continue;
@@ -136,8 +135,7 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     const size_t nearest =
         k + 1 < estimates.size() && estimates[k + 1].t - fix.t < fix.t - estimates[k].t ? k + 1 : k;
     const WardEstimate& e = estimates[nearest];
-    const double sd_gnss_mps =
-        std::isfinite(fix.sd_v) && fix.sd_v > 0.0 ? fix.sd_v : log.vehicle.sensors.gps_sd_v_mps;
+    const double sd_gnss_mps = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
     const double v_mps = e.x[ward::kVbx], sd_v_mps = e.sd[ward::kVbx];
     // The fix's speed in 3-D when it has a vertical velocity (the body's speed on a grade), its
     // noise's bias (sd^2 per axis) and variance (2 sd^4 per axis) with it.

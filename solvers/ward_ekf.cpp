@@ -481,8 +481,7 @@ void WardEkf::AddGps(const GpsSample& gps) {
     const double sign = x_(kOmegaLeft) + x_(kOmegaRight) >= 0.0 ? 1.0 : -1.0;
     along = sign * std::hypot(gps.vx, gps.vy);
   }
-  const double sd =
-      IsFinite(gps.sd_v) && gps.sd_v > 0.0 ? gps.sd_v : model_.measurement.gps_sd_v_mps;
+  const double sd = GnssVelocitySd(gps, model_.measurement.gps_sd_v_mps);
   RowVector nu(1), r(1);
   RowMatrix H = RowMatrix::Zero(1, kStateSize);
   nu(0) = along - x_(kVbx);
