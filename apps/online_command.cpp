@@ -35,6 +35,12 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddWindowSolverOption(cmd, &options->window.solver);
+  cmd->add_option("--stiffness-sd", options->window.stiffness_prior_sd,
+                  "Estimate the tire law's slip stiffness in the window, with a prior of this "
+                  "relative sd around the front end's law, when vehicle.yaml lists its soils "
+                  "(law_samples); 0: the law as given")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_flag("!--no-covariance", options->window.covariance,
                 "Skip the window's marginal covariance (report the EKF's sd)");
   cmd->add_flag("--advance-velocity", options->advance_velocity,

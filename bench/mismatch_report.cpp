@@ -1,10 +1,14 @@
 // The estimators on a matched suite and its mismatch twin (docs/mismatch.md), seed by seed:
 // detection, false alarms, velocity error and consistency of the front end with and without
-// GNSS and, with --smoother, of the batch smoother. Simulates each suite in memory.
+// GNSS, with --window of the online window behind it, and with --smoother of the batch smoother.
+// Simulates each suite in memory.
 //
-// Run: build/bench/mismatch_report [--suite ward21m] [--seeds A-B] [--smoother] [--threads N]
+// Run: build/bench/mismatch_report [--suite ward21m] [--seeds A-B] [--window] [--smoother]
+//        [--threads N]
 //   --suite: ward21 or ward21m (default ward21m);
 //   --seeds: the suites' seeds (default 1-4);
+//   --window: add the online window (GNSS; `online`'s defaults) behind the EKF's run, and its
+//     velocity RMSE over the EKF's run by run;
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
@@ -26,12 +30,14 @@
 #include "solvers/ekf_runner.h"
 #include "solvers/run_concurrently.h"
 #include "solvers/trust_check.h"
+#include "solvers/window_smoother.h"
 
 namespace slipgraph {
 namespace {
 
-enum Estimator { kEkfGnss = 0, kEkfNoGnss, kBatchGnss, kEstimatorCount };
-const char* const kNames[kEstimatorCount] = {"EKF, GNSS", "EKF, no GNSS", "batch, GNSS"};
+enum Estimator { kEkfGnss = 0, kEkfNoGnss, kWindowGnss, kBatchGnss, kEstimatorCount };
+const char* const kNames[kEstimatorCount] = {"EKF, GNSS", "EKF, no GNSS", "window, GNSS",
+                                             "batch, GNSS"};
 
 struct SuiteResult {
   Evaluation evaluation[kEstimatorCount];
@@ -39,6 +45,11 @@ struct SuiteResult {
   Evaluation trusted[kEstimatorCount];
   int untrusted_runs[kEstimatorCount] = {};
   int smoother_fallbacks = 0;
+  // --window: per run, the window's velocity RMSE over the EKF's (GNSS), and the window's
+  // updates that were rejected or fell back.
+  std::vector<double> window_ratio;
+  std::vector<std::string> window_above;  // "run: EKF v RMSE, window's" where the ratio > 1.05
+  long window_failed_updates = 0;
 };
 
 // --without: the mismatch ingredients taken back out of a mismatch suite's scenarios, each
@@ -67,7 +78,7 @@ sim::Scenario Ablate(sim::Scenario sc, const sim::Scenario& matched) {
   return sc;
 }
 
-SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool smoother) {
+SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool smoother) {
   SuiteResult out;
   std::vector<Evaluation> runs[kEstimatorCount], trusted_runs[kEstimatorCount];
   const auto score = [&](int e, const DriveLog& log, const std::vector<WardEstimate>& estimates) {
@@ -91,11 +102,31 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool smoother) {
         matched.empty() ? run.scenario : Ablate(run.scenario, matched[r].scenario);
     const DriveLog log = sim::Simulate(scenario, run.seed).log;
     const ModelConfig model = DefaultModelConfig(log.vehicle);
+    FilterResult with_gnss;
     for (int e = kEkfGnss; e <= kEkfNoGnss; ++e) {
       FilterRunOptions options;
       options.ekf = g_ekf;
       options.use_gps = e == kEkfGnss;
-      score(e, log, RunEkf(log, model, options).estimates);
+      FilterResult result = RunEkf(log, model, options);
+      score(e, log, result.estimates);
+      if (e == kEkfGnss) with_gnss = std::move(result);
+    }
+    if (window) {
+      WindowSmootherOptions options;
+      options.filter.ekf = g_ekf;
+      const WindowSmootherResult result = SmoothWindowed(log, model, with_gnss, options);
+      out.window_failed_updates += result.failed_updates;
+      score(kWindowGnss, log, result.estimates);
+      const double ekf = runs[kEkfGnss].back().velocity_rmse;
+      const double refined = runs[kWindowGnss].back().velocity_rmse;
+      out.window_ratio.push_back(refined / ekf);
+      if (refined > 1.05 * ekf) {
+        char line[160];
+        std::snprintf(line, sizeof(line), "seed %llu %s: EKF %.4f, window %.4f m/s (%.2f x)",
+                      static_cast<unsigned long long>(seed), run.relative_directory.c_str(), ekf,
+                      refined, refined / ekf);
+        out.window_above.push_back(line);
+      }
     }
     if (smoother) {
       BatchSmootherOptions options;
@@ -126,7 +157,7 @@ int main(int argc, char** argv) {
   using namespace slipgraph;  // NOLINT
   std::string suite = "ward21m";
   uint64_t first = 1, last = 4;
-  bool smoother = false;
+  bool smoother = false, window = false;
   int threads = 2;
   for (int i = 1; i < argc; ++i) {
     const bool has_value = i + 1 < argc;
@@ -149,6 +180,8 @@ int main(int argc, char** argv) {
       g_ekf.gnss_fading_fixes = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--fading-threshold") == 0 && has_value) {
       g_ekf.gnss_fading_threshold = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--window") == 0) {
+      window = true;
     } else if (std::strcmp(argv[i], "--smoother") == 0) {
       smoother = true;
     } else {
@@ -163,26 +196,27 @@ int main(int argc, char** argv) {
   const size_t count = static_cast<size_t>(last - first + 1);
   std::vector<SuiteResult> results(count);
   RunConcurrently(count, threads,
-                  [&](size_t i) { results[i] = RunSuite(suite, first + i, smoother); });
+                  [&](size_t i) { results[i] = RunSuite(suite, first + i, window, smoother); });
 
-  const int shown = smoother ? kEstimatorCount : kBatchGnss;
+  std::vector<int> shown = {kEkfGnss, kEkfNoGnss};
+  if (window) shown.push_back(kWindowGnss);
+  if (smoother) shown.push_back(kBatchGnss);
   std::printf(
       "%s, seeds %llu-%llu: per estimator detected / events, mean delay s, false "
       "immobilized %%, v RMSE m/s, v NEES inside its 95 %% bound %%\n\n",
       suite.c_str(), static_cast<unsigned long long>(first), static_cast<unsigned long long>(last));
   std::printf("| seed |");
-  for (int e = 0; e < shown; ++e)
-    std::printf(" %s: det. | delay | false %% | v RMSE | NEES %% |", kNames[e]);
+  for (int e : shown) std::printf(" %s: det. | delay | false %% | v RMSE | NEES %% |", kNames[e]);
   std::printf("\n|---|");
-  for (int e = 0; e < shown; ++e) std::printf("---|---|---|---|---|");
+  for (size_t e = 0; e < shown.size(); ++e) std::printf("---|---|---|---|---|");
   std::printf("\n");
   for (size_t i = 0; i < count; ++i) {
     std::printf("| %llu |", static_cast<unsigned long long>(first + i));
-    for (int e = 0; e < shown; ++e) PrintCells(results[i].evaluation[e]);
+    for (int e : shown) PrintCells(results[i].evaluation[e]);
     std::printf("\n");
   }
   std::printf("\n");
-  for (int e = 0; e < shown; ++e) {
+  for (int e : shown) {
     std::vector<Evaluation> all;
     double false_mean = 0.0, worst = 0.0;
     for (const SuiteResult& r : results) {
@@ -209,6 +243,26 @@ int main(int argc, char** argv) {
         "samples, v RMSE %.4f m/s, v NEES inside 95 %% %.1f %%\n",
         untrusted, 100.0 * t.false_immobilized_fraction(), t.velocity_rmse,
         100.0 * t.nees_within_95_fraction());
+  }
+  if (window) {
+    std::vector<double> ratios;
+    long failed = 0;
+    for (const SuiteResult& r : results) {
+      ratios.insert(ratios.end(), r.window_ratio.begin(), r.window_ratio.end());
+      failed += r.window_failed_updates;
+    }
+    double mean = 0.0;
+    for (double ratio : ratios) mean += ratio / ratios.size();
+    const double worst = ratios.empty() ? 0.0 : *std::max_element(ratios.begin(), ratios.end());
+    const long above =
+        std::count_if(ratios.begin(), ratios.end(), [](double r) { return r > 1.05; });
+    std::printf(
+        "window v RMSE over the EKF's, run by run: mean %.3f, worst %.3f, above 1.05 on %ld of "
+        "%zu runs; %ld window updates failed\n",
+        mean, worst, above, ratios.size(), failed);
+    for (const SuiteResult& r : results) {
+      for (const std::string& line : r.window_above) std::printf("  %s\n", line.c_str());
+    }
   }
   if (smoother) {
     int fallbacks = 0;

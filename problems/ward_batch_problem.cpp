@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "factors/diagonal_prior.h"
-#include "factors/linear_factor.h"
 
 namespace slipgraph {
 
@@ -92,27 +91,8 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   if (options.stiffness_prior_sd > 0.0 && effects == nullptr && source.size() > 0) {
     out->stiffness.assign(source.stiffness_node_count(), 0.0);
     stiffness = out->stiffness.data();
-    if (!(options.stiffness_walk_sd > 0.0 && options.stiffness_node_s > 0.0)) {
-      throw std::invalid_argument("the slip-stiffness walk needs a positive density and spacing");
-    }
-    const double walk = options.stiffness_walk_sd * std::sqrt(options.stiffness_node_s);
     for (size_t j = 0; j < out->stiffness.size(); ++j) {
-      problem.AddParameterBlock(&stiffness[j], 1);
-      problem.SetParameterLowerBound(&stiffness[j], 0, options.stiffness_min);
-      if (j == 0) {
-        added.push_back({"stiffness_prior",
-                         problem.AddResidualBlock(
-                             new ceres::NormalPrior(
-                                 Eigen::MatrixXd::Constant(1, 1, 1.0 / options.stiffness_prior_sd),
-                                 Eigen::VectorXd::Zero(1)),
-                             nullptr, &stiffness[0])});
-      } else {
-        std::vector<LinearFactor::Matrix> a = {LinearFactor::Matrix::Constant(1, 1, -1.0 / walk),
-                                               LinearFactor::Matrix::Constant(1, 1, 1.0 / walk)};
-        added.push_back({"stiffness_walk",
-                         problem.AddResidualBlock(new LinearFactor(a, Eigen::VectorXd::Zero(1)),
-                                                  nullptr, &stiffness[j - 1], &stiffness[j])});
-      }
+      source.AddStiffnessNode(j, stiffness, &problem, &added);
     }
   }
   source.AddStatePrior(0, out->states[0].data(), &problem, &added);

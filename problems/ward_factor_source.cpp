@@ -1,6 +1,7 @@
 #include "problems/ward_factor_source.h"
 
 #include <ceres/loss_function.h>
+#include <ceres/normal_prior.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"
 #include "factors/law_accelerometer_factor.h"
+#include "factors/linear_factor.h"
 #include "factors/oppose_motion_prior.h"
 #include "factors/rate_bound_prior.h"
 #include "factors/state_walk_factor.h"
@@ -108,6 +110,11 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   }
   if (initial.empty()) throw std::invalid_argument("the front end produced no estimates");
   const size_t n = initial.size();
+  if (!options.law_per_state.empty() && options.law_per_state.size() != n) {
+    throw std::invalid_argument("law_per_state has " +
+                                std::to_string(options.law_per_state.size()) + " laws for " +
+                                std::to_string(n) + " states");
+  }
   times_.resize(n);
   wheel_speeds_.assign(n, {0.0, 0.0});
   stopped_since_.assign(n, -1.0);
@@ -167,6 +174,30 @@ void WardFactorSource::StiffnessNodesAt(double t, size_t* first, double* u) cons
   *u = std::clamp(position - static_cast<double>(*first), 0.0, 1.0);
 }
 
+void WardFactorSource::AddStiffnessNode(size_t j, double* nodes, ceres::Problem* problem,
+                                        std::vector<AddedFactor>* added) const {
+  if (!(options_.stiffness_walk_sd > 0.0 && options_.stiffness_node_s > 0.0)) {
+    throw std::invalid_argument("the slip-stiffness walk needs a positive density and spacing");
+  }
+  problem->AddParameterBlock(&nodes[j], 1);
+  problem->SetParameterLowerBound(&nodes[j], 0, options_.stiffness_min);
+  if (j == 0) {
+    added->push_back({"stiffness_prior",
+                      problem->AddResidualBlock(
+                          new ceres::NormalPrior(
+                              Eigen::MatrixXd::Constant(1, 1, 1.0 / options_.stiffness_prior_sd),
+                              Eigen::VectorXd::Zero(1)),
+                          nullptr, &nodes[0])});
+    return;
+  }
+  const double walk = options_.stiffness_walk_sd * std::sqrt(options_.stiffness_node_s);
+  std::vector<LinearFactor::Matrix> a = {LinearFactor::Matrix::Constant(1, 1, -1.0 / walk),
+                                         LinearFactor::Matrix::Constant(1, 1, 1.0 / walk)};
+  added->push_back(
+      {"stiffness_walk", problem->AddResidualBlock(new LinearFactor(a, Eigen::VectorXd::Zero(1)),
+                                                   nullptr, &nodes[j - 1], &nodes[j])});
+}
+
 ForceTermContext ForceTermContextAt(const DriveLog& log, double t) {
   ForceTermContext c;
   c.t_s = t;
@@ -222,7 +253,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   double* effects = globals.effects;
   double* force_terms = globals.force_terms;
   double* stiffness_nodes = globals.stiffness;
-  const Params& params = params_;
+  Params params = params_;
+  if (k < options_.law_per_state.size()) {
+    params.tire = options_.law_per_state[k].tire;
+    params.rolling = options_.law_per_state[k].rolling;
+  }
   const SensorNoise& noise = model_.measurement;
   const ProcessNoiseConfig& q = model_.process;
   const WeakConstraintConfig& wc = model_.weak_constraints;

@@ -105,6 +105,11 @@ struct WardProblemOptions {
   // tenth of the user's). On a real log whose law was guessed (WVU Pathfinder) the data pushed
   // theta to -1.01, a law with no slope at all.
   double stiffness_min = -0.9;
+  // The tire and rolling law at each state (one per state; empty: the model's everywhere), e.g.
+  // the law a bank of filters weighed at that sample (FilterResult::law): a window behind the
+  // bank then holds the law the bank's estimate came from. The stiffness walk and the law
+  // blocks scale or replace it as they do the model's.
+  std::vector<LawSample> law_per_state;
 };
 
 // A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).
@@ -152,6 +157,7 @@ class WardFactorSource {
                    const std::vector<WardEstimate>& initial, const WardProblemOptions& options);
 
   size_t size() const { return times_.size(); }
+  const WardProblemOptions& options() const { return options_; }
   double time(size_t k) const { return times_[k]; }
   const std::vector<double>& times() const { return times_; }
   // The front end's estimate at state k: the initial value of the state.
@@ -185,6 +191,12 @@ class WardFactorSource {
   // two carry time t with the second's share u.
   size_t stiffness_node_count() const;
   void StiffnessNodesAt(double t, size_t* first, double* u) const;
+  // Node j of that walk (nodes: stiffness_node_count() contiguous values) as a parameter block
+  // bounded below by stiffness_min, with the prior around the user's law (j = 0) or the walk's
+  // step from node j - 1, which must be in the problem. Throws std::invalid_argument when the
+  // walk's density or spacing is not positive.
+  void AddStiffnessNode(size_t j, double* nodes, ceres::Problem* problem,
+                        std::vector<AddedFactor>* added) const;
 
  private:
   struct Context;

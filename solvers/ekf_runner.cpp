@@ -18,6 +18,7 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
   result->estimates.reserve(log.wheels.size());
   if constexpr (std::is_same_v<Filter, MultipleModelEkf>) {
     result->law_spread_sd.reserve(log.wheels.size());
+    result->law.reserve(log.wheels.size());
   }
   for (const StreamEntry& entry : MergeStreams(log, selection)) {
     switch (entry.stream) {
@@ -37,6 +38,7 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
         if constexpr (std::is_same_v<Filter, MultipleModelEkf>) {
           result->law_spread_sd.emplace_back();
           result->estimates.push_back(filter->Estimate(&result->law_spread_sd.back()));
+          result->law.push_back(filter->Law());
         } else {
           result->estimates.push_back(filter->Estimate());
         }

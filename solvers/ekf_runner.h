@@ -31,6 +31,9 @@ struct FilterResult {
   // estimates about the bank's mean, the tire law's share of the sd (the window smoother adds it
   // to its own). Empty for one filter.
   std::vector<std::array<double, ward::kStateSize>> law_spread_sd;
+  // The bank: per estimate, its filters' laws weighed as the estimate is (MultipleModelEkf::Law),
+  // the law a smoother behind it takes at that state. Empty for one filter.
+  std::vector<LawSample> law;
   EkfStats stats;
   std::vector<std::string> streams_used;
   std::vector<std::string> notes;  // assumptions and problems, one line each

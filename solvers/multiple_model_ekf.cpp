@@ -19,12 +19,14 @@ MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& mo
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
       encoder_timeout_s_(ekf.encoder_timeout_s) {
   filters_.push_back(std::make_unique<WardEkf>(vehicle, model, ekf));
+  laws_.push_back({model.tire, model.rolling});
   if (model.law_samples.size() >= 2) {
     for (const LawSample& sample : model.law_samples) {
       ModelConfig soil = model;
       soil.tire = sample.tire;
       soil.rolling = sample.rolling;
       filters_.push_back(std::make_unique<WardEkf>(vehicle, soil, ekf));
+      laws_.push_back(sample);
     }
   }
   weights_.assign(filters_.size(), 1.0 / filters_.size());
@@ -64,6 +66,21 @@ void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right
   const WardEstimate e = Estimate();
   slip_ = detector_.Update(e.x[ward::kVbx], e.x[ward::kYawRate], e.x[ward::kOmegaLeft],
                            e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_);
+}
+
+LawSample MultipleModelEkf::Law() const {
+  if (laws_.size() == 1) return laws_.front();
+  LawSample law{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  for (size_t i = 0; i < laws_.size(); ++i) {
+    const double w = weights_[i];
+    law.tire.C1 += w * laws_[i].tire.C1;
+    law.tire.At += w * laws_[i].tire.At;
+    law.tire.C2 += w * laws_[i].tire.C2;
+    law.rolling.R1 += w * laws_[i].rolling.R1;
+    law.rolling.A_roll += w * laws_[i].rolling.A_roll;
+    law.rolling.R2 += w * laws_[i].rolling.R2;
+  }
+  return law;
 }
 
 WardEstimate MultipleModelEkf::Estimate(std::array<double, ward::kStateSize>* law_spread_sd) const {

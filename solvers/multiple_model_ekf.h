@@ -56,10 +56,14 @@ class MultipleModelEkf {
   // The filters: [0] on the user's law, then one per law sample.
   size_t size() const { return filters_.size(); }
   const std::vector<double>& weights() const { return weights_; }
+  // The filters' laws weighed as the estimate is: each coefficient of the tire and rolling laws
+  // averaged with the filters' weights (the user's law with one filter).
+  LawSample Law() const;
 
  private:
   MultipleModelOptions options_;
   std::vector<std::unique_ptr<WardEkf>> filters_;
+  std::vector<LawSample> laws_;  // filter i's law
   std::vector<double> weights_;
   ImmobilizationDetector detector_;
   double encoder_timeout_s_;

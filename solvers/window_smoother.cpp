@@ -41,6 +41,10 @@ class Window {
     offsets_ = {first.accel_offset_mps2, first.gyro_offset_radps};
     problem_.AddParameterBlock(offsets_.data(), 2);
     source_.AddOffsetPrior(offsets_, offsets_.data(), &problem_, &added_);
+    if (source.options().stiffness_prior_sd > 0.0) {
+      stiffness_.assign(source.stiffness_node_count(), 0.0);
+      node_.assign(stiffness_.size(), Node::kAbsent);
+    }
   }
 
   // Adds wheel sample k (the next one) as a state, initialised from the EKF, with its factors.
@@ -53,7 +57,11 @@ class Window {
     problem_.AddParameterBlock(x, kStateSize);
     if (first) source_.AddStatePrior(k, x, &problem_, &added_);
     double* previous = first ? nullptr : states_[states_.size() - 2].data();
-    source_.AddStep(k, previous, x, {offsets_.data()}, &problem_, &added_, &counts_);
+    AddStiffnessNodesFor(k);
+    source_.AddStep(
+        k, previous, x,
+        {offsets_.data(), nullptr, nullptr, stiffness_.empty() ? nullptr : stiffness_.data()},
+        &problem_, &added_, &counts_);
     source_.AddLateBodyVelocity(
         k, [&](size_t j) { return j >= first_ && j < k ? states_[j - first_].data() : nullptr; },
         &problem_, &added_, &counts_);
@@ -65,6 +73,7 @@ class Window {
     const Clock::time_point start = Clock::now();
     const std::deque<std::array<double, kStateSize>> before = states_;
     const std::array<double, 2> offsets_before = offsets_;
+    const std::vector<double> stiffness_before = stiffness_;
     const double newest = NewestTime();
     size_t leaving = 0;
     while (leaving < states_.size() &&
@@ -79,6 +88,7 @@ class Window {
       if (!solved) {
         states_ = before;  // same addresses: the deque's elements are assigned in place
         offsets_ = offsets_before;
+        std::copy(stiffness_before.begin(), stiffness_before.end(), stiffness_.begin());
         have_sd = false;
         ++result_->chain_fallbacks;
       }
@@ -90,6 +100,7 @@ class Window {
       if (failed) {
         states_ = before;
         offsets_ = offsets_before;
+        std::copy(stiffness_before.begin(), stiffness_before.end(), stiffness_.begin());
         ++result_->failed_updates;
         Note("window ending at t=" + std::to_string(newest) + " s failed (" + summary.message +
              "): its leaving states are the EKF's");
@@ -142,6 +153,7 @@ class Window {
       ++first_;
       if (m.prior && !m.kept.empty()) problem_.AddResidualBlock(m.prior.release(), nullptr, m.kept);
     }
+    if (!final && leaving > 0) MarginalizeStiffnessNodes();
     if (failed && !states_.empty() && leaving > 0) {
       source_.AddStatePrior(first_, states_.front().data(), &problem_, &added_);
       added_.clear();
@@ -151,6 +163,8 @@ class Window {
   }
 
   const FactorCounts& counts() const { return counts_; }
+  // The slip-stiffness walk's nodes (empty when the law's stiffness is taken as exact).
+  const std::vector<double>& stiffness() const { return stiffness_; }
 
  private:
   static ceres::Problem::Options ProblemOptions() {
@@ -160,6 +174,54 @@ class Window {
   }
 
   double NewestTime() const { return source_.time(first_ + states_.size() - 1); }
+
+  // The blocks every state may touch: the IMU offsets, then the stiffness nodes in the problem.
+  std::vector<double*> Globals() {
+    std::vector<double*> globals = {offsets_.data()};
+    for (size_t j = 0; j < node_.size(); ++j) {
+      if (node_[j] == Node::kInProblem) globals.push_back(&stiffness_[j]);
+    }
+    return globals;
+  }
+
+  // The first stiffness node that state k's factors may touch: its IMU samples reach half a
+  // wheel cycle either side of it (kImuReachS is generous).
+  size_t FirstNodeOf(size_t k, double reach_s) const {
+    size_t j = 0;
+    double u = 0.0;
+    source_.StiffnessNodesAt(source_.time(k) + reach_s, &j, &u);
+    return j;
+  }
+
+  // Every node up to the pair state k's factors touch, each with its prior or walk step.
+  void AddStiffnessNodesFor(size_t k) {
+    if (stiffness_.empty()) return;
+    const size_t last = std::min(stiffness_.size() - 1, FirstNodeOf(k, kImuReachS) + 1);
+    for (size_t j = 0; j <= last; ++j) {
+      if (node_[j] != Node::kAbsent) continue;
+      source_.AddStiffnessNode(j, stiffness_.data(), &problem_, &added_);
+      node_[j] = Node::kInProblem;
+    }
+  }
+
+  // Nodes that no state left in the window touches go the way of the states: marginalized into
+  // the prior (their information reaches the next node through the walk step).
+  void MarginalizeStiffnessNodes() {
+    if (stiffness_.empty() || states_.empty()) return;
+    const size_t first_touched = FirstNodeOf(first_, -kImuReachS);
+    for (size_t j = 0; j < first_touched; ++j) {
+      if (node_[j] != Node::kInProblem) continue;
+      Marginalization m = Marginalize(problem_, {&stiffness_[j]});
+      if (!m.prior && !m.error.empty()) {
+        ++result_->failed_marginalizations;
+        Note("marginalizing the slip-stiffness node " + std::to_string(j) + " failed (" + m.error +
+             "): its information is dropped");
+      }
+      problem_.RemoveParameterBlock(&stiffness_[j]);
+      node_[j] = Node::kMarginalized;
+      if (m.prior && !m.kept.empty()) problem_.AddResidualBlock(m.prior.release(), nullptr, m.kept);
+    }
+  }
 
   // Gauss-Newton on the window's chain structure (WindowSolver::kChainGaussNewton), at most
   // max_iterations steps, each from one evaluation and one block-tridiagonal factorization that
@@ -172,7 +234,7 @@ class Window {
     const bool want_sd = options_.covariance && leaving > 0;
     const int iterations = std::max(1, options_.max_iterations);
     for (int iteration = 0; iteration < iterations; ++iteration) {
-      const ChainStep step = ComputeChainStep(&problem_, states, {offsets_.data()}, want_sd);
+      const ChainStep step = ComputeChainStep(&problem_, states, Globals(), want_sd);
       if (!step.ok) {
         if (result_->chain_fallbacks == 0) Note("chain Gauss-Newton: " + step.error + "; Ceres");
         return false;
@@ -190,6 +252,12 @@ class Window {
       }
       offsets_[0] += step.globals[0];
       offsets_[1] += step.globals[1];
+      int g = 2;
+      for (size_t j = 0; j < node_.size(); ++j) {
+        if (node_[j] != Node::kInProblem) continue;
+        stiffness_[j] =
+            std::max(source_.options().stiffness_min, stiffness_[j] + step.globals[g++]);
+      }
       double cost = 0.0;
       if (!problem_.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr) ||
           !std::isfinite(cost) || cost > step.cost * (1.0 + 1e-9) + 1e-12) {
@@ -205,7 +273,7 @@ class Window {
     const Clock::time_point start = Clock::now();
     std::vector<double*> states;
     for (auto& x : states_) states.push_back(x.data());
-    const ChainCovariance covariance = ComputeChainCovariance(&problem_, states, {offsets_.data()});
+    const ChainCovariance covariance = ComputeChainCovariance(&problem_, states, Globals());
     const bool ok = covariance.ok;
     if (ok) {
       for (size_t i = 0; i < leaving; ++i) {
@@ -232,6 +300,11 @@ class Window {
   ceres::Solver::Options solver_options_;
   std::deque<std::array<double, kStateSize>> states_;
   std::array<double, 2> offsets_{};
+  // The slip-stiffness walk's nodes, all of them (fixed addresses), and where each one is.
+  enum class Node { kAbsent, kInProblem, kMarginalized };
+  static constexpr double kImuReachS = 0.5;
+  std::vector<double> stiffness_;
+  std::vector<Node> node_;
   size_t first_ = 0;  // log index of states_.front()
   std::vector<AddedFactor> added_;
   FactorCounts counts_;
@@ -261,7 +334,15 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
     return result;
   }
-  const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
+  WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
+  if (options.law_from_front_end && result.ekf.law.size() == n) {
+    problem_options.law_per_state = result.ekf.law;
+    result.notes.push_back(
+        "the tire law at each state is the one the front end's bank weighed there");
+  }
+  const bool soils = model.law_samples.size() >= 2;
+  problem_options.stiffness_prior_sd = soils ? options.stiffness_prior_sd : 0.0;
+
   const WardFactorSource source(log, model, result.ekf.estimates, problem_options);
   Window window(source, options, &result);
   const size_t every = static_cast<size_t>(std::max(1, options.update_every));
@@ -280,6 +361,7 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
                                        &result.estimates);
   result.counts = window.counts();
+  result.stiffness = window.stiffness();
   result.notes.insert(result.notes.begin(), result.counts.Describe());
   return result;
 }
@@ -331,6 +413,11 @@ std::string DescribeWindowRun(const WindowSmootherResult& result) {
         << " ms, p99 " << Percentile(result.update_ms, 0.99) << " ms; covariance p50 "
         << Percentile(result.covariance_ms, 0.5) << " ms, p99 "
         << Percentile(result.covariance_ms, 0.99) << " ms\n";
+  }
+  if (!result.stiffness.empty()) {
+    out << "  tire law's slip stiffness x (1 + theta): theta";
+    for (double theta : result.stiffness) out << " " << theta;
+    out << " at the walk's nodes\n";
   }
   if (!result.lag_s.empty()) {
     out << "  lag of the refined estimate: median " << Percentile(result.lag_s, 0.5) << " s\n";

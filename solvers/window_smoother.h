@@ -33,15 +33,28 @@ namespace slipgraph {
 enum class WindowSolver { kCeres, kChainGaussNewton };
 
 struct WindowSmootherOptions {
-  double window_s = 2.0;   // states further than this behind the newest are marginalized
-  int update_every = 10;   // wheel samples between window solves (10 Hz at 100 Hz wheels)
-  int max_iterations = 5;  // bounded work per update
+  double window_s = 2.0;  // states further than this behind the newest are marginalized
+  int update_every = 10;  // wheel samples between window solves (10 Hz at 100 Hz wheels)
+  // Bounded work per update. One Gauss-Newton step from the previous update's solution (the new
+  // states from the front end) gave the same estimates as five on the ward21 and ward21m suites
+  // (docs/smoother.md) at a fifth of the latency.
+  int max_iterations = 1;
   bool covariance = true;  // marginal sd of each state as it leaves (else the EKF's sd)
   // Add to that sd the tire law's uncertainty as the front end's bank of filters sees it (the
   // spread of the soils' estimates, FilterResult::law_spread_sd; none without law samples). The
   // window's own covariance takes the law as exact; the batch computes the smoother's own
   // sensitivity to the law instead (BatchSmootherOptions::consider_law_uncertainty).
   bool law_spread_in_sd = true;
+  // Take at each state the law the front end's bank weighed there (FilterResult::law): the
+  // window then refines the bank's estimate under the bank's own law. false, or one filter: the
+  // model's law everywhere.
+  bool law_from_front_end = true;
+  // The tire law's slip stiffness as a slowly varying unknown (WardProblemOptions::stiffness_*,
+  // the batch's walk) with this prior sd around that law, when the model lists its soils
+  // (law_samples: the user says the terrain's law varies, and by how much). Without soils the
+  // law is taken as given, as the front end takes it; 0: always. Overrides
+  // problem.stiffness_prior_sd.
+  double stiffness_prior_sd = 0.15;
   WindowSolver solver = WindowSolver::kChainGaussNewton;
   FilterRunOptions filter;
   WardProblemOptions problem;
@@ -62,6 +75,9 @@ struct WindowSmootherResult {
   std::vector<double> update_ms;
   std::vector<double> covariance_ms;  // per update: marginal covariance of the leaving states
   FactorCounts counts;                // the factors that went in (and measurements too late)
+  // The tire law's slip-stiffness scale theta at each node of its walk, as each node left the
+  // window (WardProblemOptions::stiffness_prior_sd; empty when off).
+  std::vector<double> stiffness;
   std::vector<std::string> notes;
 };
 

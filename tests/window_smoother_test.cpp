@@ -165,6 +165,8 @@ TEST(WindowSmoother, ChainGaussNewtonAgreesWithCeres) {
   WindowSmootherOptions chain_options, ceres_options;
   chain_options.solver = WindowSolver::kChainGaussNewton;
   ceres_options.solver = WindowSolver::kCeres;
+  // Five iterations each: one Levenberg-Marquardt step is not one Gauss-Newton step.
+  chain_options.max_iterations = ceres_options.max_iterations = 5;
   const WindowSmootherResult chain = SmoothWindowed(log, model, chain_options);
   const WindowSmootherResult ceres = SmoothWindowed(log, model, ceres_options);
   ASSERT_EQ(chain.estimates.size(), ceres.estimates.size());
@@ -188,12 +190,10 @@ TEST(WindowSmoother, ChainGaussNewtonAgreesWithCeres) {
   EXPECT_NEAR(a.velocity_rmse, b.velocity_rmse, 0.02 * b.velocity_rmse);
 }
 
-// ward21's user states the soils the law was fitted over; the window's own covariance takes the
-// law as exact and was overconfident (v NEES inside its 95 % bound for under half the samples on
-// seeds 1-2). With the front end's spread of the soils' estimates added (the same estimates):
-// measured on these three runs (07 and 13 drive mud at 0.2-0.3 m/s), 74 % inside against 42 %
-// without; over the whole suites of seeds 1-4, 87-90 % (seeds 1-2 without it: 50 / 45 %;
-// docs/smoother.md).
+// ward21's user states the soils the law was fitted over. The window's own covariance holds the
+// law's shape as exact (only its slip stiffness is estimated), and on these three runs (07 and 13
+// drive mud at 0.2-0.3 m/s) v NEES is inside its 95 % bound for 79 % of the samples. With the
+// front end's spread of the soils' estimates added (the same estimates): 99 %.
 TEST(WindowSmoother, TheLawsSpreadOverTheSoilsIsInTheSd) {
   std::vector<Evaluation> with, without;
   for (const char* name : {"ward21/01", "ward21/07", "ward21/13"}) {
@@ -226,8 +226,80 @@ TEST(WindowSmoother, TheLawsSpreadOverTheSoilsIsInTheSd) {
   const Evaluation w = Combine(with, "with"), wo = Combine(without, "without");
   std::printf("window v NEES inside 95 %%: %.3f with the law's spread, %.3f without\n",
               w.nees_within_95_fraction(), wo.nees_within_95_fraction());
-  EXPECT_GT(w.nees_within_95_fraction(), 0.65);
-  EXPECT_LT(wo.nees_within_95_fraction(), 0.5);
+  EXPECT_GT(w.nees_within_95_fraction(), 0.9);
+  EXPECT_LT(wo.nees_within_95_fraction(), w.nees_within_95_fraction() - 0.1);
+}
+
+}  // namespace
+}  // namespace slipgraph
+
+namespace slipgraph {
+namespace {
+
+// ward21's user lists the soils the law was fitted over, and the front end weighs them in a bank
+// of filters. A window that held the user's mean law doubled the EKF's velocity error on some
+// runs (ward21/01, the bundled sample: 0.0254 against 0.0128 m/s): where the soil is mud, the
+// mean law needs less slip for the same force, and the window's velocity ran 3-4 cm/s high for
+// seconds. With the bank's law at each state and the law's slip stiffness estimated around it:
+// measured v RMSE EKF / window / window on the mean law 0.0128 / 0.0117 / 0.0254 (01),
+// 0.0135 / 0.0105 / 0.0203 (05), 0.0077 / 0.0088 / 0.0153 m/s (17; the three worst runs of seed
+// 1 before). Run 17 stays above the EKF: at 0.2 m/s on mud the stiffness learnt so far lags.
+TEST(WindowSmoother, RefinesTheFrontEndOnTheSoilsTheBankWeighs) {
+  double ratio_sum = 0.0;
+  for (const char* name : {"ward21/01", "ward21/05", "ward21/17"}) {
+    SCOPED_TRACE(name);
+    const DriveLog log = testing::SimulatedScenario(name);
+    const ModelConfig model = DefaultModelConfig(log.vehicle);
+    WindowSmootherOptions options;
+    const WindowSmootherResult window = SmoothWindowed(log, model, options);
+    options.law_from_front_end = false;
+    options.stiffness_prior_sd = 0.0;
+    const WindowSmootherResult mean_law = SmoothWindowed(log, model, window.ekf, options);
+    const Evaluation ekf = Evaluate(log, EstimateTable(window.ekf.estimates));
+    const Evaluation refined = Evaluate(log, EstimateTable(window.estimates));
+    const Evaluation control = Evaluate(log, EstimateTable(mean_law.estimates));
+    std::printf("%s: v RMSE EKF %.4f, window %.4f, window on the mean law %.4f m/s\n", name,
+                ekf.velocity_rmse, refined.velocity_rmse, control.velocity_rmse);
+    ASSERT_EQ(window.stiffness.size(), 2u);  // two nodes 60 s apart cover the run
+    EXPECT_EQ(window.failed_updates + window.failed_marginalizations, 0);
+    EXPECT_LE(refined.velocity_rmse, 1.2 * ekf.velocity_rmse);
+    EXPECT_LE(refined.false_immobilized_samples, ekf.false_immobilized_samples);
+    EXPECT_EQ(refined.detected(), ekf.detected());
+    EXPECT_GT(control.velocity_rmse, 1.3 * ekf.velocity_rmse);  // the failing control
+    ratio_sum += refined.velocity_rmse / ekf.velocity_rmse;
+  }
+  EXPECT_LT(ratio_sum / 3.0, 0.95);
+}
+
+// The stiffness walk's nodes leave the window as the states do, marginalized into its prior. With
+// nodes every 4 s on a 30 s run every node but the last two leaves; converged at each update, the
+// window's last node is the filtered value of the walk, which at the end of the log is the batch's
+// (the smoothed value at the last node), up to the linearization points they were reached by.
+TEST(WindowSmoother, StiffnessNodesLeaveTheWindowWithTheirInformation) {
+  const DriveLog log = testing::SimulatedScenario("ward21/07");
+  ModelConfig model = DefaultModelConfig(log.vehicle);
+  WindowSmootherOptions options;
+  options.law_from_front_end = false;  // the batch's law: the user's
+  options.problem.stiffness_node_s = 4.0;
+  options.problem.stiffness_walk_sd = 0.1 / std::sqrt(4.0);
+  options.max_iterations = 50;
+  const WindowSmootherResult window = SmoothWindowed(log, model, options);
+  EXPECT_EQ(window.failed_updates + window.failed_marginalizations, 0);
+  BatchSmootherOptions batch_options;
+  batch_options.problem = options.problem;
+  batch_options.problem.stiffness_prior_sd = options.stiffness_prior_sd;
+  batch_options.regate_decay_prior = false;  // the window gates as the EKF does
+  const SmootherResult batch = SmoothBatch(log, model, window.ekf, batch_options);
+  ASSERT_FALSE(batch.used_fallback);
+  ASSERT_EQ(window.stiffness.size(), batch.stiffness.size());
+  ASSERT_GE(window.stiffness.size(), 8u);
+  std::printf("last stiffness node: window %.4f, batch %.4f (first: %.4f, %.4f)\n",
+              window.stiffness.back(), batch.stiffness.back(), window.stiffness.front(),
+              batch.stiffness.front());
+  // Measured: -0.557 against -0.603 (the prior's sd is 0.15).
+  EXPECT_NEAR(window.stiffness.back(), batch.stiffness.back(), 0.06);
+  // Every node moved from the prior's mean: each one saw data while in the window.
+  for (double theta : window.stiffness) EXPECT_NE(theta, 0.0);
 }
 
 }  // namespace
