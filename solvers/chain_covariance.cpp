@@ -52,8 +52,11 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M
       Cbuf(static_cast<size_t>(g) * g, 0.0);
   const int state_columns = n * m;
   std::vector<int> block, index;
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  MatrixXd Hb;
+  struct Segment {
+    int k, index, position, length;  // state (-1: the globals), first index, first column
+  };
+  std::vector<Segment> segments;
+  std::vector<double> Hb;  // the block's Jb' Jb, upper triangle, row-major
   for (int row = 0; row < J.num_rows;) {
     // Rows of one residual block share their columns: take them together, Hb = Jb' Jb.
     const int begin = J.rows[row], count = J.rows[row + 1] - begin;
@@ -63,8 +66,17 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M
                       J.cols.begin() + J.rows[last])) {
       ++last;
     }
-    const Eigen::Map<const RowMajor> Jb(J.values.data() + begin, last - row, count);
-    Hb.noalias() = Jb.transpose() * Jb;
+    // A few rows of a few columns: plain loops beat a general matrix product here.
+    Hb.assign(static_cast<size_t>(count) * count, 0.0);
+    for (int r = row; r < last; ++r) {
+      const double* jr = J.values.data() + J.rows[r];
+      for (int a = 0; a < count; ++a) {
+        const double ja = jr[a];
+        if (ja == 0.0) continue;
+        double* h = Hb.data() + static_cast<size_t>(a) * count;
+        for (int b = a; b < count; ++b) h[b] += ja * jr[b];
+      }
+    }
     row = last;
     block.resize(count);
     index.resize(count);
@@ -73,29 +85,55 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M
       block[a] = c >= state_columns ? -1 : c / m;
       index[a] = c >= state_columns ? c - state_columns : c % m;
     }
+    // Runs of columns of one parameter block with consecutive indices; each pair of runs adds
+    // its part of Hb to one destination, at origin + ia * sa + ib * sb (no branch per element).
+    segments.clear();
     for (int a = 0; a < count; ++a) {
-      const int ka = block[a], ia = index[a];
-      for (int b = a; b < count; ++b) {
-        const double v = Hb(a, b);
-        const int kb = block[b], ib = index[b];
-        if (ka < 0 || kb < 0) {  // a global: C, or a state's border B
-          if (ka < 0 && kb < 0) {
-            Cbuf[std::min(ia, ib) + g * std::max(ia, ib)] += v;
-          } else if (ka < 0) {
-            Bbuf[static_cast<size_t>(kb) * m * g + ib + m * ia] += v;
-          } else {
-            Bbuf[static_cast<size_t>(ka) * m * g + ia + m * ib] += v;
-          }
-        } else if (kb == ka) {
-          Dbuf[static_cast<size_t>(ka) * mm + std::min(ia, ib) + m * std::max(ia, ib)] += v;
-        } else if (kb == ka + 1) {
-          Ubuf[static_cast<size_t>(ka) * mm + ia + m * ib] += v;
-        } else if (ka == kb + 1) {
-          Ubuf[static_cast<size_t>(kb) * mm + ib + m * ia] += v;
-        } else {
-          f->error = "a residual block links states " + std::to_string(std::min(ka, kb)) + " and " +
-                     std::to_string(std::max(ka, kb)) + ": not a chain";
+      if (!segments.empty()) {
+        Segment& s = segments.back();
+        if (s.k == block[a] && s.index + s.length == index[a] && s.position + s.length == a) {
+          ++s.length;
+          continue;
+        }
+      }
+      segments.push_back({block[a], index[a], a, 1});
+    }
+    for (size_t si = 0; si < segments.size(); ++si) {
+      for (size_t ti = si; ti < segments.size(); ++ti) {
+        const Segment& s = segments[si];
+        const Segment& t = segments[ti];
+        double* origin = nullptr;
+        int sa = 1, sb = 1;
+        if (s.k < 0 && t.k < 0) {  // C, upper triangle
+          origin = Cbuf.data();
+          sa = s.index <= t.index ? 1 : g;
+          sb = s.index <= t.index ? g : 1;
+        } else if (s.k < 0) {  // a state's border B
+          origin = Bbuf.data() + static_cast<size_t>(t.k) * m * g, sa = m, sb = 1;
+        } else if (t.k < 0) {
+          origin = Bbuf.data() + static_cast<size_t>(s.k) * m * g, sa = 1, sb = m;
+        } else if (s.k == t.k && si == ti) {  // D, upper triangle: ia <= ib in one run
+          origin = Dbuf.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
+        } else if (t.k == s.k + 1) {
+          origin = Ubuf.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
+        } else if (s.k == t.k + 1) {
+          origin = Ubuf.data() + static_cast<size_t>(t.k) * mm, sa = m, sb = 1;
+        } else if (s.k != t.k) {
+          f->error = "a residual block links states " + std::to_string(std::min(s.k, t.k)) +
+                     " and " + std::to_string(std::max(s.k, t.k)) + ": not a chain";
           return false;
+        }
+        for (int i = 0; i < s.length; ++i) {
+          const double* h = Hb.data() + static_cast<size_t>(s.position + i) * count + t.position;
+          const int ia = s.index + i;
+          for (int j = si == ti ? i : 0; j < t.length; ++j) {
+            const int ib = t.index + j;
+            if (origin != nullptr) {
+              origin[ia * sa + ib * sb] += h[j];
+            } else {  // one state in two runs: D by the smaller index
+              Dbuf[static_cast<size_t>(s.k) * mm + std::min(ia, ib) + m * std::max(ia, ib)] += h[j];
+            }
+          }
         }
       }
     }
@@ -137,25 +175,33 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M
 
 // Diagonal and first sub-diagonal blocks of H^-1 from the factorization: Takahashi's recursion
 // on T, corrected for the border.
+// first_states >= 0: only cov(x_k) for k < first_states (the recursion still runs over all of
+// them; the border's correction and `next` are skipped for the rest).
 template <int M>
-ChainCovariance Marginals(const ChainFactorization<M>& f) {
+ChainCovariance Marginals(const ChainFactorization<M>& f, int first_states = -1) {
   using Block = typename ChainFactorization<M>::Block;
   ChainCovariance out;
   const int n = f.n;
+  const bool all = first_states < 0;
+  const int wanted = all ? n : std::min(n, first_states);
   out.states.assign(n, MatrixXd());
-  out.next.assign(n > 0 ? n - 1 : 0, MatrixXd());
+  if (all) out.next.assign(n > 0 ? n - 1 : 0, MatrixXd());
   Block state = f.D_inv[n - 1];
-  out.states[n - 1] = state;
+  if (all || n - 1 < wanted) out.states[n - 1] = state;
   for (int k = n - 2; k >= 0; --k) {
     const Block sub = -state * f.N[k];  // Sigma_{k+1,k}
-    out.next[k] = sub;
+    if (all) out.next[k] = sub;
     state = f.D_inv[k] - f.N[k].transpose() * sub;
-    out.states[k] = state;
+    if (k < wanted) out.states[k] = state;
   }
   if (f.g > 0) {
     out.globals = f.S.solve(MatrixXd::Identity(f.g, f.g));
-    for (int k = 0; k < n; ++k) out.states[k] += f.X[k] * out.globals * f.X[k].transpose();
-    for (int k = 0; k + 1 < n; ++k) out.next[k] += f.X[k + 1] * out.globals * f.X[k].transpose();
+    for (int k = 0; k < wanted; ++k) out.states[k] += f.X[k] * out.globals * f.X[k].transpose();
+    if (all) {
+      for (int k = 0; k + 1 < n; ++k) {
+        out.next[k] += f.X[k + 1] * out.globals * f.X[k].transpose();
+      }
+    }
   }
   out.ok = true;
   return out;
@@ -226,14 +272,14 @@ void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
 
 template <int M>
 void StepFrom(const ceres::CRSMatrix& J, const std::vector<double>& gradient, int n, int m, int g,
-              bool with_covariance, ChainStep* out) {
+              bool with_covariance, int covariance_states, ChainStep* out) {
   ChainFactorization<M> f;
   if (!Factor(J, n, m, g, &f)) {
     out->error = f.error;
     return;
   }
   Solve(f, gradient, &out->states, &out->globals);
-  if (with_covariance) out->covariance = Marginals(f);
+  if (with_covariance) out->covariance = Marginals(f, covariance_states);
   out->ok = true;
 }
 
@@ -298,7 +344,8 @@ ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vecto
 }
 
 ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
-                           const std::vector<double*>& globals, bool with_covariance) {
+                           const std::vector<double*>& globals, bool with_covariance,
+                           int covariance_states) {
   ChainStep out;
   int m = 0, g = 0;
   ceres::CRSMatrix J;
@@ -308,9 +355,9 @@ ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& 
   }
   const int n = static_cast<int>(states.size());
   if (m == 7) {
-    StepFrom<7>(J, gradient, n, m, g, with_covariance, &out);
+    StepFrom<7>(J, gradient, n, m, g, with_covariance, covariance_states, &out);
   } else {
-    StepFrom<Eigen::Dynamic>(J, gradient, n, m, g, with_covariance, &out);
+    StepFrom<Eigen::Dynamic>(J, gradient, n, m, g, with_covariance, covariance_states, &out);
   }
   return out;
 }

@@ -51,8 +51,11 @@ struct ChainStep {
   Eigen::VectorXd globals;              // dx of the globals, stacked
   ChainCovariance covariance;           // filled when asked for
 };
+// covariance_states >= 0: the covariance of the first covariance_states states only (the others'
+// and `next` left empty; the window needs its leaving states'); -1: all.
 ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
-                           const std::vector<double*>& globals, bool with_covariance);
+                           const std::vector<double*>& globals, bool with_covariance,
+                           int covariance_states = -1);
 
 // How the solution would move if the residuals moved by t (one column per perturbation, over all
 // the problem's residuals in the order Problem::Evaluate returns them): at a minimum, where

@@ -234,7 +234,8 @@ class Window {
     const bool want_sd = options_.covariance && leaving > 0;
     const int iterations = std::max(1, options_.max_iterations);
     for (int iteration = 0; iteration < iterations; ++iteration) {
-      const ChainStep step = ComputeChainStep(&problem_, states, Globals(), want_sd);
+      const ChainStep step =
+          ComputeChainStep(&problem_, states, Globals(), want_sd, static_cast<int>(leaving));
       if (!step.ok) {
         if (result_->chain_fallbacks == 0) Note("chain Gauss-Newton: " + step.error + "; Ceres");
         return false;
