@@ -1,10 +1,13 @@
 #include "solvers/chain_covariance.h"
 
+#include <ceres/cost_function.h>
 #include <ceres/crs_matrix.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <algorithm>
+#include <unordered_map>
+#include <utility>
 
 namespace slipgraph {
 
@@ -37,28 +40,113 @@ std::vector<Rhs> SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& 
   return x;
 }
 
-// Assembles H from the Jacobian and factors it; false (with f->error) when the problem is not a
-// chain or H is not positive definite.
-template <int M>
-bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M>* f) {
-  using Block = typename ChainFactorization<M>::Block;
-  f->n = n, f->m = m, f->g = g;
-  // Assemble the blocks of H = J' J into flat column-major buffers: D[k] = T_kk (upper
-  // triangle), U[k] = T_{k,k+1}, B[k] = H_{k,globals}, C (upper triangle), one residual block's
-  // rows at a time (a small dense product, then one scatter).
-  const int mm = m * m;
-  std::vector<double> Dbuf(static_cast<size_t>(n) * mm, 0.0), Ubuf(Dbuf.size(), 0.0);
-  std::vector<double> Bbuf(static_cast<size_t>(n) * m * g, 0.0),
-      Cbuf(static_cast<size_t>(g) * g, 0.0);
-  const int state_columns = n * m;
-  std::vector<int> block, index;
+// H = J'J in flat column-major buffers: D[k] = T_kk (upper triangle), U[k] = T_{k,k+1},
+// B[k] = H_{k,globals}, C (upper triangle); filled one residual block at a time.
+struct Information {
+  Information(int n, int m, int g)
+      : n(n),
+        m(m),
+        g(g),
+        D(static_cast<size_t>(n) * m * m, 0.0),
+        U(D.size(), 0.0),
+        B(static_cast<size_t>(n) * m * g, 0.0),
+        C(static_cast<size_t>(g) * g, 0.0) {}
+
+  // Adds one residual block's Jb' Jb (hb: its upper triangle, row-major, count x count) whose
+  // column a is index[a] of state block[a] (-1: of the globals, stacked). False (with error) when
+  // the block links states that are not neighbours.
+  bool Add(const std::vector<int>& block, const std::vector<int>& index,
+           const std::vector<double>& hb) {
+    const int count = static_cast<int>(block.size());
+    const int mm = m * m;
+    // Runs of columns of one parameter block with consecutive indices; each pair of runs adds
+    // its part of hb to one destination, at origin + ia * sa + ib * sb (no branch per element).
+    segments_.clear();
+    for (int a = 0; a < count; ++a) {
+      if (!segments_.empty()) {
+        Segment& s = segments_.back();
+        if (s.k == block[a] && s.index + s.length == index[a] && s.position + s.length == a) {
+          ++s.length;
+          continue;
+        }
+      }
+      segments_.push_back({block[a], index[a], a, 1});
+    }
+    for (size_t si = 0; si < segments_.size(); ++si) {
+      for (size_t ti = si; ti < segments_.size(); ++ti) {
+        const Segment& s = segments_[si];
+        const Segment& t = segments_[ti];
+        double* origin = nullptr;
+        int sa = 1, sb = 1;
+        if (s.k < 0 && t.k < 0) {  // C, upper triangle
+          origin = C.data();
+          sa = s.index <= t.index ? 1 : g;
+          sb = s.index <= t.index ? g : 1;
+        } else if (s.k < 0) {  // a state's border B
+          origin = B.data() + static_cast<size_t>(t.k) * m * g, sa = m, sb = 1;
+        } else if (t.k < 0) {
+          origin = B.data() + static_cast<size_t>(s.k) * m * g, sa = 1, sb = m;
+        } else if (s.k == t.k && si == ti) {  // D, upper triangle: ia <= ib in one run
+          origin = D.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
+        } else if (t.k == s.k + 1) {
+          origin = U.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
+        } else if (s.k == t.k + 1) {
+          origin = U.data() + static_cast<size_t>(t.k) * mm, sa = m, sb = 1;
+        } else if (s.k != t.k) {
+          error = "a residual block links states " + std::to_string(std::min(s.k, t.k)) + " and " +
+                  std::to_string(std::max(s.k, t.k)) + ": not a chain";
+          return false;
+        }
+        for (int i = 0; i < s.length; ++i) {
+          const double* h = hb.data() + static_cast<size_t>(s.position + i) * count + t.position;
+          const int ia = s.index + i;
+          for (int j = si == ti ? i : 0; j < t.length; ++j) {
+            const int ib = t.index + j;
+            if (origin != nullptr) {
+              origin[ia * sa + ib * sb] += h[j];
+            } else {  // one state in two runs: D by the smaller index
+              D[static_cast<size_t>(s.k) * mm + std::min(ia, ib) + m * std::max(ia, ib)] += h[j];
+            }
+          }
+        }
+      }
+    }
+    return true;
+  }
+
+  int n, m, g;
+  std::vector<double> D, U, B, C;
+  std::string error;
+
+ private:
   struct Segment {
     int k, index, position, length;  // state (-1: the globals), first index, first column
   };
-  std::vector<Segment> segments;
-  std::vector<double> Hb;  // the block's Jb' Jb, upper triangle, row-major
+  std::vector<Segment> segments_;
+};
+
+// The upper triangle of Jb' Jb, row-major, for `rows` rows of `count` columns (row-major): a
+// few rows of a few columns, where plain loops beat a general matrix product.
+void AddOuterProducts(const double* jb, int rows, int count, std::vector<double>* hb) {
+  hb->assign(static_cast<size_t>(count) * count, 0.0);
+  for (int r = 0; r < rows; ++r) {
+    const double* jr = jb + static_cast<size_t>(r) * count;
+    for (int a = 0; a < count; ++a) {
+      const double ja = jr[a];
+      if (ja == 0.0) continue;
+      double* h = hb->data() + static_cast<size_t>(a) * count;
+      for (int b = a; b < count; ++b) h[b] += ja * jr[b];
+    }
+  }
+}
+
+// H from a Jacobian in Problem::Evaluate's layout (the states' columns, then the globals').
+bool AssembleFromJacobian(const ceres::CRSMatrix& J, Information* info) {
+  const int m = info->m, state_columns = info->n * m;
+  std::vector<int> block, index;
+  std::vector<double> hb, rows;
   for (int row = 0; row < J.num_rows;) {
-    // Rows of one residual block share their columns: take them together, Hb = Jb' Jb.
+    // Rows of one residual block share their columns: take them together.
     const int begin = J.rows[row], count = J.rows[row + 1] - begin;
     int last = row + 1;
     while (last < J.num_rows && J.rows[last + 1] - J.rows[last] == count &&
@@ -66,17 +154,7 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M
                       J.cols.begin() + J.rows[last])) {
       ++last;
     }
-    // A few rows of a few columns: plain loops beat a general matrix product here.
-    Hb.assign(static_cast<size_t>(count) * count, 0.0);
-    for (int r = row; r < last; ++r) {
-      const double* jr = J.values.data() + J.rows[r];
-      for (int a = 0; a < count; ++a) {
-        const double ja = jr[a];
-        if (ja == 0.0) continue;
-        double* h = Hb.data() + static_cast<size_t>(a) * count;
-        for (int b = a; b < count; ++b) h[b] += ja * jr[b];
-      }
-    }
+    AddOuterProducts(J.values.data() + begin, last - row, count, &hb);
     row = last;
     block.resize(count);
     index.resize(count);
@@ -85,59 +163,100 @@ bool Factor(const ceres::CRSMatrix& J, int n, int m, int g, ChainFactorization<M
       block[a] = c >= state_columns ? -1 : c / m;
       index[a] = c >= state_columns ? c - state_columns : c % m;
     }
-    // Runs of columns of one parameter block with consecutive indices; each pair of runs adds
-    // its part of Hb to one destination, at origin + ia * sa + ib * sb (no branch per element).
-    segments.clear();
-    for (int a = 0; a < count; ++a) {
-      if (!segments.empty()) {
-        Segment& s = segments.back();
-        if (s.k == block[a] && s.index + s.length == index[a] && s.position + s.length == a) {
-          ++s.length;
-          continue;
-        }
-      }
-      segments.push_back({block[a], index[a], a, 1});
-    }
-    for (size_t si = 0; si < segments.size(); ++si) {
-      for (size_t ti = si; ti < segments.size(); ++ti) {
-        const Segment& s = segments[si];
-        const Segment& t = segments[ti];
-        double* origin = nullptr;
-        int sa = 1, sb = 1;
-        if (s.k < 0 && t.k < 0) {  // C, upper triangle
-          origin = Cbuf.data();
-          sa = s.index <= t.index ? 1 : g;
-          sb = s.index <= t.index ? g : 1;
-        } else if (s.k < 0) {  // a state's border B
-          origin = Bbuf.data() + static_cast<size_t>(t.k) * m * g, sa = m, sb = 1;
-        } else if (t.k < 0) {
-          origin = Bbuf.data() + static_cast<size_t>(s.k) * m * g, sa = 1, sb = m;
-        } else if (s.k == t.k && si == ti) {  // D, upper triangle: ia <= ib in one run
-          origin = Dbuf.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
-        } else if (t.k == s.k + 1) {
-          origin = Ubuf.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
-        } else if (s.k == t.k + 1) {
-          origin = Ubuf.data() + static_cast<size_t>(t.k) * mm, sa = m, sb = 1;
-        } else if (s.k != t.k) {
-          f->error = "a residual block links states " + std::to_string(std::min(s.k, t.k)) +
-                     " and " + std::to_string(std::max(s.k, t.k)) + ": not a chain";
-          return false;
-        }
-        for (int i = 0; i < s.length; ++i) {
-          const double* h = Hb.data() + static_cast<size_t>(s.position + i) * count + t.position;
-          const int ia = s.index + i;
-          for (int j = si == ti ? i : 0; j < t.length; ++j) {
-            const int ib = t.index + j;
-            if (origin != nullptr) {
-              origin[ia * sa + ib * sb] += h[j];
-            } else {  // one state in two runs: D by the smaller index
-              Dbuf[static_cast<size_t>(s.k) * mm + std::min(ia, ib) + m * std::max(ia, ib)] += h[j];
-            }
-          }
-        }
-      }
-    }
+    if (!info->Add(block, index, hb)) return false;
   }
+  return true;
+}
+
+// H, the gradient J'r (states, then globals) and the cost from each residual block's own
+// evaluation (Problem::EvaluateResidualBlock, loss-corrected as Problem::Evaluate is): no program
+// and no sparse Jacobian built per call. A block's parameters that are neither a state nor a
+// global are held constant, as Problem::Evaluate holds the blocks it is not given.
+bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& states,
+                        const std::vector<double*>& globals, Information* info, double* cost,
+                        std::vector<double>* gradient) {
+  const int m = info->m, state_columns = info->n * m;
+  struct Place {
+    int state, first, size;  // state -1: a global, its first index among the globals'
+  };
+  std::unordered_map<const double*, Place> where;
+  where.reserve(states.size() + globals.size());
+  for (size_t k = 0; k < states.size(); ++k) where[states[k]] = {static_cast<int>(k), 0, m};
+  int offset = 0;
+  for (double* p : globals) {
+    const int size = problem->ParameterBlockTangentSize(p);
+    where[p] = {-1, offset, size};
+    offset += size;
+  }
+  gradient->assign(static_cast<size_t>(state_columns + info->g), 0.0);
+  *cost = 0.0;
+  std::vector<ceres::ResidualBlockId> ids;
+  problem->GetResidualBlocks(&ids);
+  std::vector<double*> blocks;
+  std::vector<int> block, index, sizes;
+  std::vector<double> residuals, jb, hb;
+  std::vector<std::vector<double>> jacobians;
+  std::vector<double*> jacobian_pointers;
+  for (const ceres::ResidualBlockId id : ids) {
+    problem->GetParameterBlocksForResidualBlock(id, &blocks);
+    const int rows = problem->GetCostFunctionForResidualBlock(id)->num_residuals();
+    jacobians.resize(blocks.size());
+    jacobian_pointers.assign(blocks.size(), nullptr);
+    sizes.assign(blocks.size(), 0);
+    block.clear();
+    index.clear();
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      const auto it = where.find(blocks[i]);
+      if (it == where.end()) continue;
+      const Place& place = it->second;
+      sizes[i] = place.size;
+      jacobians[i].resize(static_cast<size_t>(rows) * sizes[i]);
+      jacobian_pointers[i] = jacobians[i].data();
+      for (int j = 0; j < sizes[i]; ++j) {
+        block.push_back(place.state);
+        index.push_back(place.first + j);
+      }
+    }
+    residuals.resize(rows);
+    double block_cost = 0.0;
+    if (!problem->EvaluateResidualBlock(id, true, &block_cost, residuals.data(),
+                                        jacobian_pointers.data())) {
+      info->error = "a residual block could not be evaluated";
+      return false;
+    }
+    *cost += block_cost;
+    const int count = static_cast<int>(block.size());
+    if (count == 0) continue;
+    // The block's Jacobian, row-major over its free columns.
+    jb.resize(static_cast<size_t>(rows) * count);
+    int column = 0;
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      if (jacobian_pointers[i] == nullptr) continue;
+      for (int r = 0; r < rows; ++r) {
+        std::copy_n(jacobians[i].data() + static_cast<size_t>(r) * sizes[i], sizes[i],
+                    jb.data() + static_cast<size_t>(r) * count + column);
+      }
+      column += sizes[i];
+    }
+    for (int a = 0; a < count; ++a) {
+      double sum = 0.0;
+      for (int r = 0; r < rows; ++r) sum += jb[static_cast<size_t>(r) * count + a] * residuals[r];
+      const int c = block[a] < 0 ? state_columns + index[a] : block[a] * m + index[a];
+      (*gradient)[c] += sum;
+    }
+    AddOuterProducts(jb.data(), rows, count, &hb);
+    if (!info->Add(block, index, hb)) return false;
+  }
+  return true;
+}
+
+// Factors an assembled H; false (with f->error) when it is not positive definite.
+template <int M>
+bool Factor(const Information& info, ChainFactorization<M>* f) {
+  using Block = typename ChainFactorization<M>::Block;
+  const int n = info.n, m = info.m, g = info.g, mm = m * m;
+  f->n = n, f->m = m, f->g = g;
+  const std::vector<double>&Dbuf = info.D, &Ubuf = info.U, &Bbuf = info.B, &Cbuf = info.C;
   f->B.resize(n);
   for (int k = 0; k < n; ++k) {
     f->B[k] = Eigen::Map<const MatrixXd>(Bbuf.data() + static_cast<size_t>(k) * m * g, m, g);
@@ -207,10 +326,9 @@ ChainCovariance Marginals(const ChainFactorization<M>& f, int first_states = -1)
   return out;
 }
 
-// Checks the blocks and evaluates what the factorization needs; false with *error.
-bool Prepare(ceres::Problem* problem, const std::vector<double*>& states,
-             const std::vector<double*>& globals, int* m, int* g, double* cost,
-             std::vector<double>* gradient, ceres::CRSMatrix* J, std::string* error) {
+// Checks the blocks: the states' size m and the globals' tangent size g; false with *error.
+bool Sizes(ceres::Problem* problem, const std::vector<double*>& states,
+           const std::vector<double*>& globals, int* m, int* g, std::string* error) {
   if (states.empty()) {
     *error = "no states";
     return false;
@@ -224,26 +342,24 @@ bool Prepare(ceres::Problem* problem, const std::vector<double*>& states,
       return false;
     }
   }
-  ceres::Problem::EvaluateOptions options;
-  options.parameter_blocks = states;
-  options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
-  options.apply_loss_function = true;
-  if (!problem->Evaluate(options, cost, nullptr, gradient, J)) {
-    *error = "the Jacobian could not be evaluated";
-    return false;
-  }
   return true;
 }
 
+// H, the gradient and the cost at the current values, factored; false with *error.
 template <int M>
-ChainCovariance CovarianceFrom(const ceres::CRSMatrix& J, int n, int m, int g) {
-  ChainFactorization<M> f;
-  if (!Factor(J, n, m, g, &f)) {
-    ChainCovariance out;
-    out.error = f.error;
-    return out;
+bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
+               const std::vector<double*>& globals, int m, int g, double* cost,
+               std::vector<double>* gradient, ChainFactorization<M>* f, std::string* error) {
+  Information info(static_cast<int>(states.size()), m, g);
+  if (!AssembleFromBlocks(problem, states, globals, &info, cost, gradient)) {
+    *error = info.error;
+    return false;
   }
-  return Marginals(f);
+  if (!Factor(info, f)) {
+    *error = f->error;
+    return false;
+  }
+  return true;
 }
 
 // H [dx; dg] = -[g_x; g_g] on a factorization: y = T^-1 (-g_x), S dg = -g_g - B' y,
@@ -271,23 +387,15 @@ void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
 }
 
 template <int M>
-void StepFrom(const ceres::CRSMatrix& J, const std::vector<double>& gradient, int n, int m, int g,
-              bool with_covariance, int covariance_states, ChainStep* out) {
-  ChainFactorization<M> f;
-  if (!Factor(J, n, m, g, &f)) {
-    out->error = f.error;
-    return;
-  }
-  Solve(f, gradient, &out->states, &out->globals);
-  if (with_covariance) out->covariance = Marginals(f, covariance_states);
-  out->ok = true;
-}
-
-template <int M>
 void SensitivityFrom(const ceres::CRSMatrix& J, int n, int m, int g,
                      const std::vector<Eigen::VectorXd>& shifts, ChainSensitivity* out) {
   ChainFactorization<M> f;
-  if (!Factor(J, n, m, g, &f)) {
+  Information info(n, m, g);
+  if (!AssembleFromJacobian(J, &info)) {
+    out->error = info.error;
+    return;
+  }
+  if (!Factor(info, &f)) {
     out->error = f.error;
     return;
   }
@@ -315,8 +423,17 @@ ChainSensitivity ComputeChainSensitivity(ceres::Problem* problem,
                                          const std::vector<Eigen::VectorXd>& residual_shifts) {
   ChainSensitivity out;
   int m = 0, g = 0;
+  if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
+  // The shifts are indexed by Problem::Evaluate's rows: its Jacobian, in its order.
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = states;
+  options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
+  options.apply_loss_function = true;
   ceres::CRSMatrix J;
-  if (!Prepare(problem, states, globals, &m, &g, nullptr, nullptr, &J, &out.error)) return out;
+  if (!problem->Evaluate(options, nullptr, nullptr, nullptr, &J)) {
+    out.error = "the Jacobian could not be evaluated";
+    return out;
+  }
   for (const Eigen::VectorXd& t : residual_shifts) {
     if (t.size() != J.num_rows) {
       out.error = "a residual shift has " + std::to_string(t.size()) + " rows, the problem " +
@@ -333,33 +450,71 @@ ChainSensitivity ComputeChainSensitivity(ceres::Problem* problem,
   return out;
 }
 
+namespace {
+
+template <int M>
+ChainCovariance CovarianceAt(ceres::Problem* problem, const std::vector<double*>& states,
+                             const std::vector<double*>& globals, int m, int g) {
+  ChainCovariance out;
+  ChainFactorization<M> f;
+  double cost = 0.0;
+  std::vector<double> gradient;
+  if (!Linearize(problem, states, globals, m, g, &cost, &gradient, &f, &out.error)) return out;
+  return Marginals(f);
+}
+
+template <int M>
+ChainStep StepAt(ceres::Problem* problem, const std::vector<double*>& states,
+                 const std::vector<double*>& globals, int m, int g, bool with_covariance,
+                 int covariance_states) {
+  ChainStep out;
+  ChainFactorization<M> f;
+  std::vector<double> gradient;
+  if (!Linearize(problem, states, globals, m, g, &out.cost, &gradient, &f, &out.error)) {
+    return out;
+  }
+  Solve(f, gradient, &out.states, &out.globals);
+  if (with_covariance) out.covariance = Marginals(f, covariance_states);
+  out.ok = true;
+  return out;
+}
+
+}  // namespace
+
+bool ChainCost(const ceres::Problem& problem, double* cost) {
+  std::vector<ceres::ResidualBlockId> ids;
+  problem.GetResidualBlocks(&ids);
+  std::vector<double> residuals;
+  *cost = 0.0;
+  for (const ceres::ResidualBlockId id : ids) {
+    residuals.resize(problem.GetCostFunctionForResidualBlock(id)->num_residuals());
+    double block_cost = 0.0;
+    if (!problem.EvaluateResidualBlock(id, true, &block_cost, residuals.data(), nullptr)) {
+      return false;
+    }
+    *cost += block_cost;
+  }
+  return true;
+}
+
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
                                        const std::vector<double*>& globals) {
-  ChainCovariance out;
   int m = 0, g = 0;
-  ceres::CRSMatrix J;
-  if (!Prepare(problem, states, globals, &m, &g, nullptr, nullptr, &J, &out.error)) return out;
-  const int n = static_cast<int>(states.size());
-  return m == 7 ? CovarianceFrom<7>(J, n, m, g) : CovarianceFrom<Eigen::Dynamic>(J, n, m, g);
+  ChainCovariance out;
+  if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
+  return m == 7 ? CovarianceAt<7>(problem, states, globals, m, g)
+                : CovarianceAt<Eigen::Dynamic>(problem, states, globals, m, g);
 }
 
 ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
                            const std::vector<double*>& globals, bool with_covariance,
                            int covariance_states) {
-  ChainStep out;
   int m = 0, g = 0;
-  ceres::CRSMatrix J;
-  std::vector<double> gradient;
-  if (!Prepare(problem, states, globals, &m, &g, &out.cost, &gradient, &J, &out.error)) {
-    return out;
-  }
-  const int n = static_cast<int>(states.size());
-  if (m == 7) {
-    StepFrom<7>(J, gradient, n, m, g, with_covariance, covariance_states, &out);
-  } else {
-    StepFrom<Eigen::Dynamic>(J, gradient, n, m, g, with_covariance, covariance_states, &out);
-  }
-  return out;
+  ChainStep out;
+  if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
+  return m == 7 ? StepAt<7>(problem, states, globals, m, g, with_covariance, covariance_states)
+                : StepAt<Eigen::Dynamic>(problem, states, globals, m, g, with_covariance,
+                                         covariance_states);
 }
 
 }  // namespace slipgraph

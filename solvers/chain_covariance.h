@@ -57,6 +57,10 @@ ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& 
                            const std::vector<double*>& globals, bool with_covariance,
                            int covariance_states = -1);
 
+// The problem's cost, 0.5 |r|^2 loss-corrected, as Problem::Evaluate gives it, summed block by
+// block (no program built); false when a block cannot be evaluated.
+bool ChainCost(const ceres::Problem& problem, double* cost);
+
 // How the solution would move if the residuals moved by t (one column per perturbation, over all
 // the problem's residuals in the order Problem::Evaluate returns them): at a minimum, where
 // J'r = 0, the first-order shift is dx = -H^-1 J' t. With t the change a model constant's error

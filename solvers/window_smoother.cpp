@@ -260,8 +260,8 @@ class Window {
             std::max(source_.options().stiffness_min, stiffness_[j] + step.globals[g++]);
       }
       double cost = 0.0;
-      if (!problem_.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr) ||
-          !std::isfinite(cost) || cost > step.cost * (1.0 + 1e-9) + 1e-12) {
+      if (!ChainCost(problem_, &cost) || !std::isfinite(cost) ||
+          cost > step.cost * (1.0 + 1e-9) + 1e-12) {
         return false;  // the step made it worse: a nonlinearity Levenberg-Marquardt handles
       }
       if (step.cost - cost <= 1e-10 * step.cost) break;  // converged
