@@ -4,7 +4,6 @@
 // EFFECT`, the same report after switching the effects on, and the change (against truth when the
 // log has it, always in residual terms).
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -12,6 +11,7 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "io/log_reader.h"
+#include "io/text_file.h"
 #include "model/effect_catalogue.h"
 #include "workbench/diagnosis.h"
 #include "workbench/effect_signatures.h"
@@ -113,7 +113,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       text << "; unexplained failures in " << unexplained << " log(s)\n";
     }
     if (!options->report.empty()) {
-      std::ofstream(options->report) << html;
+      WriteTextFile(options->report, html);
       text << "report: " << options->report << "\n";
     }
     if (!options->json.empty()) {
@@ -125,7 +125,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       if (to_stdout) {
         std::cout << out.dump(2) << "\n";
       } else {
-        std::ofstream(options->json) << out.dump(2) << "\n";
+        WriteTextFile(options->json, out.dump(2) + "\n");
       }
     }
     *status = 0;

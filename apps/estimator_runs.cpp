@@ -6,6 +6,7 @@
 #include "apps/commands.h"
 #include "evaluation/evaluation.h"
 #include "io/estimate_file.h"
+#include "io/input_error.h"
 #include "io/log_reader.h"
 #include "io/yaml_config.h"
 #include "solvers/ekf_runner.h"
@@ -54,6 +55,19 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
   const std::string name = fs::path(path).filename().string();
   std::string out = options.out;
   if (out.empty()) out = name + "_" + options.name + (suite ? "" : ".csv");
+  // The output may not be one of the inputs: a log's own file would be overwritten.
+  for (const std::string& log_dir : logs) {
+    const std::string file =
+        suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
+    std::error_code error;
+    for (const fs::directory_entry& entry : fs::directory_iterator(log_dir, error)) {
+      if (fs::exists(file) && fs::equivalent(entry.path(), file, error)) {
+        throw InputError(
+            file, 0, "", "",
+            "the output is a file of the log " + log_dir + ": refusing to overwrite it");
+      }
+    }
+  }
   if (suite) fs::create_directories(out);
   int untrusted = 0;
   for (const std::string& log_dir : logs) {

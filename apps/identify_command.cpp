@@ -4,14 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
+#include "io/text_file.h"
 #include "io/yaml_config.h"
 #include "solvers/model_identification.h"
 
@@ -178,26 +179,15 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     const std::string out = options->out.empty()
                                 ? fs::path(options->logs[0]).filename().string() + "_model.yaml"
                                 : options->out;
-    std::ofstream file(out);
-    WriteModelYaml(result.model, file);
-    file.close();
-    if (!file) {
-      std::cerr << "identify: cannot write " << out << "\n";
-      *status = 1;
-      return;
-    }
+    std::ostringstream model_text;
+    WriteModelYaml(result.model, model_text);
+    WriteTextFile(out, model_text.str());
     text << "model: " << out << " (use it with --model)\n";
     json["model_file"] = out;
     if (options->json == "-") {
       std::cout << json.dump(2) << "\n";
     } else if (!options->json.empty()) {
-      std::ofstream json_file(options->json);
-      json_file << json.dump(2) << "\n";
-      if (!json_file) {
-        std::cerr << "identify: cannot write " << options->json << "\n";
-        *status = 1;
-        return;
-      }
+      WriteTextFile(options->json, json.dump(2) + "\n");
     }
     *status = 0;
   });

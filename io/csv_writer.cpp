@@ -43,6 +43,14 @@ void CsvWriter::EndRow() {
   out_ << row_;
   row_.clear();
   row_started_ = false;
+  if (!out_) throw InputError(path_, 0, "", "", "write failed (a full disk, or not a file)");
+}
+
+void CsvWriter::Close() {
+  out_.flush();
+  if (!out_) throw InputError(path_, 0, "", "", "write failed (a full disk, or not a file)");
+  out_.close();
+  if (out_.fail()) throw InputError(path_, 0, "", "", "closing the file failed");
 }
 
 }  // namespace slipgraph

@@ -15,7 +15,11 @@ class CsvWriter {
 
   CsvWriter& operator<<(double value);
   CsvWriter& operator<<(const std::string& text);
+  // Ends the row. Throws InputError naming the file when the write fails (a full disk).
   void EndRow();
+  // Flushes and closes the file; throws InputError naming it when that fails. A writer that is
+  // not closed is closed by its destructor, unchecked.
+  void Close();
 
  private:
   void Separator();

@@ -79,6 +79,7 @@ void WriteEstimates(const std::vector<WardEstimate>& estimates, const std::strin
     for (size_t j = 0; j < extra.size(); ++j) values[standard + j] = extra[j].values[row];
     writer.Write(e.t, values, sds);
   }
+  writer.Close();
 }
 
 NumericTable EstimateTable(const std::vector<WardEstimate>& estimates) {

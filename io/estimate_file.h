@@ -21,6 +21,8 @@ class EstimateWriter {
   EstimateWriter(const std::string& path, std::vector<EstimateColumn> columns);
   // values and sds are indexed like the columns; sds of columns without sd are ignored.
   void Write(double t, const std::vector<double>& values, const std::vector<double>& sds);
+  // Flushes and closes the file (CsvWriter::Close: throws when the write failed).
+  void Close() { writer_.Close(); }
 
  private:
   std::vector<EstimateColumn> columns_;

@@ -36,19 +36,28 @@ void ReadCsvFile(const std::string& directory, const std::string& name, bool req
     log->warnings.push_back(std::string(error.what()) + " (optional file left out: --skip-bad)");
     return;
   }
-  int skipped = 0;
+  int skipped = 0, kept = 0;
+  std::string first_bad;
   while (reader->Next()) {
     Sample sample;
     try {
       parse(*reader, *samples, &sample);
     } catch (const InputError& error) {
       if (!options.skip_bad) throw;
+      if (first_bad.empty()) first_bad = error.what();
       if (++skipped <= kMaxWarningsPerFile) {
         log->warnings.push_back(std::string(error.what()) + " (row skipped: --skip-bad)");
       }
       continue;
     }
     samples->push_back(sample);
+    ++kept;
+  }
+  if (skipped > kMaxWarningsPerFile &&
+      skipped > options.max_bad_fraction * static_cast<double>(skipped + kept)) {
+    throw InputError(path, 0, "", "",
+                     std::to_string(skipped) + " of " + std::to_string(skipped + kept) +
+                         " rows are bad, more than --skip-bad drops; the first: " + first_bad);
   }
   if (skipped > kMaxWarningsPerFile) {
     log->warnings.push_back(path + ": " + std::to_string(skipped) + " bad rows skipped in all");

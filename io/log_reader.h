@@ -13,6 +13,10 @@ struct ReadOptions {
   // value. true: bad rows are dropped and an optional file whose header is unusable is left out;
   // each is reported in DriveLog::warnings. Required files must exist and have their header.
   bool skip_bad = false;
+  // With skip_bad: more bad rows in a file than this share of its rows (and more than 10) is an
+  // InputError quoting the first: the file is not what the format says, and dropping the rest
+  // (every row after a forward time typo, say) would lose what was good.
+  double max_bad_fraction = 0.01;
 };
 
 // Throws InputError for a missing required file (vehicle.yaml, imu.csv, wheels.csv), a bad

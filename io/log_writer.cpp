@@ -25,6 +25,8 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
     std::ofstream out(path("vehicle.yaml"));
     if (!out) throw InputError(path("vehicle.yaml"), 0, "", "", "cannot open file for writing");
     WriteVehicleYaml(log.vehicle, out);
+    out.close();
+    if (out.fail()) throw InputError(path("vehicle.yaml"), 0, "", "", "write failed");
   }
   const std::vector<std::string>& wheels = WheelNames(log.vehicle.type);
   const int wheel_count = static_cast<int>(wheels.size());
@@ -35,6 +37,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << s.ax << s.ay << s.az << s.gx << s.gy << s.gz;
       w.EndRow();
     }
+    w.Close();
   }
   {
     std::vector<std::string> header = {"t"};
@@ -45,6 +48,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       for (int i = 0; i < wheel_count; ++i) w << s.omega_radps[i];
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "attitude.csv", !log.attitude.empty())) {
     CsvWriter w(path("attitude.csv"),
@@ -53,6 +57,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << s.roll << s.pitch << s.yaw << s.sd_roll << s.sd_pitch << s.sd_yaw;
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "gps.csv", !log.gps.empty())) {
     CsvWriter w(path("gps.csv"), {"t", "x", "y", "z", "vx", "vy", "vz", "sd_xy", "sd_z", "sd_v"});
@@ -60,6 +65,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << s.x << s.y << s.z << s.vx << s.vy << s.vz << s.sd_xy << s.sd_z << s.sd_v;
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "pose.csv", !log.pose.empty())) {
     CsvWriter w(path("pose.csv"),
@@ -68,6 +74,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << s.x << s.y << s.z << s.roll << s.pitch << s.yaw << s.sd_x << s.sd_y << s.sd_yaw;
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "articulation.csv", !log.articulation.empty())) {
     CsvWriter w(path("articulation.csv"), {"t", "side", "dz_mid", "dz_front"});
@@ -75,6 +82,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << SideName(s.side) << s.dz_mid << s.dz_front;
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "range.csv", !log.range.empty())) {
     CsvWriter w(path("range.csv"), {"t", "side", "d", "dz"});
@@ -82,6 +90,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << SideName(s.side) << s.d << s.dz;
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "commands.csv", !log.commands.empty())) {
     CsvWriter w(path("commands.csv"), {"t", "v", "omega"});
@@ -89,6 +98,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << s.t << s.v << s.omega;
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "truth.csv", !log.truth.empty())) {
     std::vector<std::string> header = {"t",   "x",  "y",  "z",        "roll",   "pitch",
@@ -103,6 +113,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       for (int i = 0; i < wheel_count; ++i) w << s.sinkage[i];
       w.EndRow();
     }
+    w.Close();
   }
   if (ShouldWrite(log, "events.csv", !log.events.empty())) {
     CsvWriter w(path("events.csv"), {"t_start", "t_end", "label"});
@@ -110,6 +121,7 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
       w << e.t_start << e.t_end << e.label;
       w.EndRow();
     }
+    w.Close();
   }
 }
 

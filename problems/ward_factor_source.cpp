@@ -79,7 +79,8 @@ std::vector<size_t> AttachToStates(const Samples& samples, const std::vector<dou
 std::string FactorCounts::Describe() const {
   std::ostringstream out;
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
-      << " gyro, " << encoders << " encoder, " << gnss << " GNSS, "
+      << " gyro, " << encoders << " encoder, " << gnss << " GNSS (" << gnss_gated
+      << " left out by the front end's gate), "
       << (body_velocity > 0 ? std::to_string(body_velocity) + " body velocity, " : std::string())
       << (body_velocity_too_late > 0
               ? std::to_string(body_velocity_too_late) + " body velocity too late for the window, "
@@ -158,6 +159,27 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   if (log.imu.size() > 1) {
     imu_period_s_ = (log.imu.back().t - log.imu.front().t) / (log.imu.size() - 1);
   }
+  // The gate on GNSS (WardProblemOptions::gnss_gate_chi2), against the front end's estimate at
+  // each fix's state.
+  gnss_admitted_.assign(log.gps.size(), true);
+  int consecutive = 0;
+  for (size_t k = 0; k < n; ++k) {
+    for (size_t i = gps_begin_[k]; i < gps_begin_[k + 1]; ++i) {
+      double along = 0.0, sd = 0.0;
+      if (!GnssAlong(k, log.gps[i], &along, &sd)) continue;
+      const double v = initial[k].x[ward::kVbx], sd_v = initial[k].sd[ward::kVbx];
+      const double d2 = (along - v) * (along - v) / (sd_v * sd_v + sd * sd);
+      if (!std::isfinite(d2)) {
+        gnss_admitted_[i] = false;
+      } else if (d2 <= options.gnss_gate_chi2) {
+        consecutive = 0;
+      } else if (++consecutive <= options.gnss_max_consecutive_rejections) {
+        gnss_admitted_[i] = false;
+      } else {
+        consecutive = 0;
+      }
+    }
+  }
 }
 
 size_t WardFactorSource::stiffness_node_count() const {
@@ -196,6 +218,21 @@ void WardFactorSource::AddStiffnessNode(size_t j, double* nodes, ceres::Problem*
   added->push_back(
       {"stiffness_walk", problem->AddResidualBlock(new LinearFactor(a, Eigen::VectorXd::Zero(1)),
                                                    nullptr, &nodes[j - 1], &nodes[j])});
+}
+
+bool WardFactorSource::GnssAlong(size_t k, const GpsSample& g, double* along, double* sd) const {
+  if (!std::isfinite(g.vx) || !std::isfinite(g.vy) || !std::isfinite(g.vz)) return false;
+  const Context c = ContextAt(g.t);
+  if (c.have_attitude) {
+    const double cp = std::cos(c.attitude.pitch_rad);
+    *along = g.vx * std::cos(c.yaw) * cp + g.vy * std::sin(c.yaw) * cp -
+             g.vz * std::sin(c.attitude.pitch_rad);
+  } else {
+    const auto& w = wheel_speeds_[k];
+    *along = (w[0] + w[1] >= 0.0 ? 1.0 : -1.0) * std::hypot(g.vx, g.vy);
+  }
+  *sd = GnssVelocitySd(g, model_.measurement.gps_sd_v_mps);
+  return std::isfinite(*along);
 }
 
 ForceTermContext ForceTermContextAt(const DriveLog& log, double t) {
@@ -318,18 +355,12 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     }
   }
   for (size_t i = gps_begin_[k]; i < gps_begin_[k + 1]; ++i) {
-    const GpsSample& g = log_.gps[i];
-    if (!std::isfinite(g.vx) || !std::isfinite(g.vy) || !std::isfinite(g.vz)) continue;
-    const Context c = ContextAt(g.t);
-    double along;
-    if (c.have_attitude) {
-      const double cp = std::cos(c.attitude.pitch_rad);
-      along = g.vx * std::cos(c.yaw) * cp + g.vy * std::sin(c.yaw) * cp -
-              g.vz * std::sin(c.attitude.pitch_rad);
-    } else {
-      along = (w[0] + w[1] >= 0.0 ? 1.0 : -1.0) * std::hypot(g.vx, g.vy);
+    double along = 0.0, sd = 0.0;
+    if (!GnssAlong(k, log_.gps[i], &along, &sd)) continue;
+    if (!gnss_admitted_[i]) {
+      ++counts->gnss_gated;
+      continue;
     }
-    const double sd = GnssVelocitySd(g, noise.gps_sd_v_mps);
     Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, x);
     ++counts->gnss;
   }

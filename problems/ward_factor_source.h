@@ -39,6 +39,13 @@ struct BodyVelocityMeasurement {
 struct WardProblemOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   bool use_gps = true;
+  // A gate on GNSS velocity as the EKF's (EkfOptions::gps_gate_chi2, gps_max_consecutive_
+  // rejections; the same defaults): a fix further from the front end's estimate than this, in
+  // squared sd of the two together, is left out (counted), unless the fixes before it were left
+  // out max-consecutive times. Infinity: every finite fix is taken (the workbench: a misfit is
+  // what it looks for). A fix at an infinite distance (an absurd value) is never taken.
+  double gnss_gate_chi2 = 15.1;
+  int gnss_max_consecutive_rejections = 1;
   // Body-x velocity measurements from another estimator, sorted by t (empty: none).
   std::vector<BodyVelocityMeasurement> body_velocity;
   // Online: each body-velocity measurement enters at the first state at or after its
@@ -120,9 +127,9 @@ struct AddedFactor {
 
 // How many factors of each kind went in, for the report.
 struct FactorCounts {
-  long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, body_velocity = 0,
-       body_velocity_too_late = 0, oppose_motion = 0, act_quickly = 0, at_rest = 0, bounds = 0,
-       rate_bounds = 0;
+  long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, gnss_gated = 0,
+       body_velocity = 0, body_velocity_too_late = 0, oppose_motion = 0, act_quickly = 0,
+       at_rest = 0, bounds = 0, rate_bounds = 0;
   std::string Describe() const;
 };
 
@@ -201,6 +208,9 @@ class WardFactorSource {
  private:
   struct Context;
   Context ContextAt(double t) const;
+  // GNSS fix g's velocity along body x at state k and its sd; false when it has none (a
+  // non-finite component).
+  bool GnssAlong(size_t k, const GpsSample& g, double* along, double* sd) const;
 
   const DriveLog& log_;
   const ModelConfig& model_;
@@ -212,6 +222,7 @@ class WardFactorSource {
   std::vector<double> times_;
   std::vector<std::array<double, 2>> wheel_speeds_;
   std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving
+  std::vector<bool> gnss_admitted_;    // per GNSS fix: inside the front end's gate
   // IMU and GNSS samples attached to state k: [imu_begin_[k], imu_begin_[k + 1]), same for GNSS.
   std::vector<size_t> imu_begin_, gps_begin_, velocity_begin_;
   // With body_velocity_when_available: the measurements attached to a state, by available_t.

@@ -46,9 +46,12 @@ void MultipleModelEkf::AddGps(const GpsSample& gps) {
     log_likelihood[i] = filters_[i]->AddGpsScored(gps);
   }
   const double best = *std::max_element(log_likelihood.begin(), log_likelihood.end());
+  // A fix no filter can score (an absurd value: every filter's gate refused it with an infinite
+  // distance) says nothing about the laws: the weights stay.
+  if (!std::isfinite(best)) return;
   double sum = 0.0;
   for (size_t i = 0; i < filters_.size(); ++i) {
-    weights_[i] *= std::exp(log_likelihood[i] - best);
+    weights_[i] *= std::isnan(log_likelihood[i]) ? 0.0 : std::exp(log_likelihood[i] - best);
     sum += weights_[i];
   }
   for (double& w : weights_) w /= sum;

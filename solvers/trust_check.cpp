@@ -33,6 +33,9 @@ bool TrustOptions::IsValid(std::string* error) const {
 
 namespace {
 
+// The largest |z| one GNSS fix adds to the speed check (CheckTrust).
+constexpr double kFixZLimit = 10.0;
+
 bool OffTheWheels(const WardEstimate& e, double radius_m, const TrustOptions& o) {
   const double v = e.x[ward::kVbx];
   if (!std::isfinite(v)) return true;  // no velocity at all: nothing to trust
@@ -146,7 +149,11 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     const double scale =
         std::sqrt(4.0 * v_mps * v_mps * (var_g + sd_v_mps * sd_v_mps) + 2.0 * axes * var_g * var_g);
     if (!(scale > 0.0) || !std::isfinite(scale)) continue;
-    z.push_back((speed_sq - axes * var_g - v_mps * v_mps) / scale);
+    // One fix cannot carry a run or a window: its z is clipped at kFixZLimit (an outlier of
+    // 50 m/s is one fix at the limit; a drift is many fixes beyond 2).
+    const double fix_z = (speed_sq - axes * var_g - v_mps * v_mps) / scale;
+    if (!std::isfinite(fix_z)) continue;  // an absurd value, e.g. 1e300 m/s
+    z.push_back(std::clamp(fix_z, -kFixZLimit, kFixZLimit));
     at.push_back(nearest);
   }
   report.gnss_fixes = z.size();

@@ -157,6 +157,29 @@ TEST(LogReader, SkipBadDropsOnlyTheBadRowsAndSaysSo) {
   EXPECT_EQ(log.imu.size(), 4u);
 }
 
+// One forward time typo (t = 1000) made every later row "decreasing": --skip-bad dropped them
+// all. More bad rows than --skip-bad drops is an error quoting the first, which names the typo.
+TEST(LogReader, SkipBadHasALimit) {
+  std::string gps = "t,x,y,z,vx,vy,vz\n";
+  for (int i = 0; i < 40; ++i) {
+    gps += std::to_string(i == 5 ? 1000 : i) + ",0,0,0,1,0,0\n";
+  }
+  const std::string dir = WriteValidLog("skip_limit", {{"gps.csv", gps}});
+  ReadOptions options;
+  options.skip_bad = true;
+  try {
+    ReadDriveLog(dir, options);
+    ADD_FAILURE() << "34 of 40 rows dropped without an error";
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("34 of 40 rows are bad"), std::string::npos) << what;
+    EXPECT_NE(what.find("gps.csv:8"), std::string::npos) << what;  // the first row after it
+    EXPECT_NE(what.find("previous 1000"), std::string::npos) << what;
+  }
+  options.max_bad_fraction = 1.0;  // the user's choice: drop them
+  EXPECT_EQ(ReadDriveLog(dir, options).gps.size(), 6u);
+}
+
 TEST(LogReader, SkipBadLeavesOutAnOptionalFileWithoutItsHeader) {
   const std::string dir = WriteValidLog("nogpsheader", {{"gps.csv", "t,x,y\n0,0,0\n"}});
   EXPECT_THROW(ReadDriveLog(dir), InputError);

@@ -91,6 +91,24 @@ TEST(MultipleModelEkf, MissingEncoderDataIsNeverReportedAsImmobilization) {
   EXPECT_FALSE(bank.Estimate().slip.immobilized);
 }
 
+// A fix no filter can score (1e300 m/s: every gate refuses it at an infinite distance) leaves the
+// weights as they were; it had made them NaN, and the estimate with them.
+TEST(MultipleModelEkf, AnAbsurdFixLeavesTheWeights) {
+  const DriveLog log = testing::SimulatedScenario("ward21/13");
+  MultipleModelEkf bank(log.vehicle, DefaultModelConfig(log.vehicle), EkfOptions{});
+  testing::FeedStreams(
+      log, &bank, [](const StreamEntry& e) { return e.t < 10.0; }, [](const StreamEntry&) {});
+  const std::vector<double> before = bank.weights();
+  GpsSample absurd = log.gps.at(10);
+  absurd.vx = 1e300;
+  bank.AddGps(absurd);
+  EXPECT_EQ(bank.weights(), before);
+  for (double sd : bank.Estimate().sd) EXPECT_TRUE(std::isfinite(sd));
+  EXPECT_TRUE(std::isfinite(bank.Estimate().x[ward::kVbx]));
+  const LawSample law = bank.Law();
+  EXPECT_TRUE(std::isfinite(law.tire.C1) && std::isfinite(law.tire.At));
+}
+
 TEST(MultipleModelEkf, OptionsAreValidated) {
   MultipleModelOptions options;
   std::string error;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
@@ -26,9 +27,12 @@ namespace slipgraph {
 struct DiagnosisOptions {
   // One fixed problem per model (no re-gating of weak constraint 2 by the solution's own slip):
   // the fit-and-compare tests difference the costs of two solves of the same problem.
+  // Every finite GNSS fix in the problem (no gate): a misfit the gate would leave out, such as
+  // averaged fixes during acceleration, is what the workbench looks for.
   BatchSmootherOptions smoother = [] {
     BatchSmootherOptions o;
     o.regate_decay_prior = false;
+    o.problem.gnss_gate_chi2 = std::numeric_limits<double>::infinity();
     return o;
   }();
   double alpha = 0.01;      // family-wise level of the candidate tests and the segment tests
