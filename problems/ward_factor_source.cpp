@@ -80,7 +80,7 @@ std::string FactorCounts::Describe() const {
   std::ostringstream out;
   out << "factors: " << dynamics << " dynamics, " << accelerometer << " accelerometer, " << gyro
       << " gyro, " << encoders << " encoder, " << gnss << " GNSS (" << gnss_gated
-      << " left out by the front end's gate), "
+      << " outliers left out), "
       << (body_velocity > 0 ? std::to_string(body_velocity) + " body velocity, " : std::string())
       << (body_velocity_too_late > 0
               ? std::to_string(body_velocity_too_late) + " body velocity too late for the window, "

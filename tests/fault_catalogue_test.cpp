@@ -83,8 +83,8 @@ void ExpectCompleteAndFinite(const std::string& path, size_t rows) {
 size_t WheelRows() { return ReadNumericTable(kSample + "/wheels.csv").rows(); }
 
 // One GNSS velocity of 1e300 (every filter's gate refuses it at an infinite distance): the bank
-// of filters weighed its laws with it and wrote NaN from there on; the smoother took the fix the
-// front end had left out and failed.
+// of filters weighed its laws with it and wrote NaN from there on; the smoother took the fix and
+// failed.
 TEST(FaultCatalogue, AnAbsurdGnssVelocityIsLeftOutEverywhere) {
   const std::string log = CopyOfSample("gnss_1e300");
   SetCell(log + "/gps.csv", 5, "vx", "1e300");
@@ -97,8 +97,7 @@ TEST(FaultCatalogue, AnAbsurdGnssVelocityIsLeftOutEverywhere) {
     if (command == "filter") {
       EXPECT_NE(run.output.find("1 rejected by the gate"), std::string::npos) << run.output;
     } else {
-      EXPECT_NE(run.output.find("(1 left out by the front end's gate)"), std::string::npos)
-          << run.output;
+      EXPECT_NE(run.output.find("(1 outliers left out)"), std::string::npos) << run.output;
       EXPECT_EQ(run.output.find("FALLBACK"), std::string::npos) << run.output;
     }
     EXPECT_NE(run.output.find("trust: no sign of trouble"), std::string::npos) << run.output;
@@ -106,15 +105,15 @@ TEST(FaultCatalogue, AnAbsurdGnssVelocityIsLeftOutEverywhere) {
   }
 }
 
-// A GNSS velocity outlier of 50 m/s pulled the batch smoother to 0.74 m/s RMSE; the front end's
-// gate leaves it out of the smoother too.
+// A GNSS velocity outlier of 50 m/s pulled the batch smoother to 0.74 m/s RMSE; the smoothers'
+// gate on gross outliers leaves it out.
 TEST(FaultCatalogue, AGnssOutlierDoesNotPullTheSmoother) {
   const std::string log = CopyOfSample("gnss_50");
   SetCell(log + "/gps.csv", 8, "vx", "50");
   const std::string out = log + "_smooth.csv";
   const ProgramRun run = RunProgram("smooth " + log + " --out " + out, "gnss_50");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("(1 left out by the front end's gate)"), std::string::npos);
+  EXPECT_NE(run.output.find("(1 outliers left out)"), std::string::npos);
   ExpectCompleteAndFinite(out, WheelRows());
   // The sample's batch error without the outlier is 0.0088 m/s.
   const size_t at = run.output.find("velocity RMSE ");
