@@ -81,6 +81,12 @@ bool CsvReader::Next() {
 }
 
 std::string_view CsvReader::Cell(int column) const {
+  // More cells than the header: the columns no longer line up (a decimal comma, "2,93").
+  if (cells_.size() > header_.size() && !header_.empty()) {
+    Fail(column, "",
+         "row has " + std::to_string(cells_.size()) + " cells, the header " +
+             std::to_string(header_.size()) + " (a decimal comma?)");
+  }
   const int position = positions_[column];
   if (position < 0 || position >= static_cast<int>(cells_.size())) return {};
   return cells_[position];

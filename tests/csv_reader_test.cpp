@@ -45,6 +45,22 @@ TEST(CsvReader, ShortRowIsAnErrorNamingTheColumn) {
   }
 }
 
+// A decimal comma ("2,93") splits a cell in two and shifts every column after it: the row was
+// read with the wrong values in the right-hand columns.
+TEST(CsvReader, LongRowIsAnErrorNamingTheLine) {
+  CsvReader r(WriteCsv("t,a,b\n1,2,3\n2,2,93,4\n"), {{"t", true}, {"b", true}});
+  ASSERT_TRUE(r.Next());
+  EXPECT_EQ(r.Number(1), 3.0);
+  ASSERT_TRUE(r.Next());
+  try {
+    r.Number(1);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(std::string(e.what()).find("4 cells, the header 3"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CsvReader, TrailingGarbageIsNotANumber) {
   CsvReader r(WriteCsv("t\n1.5x\n"), {{"t", true}});
   ASSERT_TRUE(r.Next());
