@@ -140,7 +140,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
       "compare", "EKF vs sliding-window smoother vs batch smoother (vs truth): table and HTML");
-  cmd->add_option("LOG", options->log, "Log or suite directory (default: the bundled sample)");
+  cmd->add_option("LOG", options->log, "Log or suite directory (default: the bundled sample)")
+      ->check(NonEmptyPath());
   cmd->add_option("--model", options->model, "Model YAML overriding the vehicle's nominal values");
   cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
   cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");

@@ -32,7 +32,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       "effect is missing; --with EFFECT adds one and shows the change");
   cmd->add_option("LOG", options->log,
                   "Log or suite directory (default: the bundled hidden-effect log, "
-                  "data/hidden_clock_offset)");
+                  "data/hidden_clock_offset)")
+      ->check(NonEmptyPath());
   cmd->add_option("--model", options->model, "Model YAML over the vehicle's nominal model");
   cmd->add_option("--with", options->with,
                   "Switch a catalogue effect on in the model and report before and after "

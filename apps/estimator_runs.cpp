@@ -34,7 +34,8 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               bool* no_gps) {
   run->name = name;
   CLI::App* cmd = app->add_subcommand(name, description);
-  cmd->add_option("LOG", run->log, "Log or suite directory (default: the bundled sample)");
+  cmd->add_option("LOG", run->log, "Log or suite directory (default: the bundled sample)")
+      ->check(NonEmptyPath());
   cmd->add_option("--model", run->model, "Model YAML overriding the vehicle's nominal values");
   cmd->add_flag("--no-gps", *no_gps, "Leave GNSS out");
   cmd->add_flag("--skip-bad", run->skip_bad, "Drop bad input rows, with a warning each");
@@ -97,6 +98,15 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
     return kUntrustedExit;
   }
   return 0;
+}
+
+CLI::Validator NonEmptyPath() {
+  return CLI::Validator(
+      [](std::string& path) {
+        return path.empty() ? std::string("an empty path (no argument takes the bundled sample)")
+                            : std::string();
+      },
+      "PATH");
 }
 
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver) {

@@ -68,6 +68,10 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
 // --solver chain|ceres: how the sliding window solves (online, compare).
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver);
 
+// For a LOG argument: an empty path given (LOG "", a script's unset variable) is an error, not
+// the bundled sample that no argument means.
+CLI::Validator NonEmptyPath();
+
 // --stiffness-sd SD: the batch smoother's prior on the tire law's slip stiffness (smooth,
 // compare); *prior_sd holds the default.
 void AddStiffnessOption(CLI::App* cmd, double* prior_sd);

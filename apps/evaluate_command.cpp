@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/estimator_runs.h"
 #include "evaluation/evaluation.h"
 #include "io/input_error.h"
 #include "io/log_reader.h"
@@ -16,7 +17,7 @@ void RegisterEvaluateCommand(CLI::App* app, int* status) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd =
       app->add_subcommand("evaluate", "Score estimates against the log's truth.csv and events.csv");
-  cmd->add_option("LOG", options->log, "Log or suite directory")->required();
+  cmd->add_option("LOG", options->log, "Log or suite directory")->check(NonEmptyPath())->required();
   cmd->add_option("ESTIMATES", options->estimates,
                   "Estimate CSV (a suite: the directory of <log>.csv files)")
       ->required();

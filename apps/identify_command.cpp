@@ -106,7 +106,9 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       "identify",
       "Identify the robot's model from its logs: tire and rolling laws, wheel radii, effective "
       "track, IMU offsets, sensor noise; fitted on the first part of each log, scored on the rest");
-  cmd->add_option("LOG", options->logs, "One or more logs of the same robot")->required();
+  cmd->add_option("LOG", options->logs, "One or more logs of the same robot")
+      ->check(NonEmptyPath())
+      ->required();
   cmd->add_option("--model", options->model, "Model YAML to start from (default: the nominal)");
   cmd->add_option("--out", options->out, "Model YAML to write (default ./<first log>_model.yaml)");
   cmd->add_option("--train", options->train,

@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/estimator_runs.h"
 #include "io/log_reader.h"
 #include "io/log_summary.h"
 
@@ -14,7 +15,8 @@ void RegisterInfoCommand(CLI::App* app, int* status) {
   auto options = std::make_shared<Options>();
   CLI::App* info = app->add_subcommand(
       "info", "Print a log's vehicle, streams, rates, duration, gaps and problems found");
-  info->add_option("LOG", options->log, "Log directory (default: the bundled sample log)");
+  info->add_option("LOG", options->log, "Log directory (default: the bundled sample log)")
+      ->check(NonEmptyPath());
   info->add_flag("--skip-bad", options->skip_bad,
                  "Drop bad rows and unusable optional files, with a warning each");
   info->callback([options, status]() {

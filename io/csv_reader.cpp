@@ -46,6 +46,8 @@ CsvReader::CsvReader(std::string path, std::vector<CsvColumn> columns)
   std::ostringstream contents;
   contents << file.rdbuf();
   buffer_ = contents.str();
+  // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
+  if (buffer_.compare(0, 3, "\xEF\xBB\xBF") == 0) cursor_ = 3;
 
   // The header is the first line that is neither blank nor a comment.
   std::vector<std::string_view> header;

@@ -1,6 +1,7 @@
 // Reader for the drive-log CSV dialect (shared/log-format.md): '#' comment lines, first
 // non-comment line is the header, columns matched by name in any order, unknown columns ignored,
-// empty cells and "nan" are missing values. Plain numeric CSV without quoting, so this is a
+// empty cells and "nan" are missing values; a leading UTF-8 byte-order mark is skipped, and a row
+// with more cells than the header is an error. Plain numeric CSV without quoting, so this is a
 // tokenizer over a memory buffer; Debian's libfccp needs the column count at compile time, which
 // the vehicle-dependent columns (wheels, slip_<wheel>) rule out.
 #pragma once

@@ -61,6 +61,15 @@ TEST(CsvReader, LongRowIsAnErrorNamingTheLine) {
   }
 }
 
+// A spreadsheet's UTF-8 byte-order mark made the first column "\xEF\xBB\xBFt": "required column
+// 't' is missing".
+TEST(CsvReader, AByteOrderMarkIsNotPartOfTheHeader) {
+  CsvReader r(WriteCsv("\xEF\xBB\xBFt,a\n1,2\n"), {{"t", true}, {"a", true}});
+  ASSERT_TRUE(r.Next());
+  EXPECT_EQ(r.Number(0), 1.0);
+  EXPECT_EQ(r.Number(1), 2.0);
+}
+
 TEST(CsvReader, TrailingGarbageIsNotANumber) {
   CsvReader r(WriteCsv("t\n1.5x\n"), {{"t", true}});
   ASSERT_TRUE(r.Next());
