@@ -187,6 +187,13 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
       continue;
     }
     ReadNumbers(path, node, name + ".", section.fields, false, warnings);
+    // A standard deviation of zero weighs a sensor as exact: the filter's covariance collapses.
+    for (const NumberField& field : section.fields) {
+      if (node[field.key] && !(*field.target > 0.0)) {
+        Fail(path, node[field.key], name + "." + field.key, node[field.key].Scalar(),
+             "must be positive (a standard deviation)");
+      }
+    }
   }
   return v;
 }

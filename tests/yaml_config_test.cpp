@@ -141,6 +141,23 @@ TEST(YamlConfig, NonPositiveDimensionIsRejected) {
   EXPECT_THROW(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings), InputError);
 }
 
+// `sd_omega: 0` weighed the encoders as exact; the filter's covariance collapsed and the
+// smoother printed 109 k lines of solver dumps.
+TEST(YamlConfig, ASensorSdOfZeroIsAnErrorNamingIt) {
+  std::string yaml = testing::kLagrVehicleYaml;
+  yaml.replace(yaml.find("sd_omega: 0.05"), 14, "sd_omega: 0");
+  const std::string dir = testing::FreshDirectory("vehicle");
+  testing::WriteText(dir, "vehicle.yaml", yaml);
+  std::vector<std::string> warnings;
+  try {
+    ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.column(), "sensors.wheels.sd_omega");
+    EXPECT_NE(std::string(e.what()).find("must be positive"), std::string::npos);
+  }
+}
+
 // The law's optional uncertainty (tire_sd, rolling_sd, law_samples: extensions of vehicle.yaml):
 // read, written back only when stated, into the model by default; a bad value names its key.
 TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
