@@ -7,6 +7,7 @@
 #include <string>
 
 #include "io/csv_reader.h"
+#include "io/csv_writer.h"
 #include "io/input_error.h"
 #include "io/yaml_config.h"
 
@@ -75,6 +76,14 @@ void CheckIncreasing(const CsvReader& reader, int t_column, double t, double pre
   reader.Fail(t_column, value,
               std::string(t == previous_t ? "repeated" : "decreasing") + " time stamp (previous " +
                   std::to_string(previous_t) + ")");
+}
+
+// A standard deviation cell: missing, or positive (zero would weigh the row as exact; it was
+// replaced silently by vehicle.yaml's).
+double Sd(const CsvReader& r, int column) {
+  const double sd = r.Number(column);
+  if (sd <= 0.0) r.Fail(column, FormatNumber(sd), "a standard deviation must be positive");
+  return sd;
 }
 
 template <typename Sample>
@@ -174,7 +183,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 s->t = r.Number(0);
                 CheckIncreasing(r, 0, s->t, LastTime(prev));
                 s->roll = r.Number(1), s->pitch = r.Number(2), s->yaw = r.Number(3);
-                s->sd_roll = r.Number(4), s->sd_pitch = r.Number(5), s->sd_yaw = r.Number(6);
+                s->sd_roll = Sd(r, 4), s->sd_pitch = Sd(r, 5), s->sd_yaw = Sd(r, 6);
               });
 
   ReadCsvFile(directory, "gps.csv", false,
@@ -185,7 +194,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 CheckIncreasing(r, 0, s->t, LastTime(prev));
                 s->x = r.Number(1), s->y = r.Number(2), s->z = r.Number(3);
                 s->vx = r.Number(4), s->vy = r.Number(5), s->vz = r.Number(6);
-                s->sd_xy = r.Number(7), s->sd_z = r.Number(8), s->sd_v = r.Number(9);
+                s->sd_xy = Sd(r, 7), s->sd_z = Sd(r, 8), s->sd_v = Sd(r, 9);
               });
 
   ReadCsvFile(directory, "pose.csv", false,
@@ -196,7 +205,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 CheckIncreasing(r, 0, s->t, LastTime(prev));
                 s->x = r.Number(1), s->y = r.Number(2), s->z = r.Number(3);
                 s->roll = r.Number(4), s->pitch = r.Number(5), s->yaw = r.Number(6);
-                s->sd_x = r.Number(7), s->sd_y = r.Number(8), s->sd_yaw = r.Number(9);
+                s->sd_x = Sd(r, 7), s->sd_y = Sd(r, 8), s->sd_yaw = Sd(r, 9);
               });
 
   ReadCsvFile(

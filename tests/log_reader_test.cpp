@@ -180,6 +180,16 @@ TEST(LogReader, SkipBadHasALimit) {
   EXPECT_EQ(ReadDriveLog(dir, options).gps.size(), 6u);
 }
 
+// A row's sd of zero was replaced silently by vehicle.yaml's.
+TEST(LogReader, ARowSdOfZeroIsAnErrorNamingTheColumn) {
+  const std::string dir = WriteValidLog(
+      "sd_zero", {{"gps.csv", "t,x,y,z,vx,vy,vz,sd_v\n0,0,0,0,1,0,0,0.1\n1,1,0,0,1,0,0,0\n"}});
+  const InputError error = ReadExpectingError(dir);
+  EXPECT_EQ(FileName(error), "gps.csv");
+  EXPECT_EQ(error.line(), 3);
+  EXPECT_EQ(error.column(), "sd_v");
+}
+
 TEST(LogReader, SkipBadLeavesOutAnOptionalFileWithoutItsHeader) {
   const std::string dir = WriteValidLog("nogpsheader", {{"gps.csv", "t,x,y\n0,0,0\n"}});
   EXPECT_THROW(ReadDriveLog(dir), InputError);
