@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <ostream>
 
+#include "io/csv_writer.h"
 #include "io/input_error.h"
 
 namespace slipgraph {
@@ -13,6 +14,10 @@ namespace {
 constexpr double kChiSquare95OneDof = 3.841;
 
 // Truth interpolated linearly in time (truth is dense; clamps at the ends).
+// How far an estimate's time may lie outside the truth's span (a wheel sample after the last
+// truth row).
+constexpr double kTruthSpanToleranceS = 0.5;
+
 class TruthTrack {
  public:
   explicit TruthTrack(const std::vector<TruthSample>& truth) : truth_(truth) {}
@@ -86,7 +91,22 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
   }
   for (const Event& e : immobilized) ev.events.push_back({e.t_start, e.t_end, false, 0.0});
 
+  // Estimates off the truth's time span were scored against its end values: a file of another
+  // log, or one on another clock (shifted by 1000 s), scored as if it were this log's.
+  const std::string source = estimates.path.empty() ? "estimates" : estimates.path;
+  const double first_t = log.truth.front().t - kTruthSpanToleranceS;
+  const double last_t = log.truth.back().t + kTruthSpanToleranceS;
   for (size_t i = 0; i < t.size(); ++i) {
+    const int line = static_cast<int>(i) + 2;  // the header is line 1
+    if (!(t[i] >= first_t && t[i] <= last_t)) {
+      throw InputError(source, line, "t", FormatNumber(t[i]),
+                       "outside truth.csv's time span (" + FormatNumber(log.truth.front().t) +
+                           " to " + FormatNumber(log.truth.back().t) +
+                           " s): another log's estimates, or another clock");
+    }
+    if (!std::isfinite(v[i])) {
+      throw InputError(source, line, "v_bx", FormatNumber(v[i]), "not a finite estimate");
+    }
     ++ev.samples;
     const double dv = v[i] - truth.At(t[i], [](const TruthSample& s) { return s.vx; });
     ev.velocity_sq_sum += dv * dv;

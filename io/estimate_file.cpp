@@ -39,6 +39,7 @@ NumericTable ReadNumericTable(const std::string& path) {
   for (const std::string& name : names) columns.push_back({name, false});
   CsvReader reader(path, columns);
   NumericTable table;
+  table.path = path;
   table.names = names;
   for (const std::string& name : names) table.columns[name];
   while (reader.Next()) {

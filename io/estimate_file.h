@@ -32,6 +32,7 @@ class EstimateWriter {
 // Every column of a numeric CSV by name ("t" included). Throws InputError naming file, line,
 // column and value on a bad cell (missing values are NaN).
 struct NumericTable {
+  std::string path;  // the file it was read from (empty: built in memory)
   std::vector<std::string> names;
   std::map<std::string, std::vector<double>> columns;
   size_t rows() const { return columns.empty() ? 0 : columns.begin()->second.size(); }

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "io/input_error.h"
+
 namespace slipgraph {
 namespace {
 
@@ -73,6 +75,43 @@ TEST(Evaluation, MissedEventAndSuiteTotals) {
   EXPECT_EQ(total.events.size(), 2u);
   EXPECT_EQ(total.samples, 202u);
   EXPECT_NEAR(total.velocity_rmse, missed.velocity_rmse, 1e-12);
+}
+
+}  // namespace
+}  // namespace slipgraph
+
+namespace slipgraph {
+namespace {
+
+// Estimates shifted by 1000 s were scored against the truth's last sample, and one NaN made the
+// RMSE NaN (JSON null): both are errors naming the row.
+TEST(Evaluation, EstimatesOffTheTruthOrNotFiniteAreErrors) {
+  const DriveLog log = TruthLog();
+  NumericTable est;
+  est.path = "est.csv";
+  for (int k = 0; k <= 100; ++k) {
+    est.columns["t"].push_back(1000.0 + 0.1 * k);
+    est.columns["v_bx"].push_back(1.0);
+    est.columns["immobilized"].push_back(0.0);
+  }
+  try {
+    Evaluate(log, est);
+    FAIL() << "shifted estimates scored";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "est.csv");
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.column(), "t");
+  }
+  for (int k = 0; k <= 100; ++k) est.columns["t"][k] = 0.1 * k;
+  EXPECT_NO_THROW(Evaluate(log, est));
+  est.columns["v_bx"][7] = std::nan("");
+  try {
+    Evaluate(log, est);
+    FAIL() << "a NaN estimate scored";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_EQ(e.column(), "v_bx");
+  }
 }
 
 }  // namespace
