@@ -60,9 +60,10 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
   for (const std::string& log_dir : logs) {
     const std::string file =
         suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
+    if (!fs::exists(file)) continue;
     std::error_code error;
     for (const fs::directory_entry& entry : fs::directory_iterator(log_dir, error)) {
-      if (fs::exists(file) && fs::equivalent(entry.path(), file, error)) {
+      if (fs::equivalent(entry.path(), file, error)) {
         throw InputError(
             file, 0, "", "",
             "the output is a file of the log " + log_dir + ": refusing to overwrite it");

@@ -13,11 +13,11 @@ namespace {
 
 constexpr double kChiSquare95OneDof = 3.841;
 
-// Truth interpolated linearly in time (truth is dense; clamps at the ends).
 // How far an estimate's time may lie outside the truth's span (a wheel sample after the last
 // truth row).
 constexpr double kTruthSpanToleranceS = 0.5;
 
+// Truth interpolated linearly in time (truth is dense; clamps at the ends).
 class TruthTrack {
  public:
   explicit TruthTrack(const std::vector<TruthSample>& truth) : truth_(truth) {}

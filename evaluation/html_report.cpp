@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <sstream>
-#include <stdexcept>
+
+#include "io/text_file.h"
 
 namespace slipgraph {
 namespace {
@@ -273,11 +273,6 @@ std::string HtmlReport::Html() const {
          HtmlEscape(title_) + "</h1>\n" + body_ + "</body>\n</html>\n";
 }
 
-void HtmlReport::Write(const std::string& path) const {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << Html();
-  if (!out) throw std::runtime_error(path + ": write failed");
-}
+void HtmlReport::Write(const std::string& path) const { WriteTextFile(path, Html()); }
 
 }  // namespace slipgraph

@@ -53,7 +53,7 @@ class HtmlReport {
   // Appends another report's body (not its title).
   void Append(const HtmlReport& other) { body_ += other.body_; }
   std::string Html() const;
-  // Throws std::runtime_error naming the path when it cannot be written.
+  // Throws InputError (a std::runtime_error) naming the path when it cannot be written.
   void Write(const std::string& path) const;
 
  private:

@@ -1,10 +1,10 @@
 #include "io/log_writer.h"
 
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "io/csv_writer.h"
-#include "io/input_error.h"
+#include "io/text_file.h"
 #include "io/yaml_config.h"
 
 namespace slipgraph {
@@ -22,11 +22,9 @@ void WriteDriveLog(const DriveLog& log, const std::string& directory) {
   fs::create_directories(directory);
   const auto path = [&](const char* name) { return (fs::path(directory) / name).string(); };
   {
-    std::ofstream out(path("vehicle.yaml"));
-    if (!out) throw InputError(path("vehicle.yaml"), 0, "", "", "cannot open file for writing");
-    WriteVehicleYaml(log.vehicle, out);
-    out.close();
-    if (out.fail()) throw InputError(path("vehicle.yaml"), 0, "", "", "write failed");
+    std::ostringstream yaml;
+    WriteVehicleYaml(log.vehicle, yaml);
+    WriteTextFile(path("vehicle.yaml"), yaml.str());
   }
   const std::vector<std::string>& wheels = WheelNames(log.vehicle.type);
   const int wheel_count = static_cast<int>(wheels.size());

@@ -161,20 +161,22 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   }
   // The gate on GNSS (WardProblemOptions::gnss_gate_chi2), against the front end's estimate at
   // each fix's state.
-  gnss_admitted_.assign(log.gps.size(), true);
+  gnss_.assign(log.gps.size(), GnssFix{});
   int consecutive = 0;
   for (size_t k = 0; k < n; ++k) {
     for (size_t i = gps_begin_[k]; i < gps_begin_[k + 1]; ++i) {
-      double along = 0.0, sd = 0.0;
-      if (!GnssAlong(k, log.gps[i], &along, &sd)) continue;
+      GnssFix& fix = gnss_[i];
+      fix.usable = GnssAlong(k, log.gps[i], &fix.along_mps, &fix.sd_mps);
+      if (!fix.usable) continue;
       const double v = initial[k].x[ward::kVbx], sd_v = initial[k].sd[ward::kVbx];
-      const double d2 = (along - v) * (along - v) / (sd_v * sd_v + sd * sd);
+      const double d2 =
+          (fix.along_mps - v) * (fix.along_mps - v) / (sd_v * sd_v + fix.sd_mps * fix.sd_mps);
       if (!std::isfinite(d2)) {
-        gnss_admitted_[i] = false;
+        fix.admitted = false;
       } else if (d2 <= options.gnss_gate_chi2) {
         consecutive = 0;
       } else if (++consecutive <= options.gnss_max_consecutive_rejections) {
-        gnss_admitted_[i] = false;
+        fix.admitted = false;
       } else {
         consecutive = 0;
       }
@@ -355,13 +357,13 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     }
   }
   for (size_t i = gps_begin_[k]; i < gps_begin_[k + 1]; ++i) {
-    double along = 0.0, sd = 0.0;
-    if (!GnssAlong(k, log_.gps[i], &along, &sd)) continue;
-    if (!gnss_admitted_[i]) {
+    const GnssFix& fix = gnss_[i];
+    if (!fix.usable) continue;
+    if (!fix.admitted) {
       ++counts->gnss_gated;
       continue;
     }
-    Add("gnss", GnssVelocityFactor::Create(along, sd), nullptr, x);
+    Add("gnss", GnssVelocityFactor::Create(fix.along_mps, fix.sd_mps), nullptr, x);
     ++counts->gnss;
   }
   // Another estimator's body-x velocity: the same residual as GNSS projected on body x (online,

@@ -224,7 +224,13 @@ class WardFactorSource {
   std::vector<double> times_;
   std::vector<std::array<double, 2>> wheel_speeds_;
   std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving
-  std::vector<bool> gnss_admitted_;    // per GNSS fix: inside the front end's gate
+  // Per GNSS fix, once: its speed along body x at its state and sd (GnssAlong), and whether the
+  // gross-outlier gate (WardProblemOptions::gnss_gate_chi2) took it.
+  struct GnssFix {
+    bool usable = false, admitted = true;
+    double along_mps = 0.0, sd_mps = 0.0;
+  };
+  std::vector<GnssFix> gnss_;
   // IMU and GNSS samples attached to state k: [imu_begin_[k], imu_begin_[k + 1]), same for GNSS.
   std::vector<size_t> imu_begin_, gps_begin_, velocity_begin_;
   // With body_velocity_when_available: the measurements attached to a state, by available_t.

@@ -144,7 +144,7 @@ void AddOuterProducts(const double* jb, int rows, int count, std::vector<double>
 bool AssembleFromJacobian(const ceres::CRSMatrix& J, Information* info) {
   const int m = info->m, state_columns = info->n * m;
   std::vector<int> block, index;
-  std::vector<double> hb, rows;
+  std::vector<double> hb;
   for (int row = 0; row < J.num_rows;) {
     // Rows of one residual block share their columns: take them together.
     const int begin = J.rows[row], count = J.rows[row + 1] - begin;

@@ -74,6 +74,12 @@ class Window {
     const std::deque<std::array<double, kStateSize>> before = states_;
     const std::array<double, 2> offsets_before = offsets_;
     const std::vector<double> stiffness_before = stiffness_;
+    // Back to the pre-solve values (same addresses: the elements are assigned in place).
+    const auto restore = [&] {
+      states_ = before;
+      offsets_ = offsets_before;
+      std::copy(stiffness_before.begin(), stiffness_before.end(), stiffness_.begin());
+    };
     const double newest = NewestTime();
     size_t leaving = 0;
     while (leaving < states_.size() &&
@@ -86,9 +92,7 @@ class Window {
     if (options_.solver == WindowSolver::kChainGaussNewton) {
       solved = SolveOnTheChain(leaving, &sd, &have_sd);
       if (!solved) {
-        states_ = before;  // same addresses: the deque's elements are assigned in place
-        offsets_ = offsets_before;
-        std::copy(stiffness_before.begin(), stiffness_before.end(), stiffness_.begin());
+        restore();
         have_sd = false;
         ++result_->chain_fallbacks;
       }
@@ -98,9 +102,7 @@ class Window {
       ceres::Solve(solver_options_, &problem_, &summary);
       failed = !summary.IsSolutionUsable();
       if (failed) {
-        states_ = before;
-        offsets_ = offsets_before;
-        std::copy(stiffness_before.begin(), stiffness_before.end(), stiffness_.begin());
+        restore();
         ++result_->failed_updates;
         Note("window ending at t=" + std::to_string(newest) + " s failed (" + summary.message +
              "): its leaving states are the EKF's");
