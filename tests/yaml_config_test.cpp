@@ -132,25 +132,25 @@ TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
   EXPECT_EQ(v.defaulted_keys.size(), 3u);
 }
 
-TEST(YamlConfig, NonPositiveDimensionIsRejected) {
+// The LAGR's vehicle.yaml with `from` replaced by `to`, read.
+Vehicle LagrVehicleWith(const std::string& from, const std::string& to) {
   std::string yaml = testing::kLagrVehicleYaml;
-  yaml.replace(yaml.find("wheel_radius: 0.25"), 18, "wheel_radius: 0.0");
+  yaml.replace(yaml.find(from), from.size(), to);
   const std::string dir = testing::FreshDirectory("vehicle");
   testing::WriteText(dir, "vehicle.yaml", yaml);
   std::vector<std::string> warnings;
-  EXPECT_THROW(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings), InputError);
+  return ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+}
+
+TEST(YamlConfig, NonPositiveDimensionIsRejected) {
+  EXPECT_THROW(LagrVehicleWith("wheel_radius: 0.25", "wheel_radius: 0.0"), InputError);
 }
 
 // `sd_omega: 0` weighed the encoders as exact; the filter's covariance collapsed and the
 // smoother printed 109 k lines of solver dumps.
 TEST(YamlConfig, ASensorSdOfZeroIsAnErrorNamingIt) {
-  std::string yaml = testing::kLagrVehicleYaml;
-  yaml.replace(yaml.find("sd_omega: 0.05"), 14, "sd_omega: 0");
-  const std::string dir = testing::FreshDirectory("vehicle");
-  testing::WriteText(dir, "vehicle.yaml", yaml);
-  std::vector<std::string> warnings;
   try {
-    ReadVehicleYaml(dir + "/vehicle.yaml", &warnings);
+    LagrVehicleWith("sd_omega: 0.05", "sd_omega: 0");
     FAIL() << "expected an error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.column(), "sensors.wheels.sd_omega");
