@@ -6,6 +6,7 @@
 
 #include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
+#include "sim/random.h"
 #include "sim/sensor_models.h"
 
 namespace slipgraph {
@@ -62,7 +63,7 @@ class HillElevation {
 
 SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> unit(0.0, 1.0);
+  UnitNormal unit;
   const RockerSpec& spec = sc.rocker;
   SimResult result;
   DriveLog& log = result.log;

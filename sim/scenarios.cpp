@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "sim/random.h"
+
 namespace slipgraph {
 namespace sim {
 namespace {
@@ -37,7 +39,7 @@ void SetLawSamples(const std::vector<std::string>& terrains, Vehicle* vehicle) {
 // spinning, released, drive on, stop, rest.
 Scenario Ward21Run(int run, uint64_t seed) {
   std::mt19937_64 rng(RunSeed(seed, run));
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  UniformReal u(0.0, 1.0);
   static const char* const kTerrains[] = {"mulch", "gravel", "mud", "grass"};
   Scenario sc;
   char name[32];
@@ -111,7 +113,7 @@ Scenario HiddenEffect(const std::string& effect) {
 // over soft dirt, asphalt, loose rock and grass, with terrain boundaries and slopes.
 Scenario Ipd35(uint64_t seed) {
   std::mt19937_64 rng(RunSeed(seed, 35));
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  UniformReal u(0.0, 1.0);
   Scenario sc;
   sc.name = "ipd35";
   sc.vehicle = TrackedVehicle();
@@ -195,7 +197,7 @@ Scenario WilcoxSlopeRun(double roughness_m, const std::string& name) {
 // scenario's draws are unchanged.
 void ApplyMismatch(uint64_t stream_seed, double course_m, Scenario* sc) {
   std::mt19937_64 rng(stream_seed ^ 0x6d69736d61746368ULL);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  UniformReal u(0.0, 1.0);
   const auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
   const size_t slash = sc->name.find('/');  // ward21/03 -> ward21m/03, fig5 -> fig5m
   sc->name.insert(slash == std::string::npos ? sc->name.size() : slash, "m");

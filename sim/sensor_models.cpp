@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/random.h"
+
 namespace slipgraph {
 namespace sim {
 namespace {
@@ -31,7 +33,7 @@ SensorSimulator::SensorSimulator(const SensorSpec& spec, const EffectSet& effect
   attitude_period_ = Period(spec.attitude_rate_hz);
   pose_period_ = Period(spec.pose_rate_hz);
   command_period_ = Period(spec.command_rate_hz);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  UniformReal unit(-1.0, 1.0);
   for (int i = 0; i < 3; ++i) {
     imu_errors_.accel_offset_mps2[i] = spec.accel_offset_max_mps2 * unit(*rng_);
     imu_errors_.gyro_offset_radps[i] = spec.gyro_offset_max_radps * unit(*rng_);

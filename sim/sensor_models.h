@@ -9,6 +9,7 @@
 #include <random>
 
 #include "io/drive_log.h"
+#include "sim/random.h"
 #include "sim/scenario.h"
 
 namespace slipgraph {
@@ -65,7 +66,7 @@ class SensorSimulator {
   int wheel_count_;
   double step_s_;
   std::mt19937_64* rng_;
-  std::normal_distribution<double> normal_{0.0, 1.0};
+  UnitNormal normal_;
   DriveLog* log_;
   ImuErrors imu_errors_;
   double accel_bias_[3] = {0.0, 0.0, 0.0};

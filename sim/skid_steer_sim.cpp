@@ -6,6 +6,7 @@
 #include "factors/ipd_kinematics.h"
 #include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
+#include "sim/random.h"
 #include "sim/sensor_models.h"
 
 namespace slipgraph {
@@ -21,7 +22,7 @@ constexpr double kImuBandwidthTauS = 0.01;  // IMU anti-alias filter on accelera
 
 SimResult SimulateSkidSteer(const Scenario& sc, uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::normal_distribution<double> unit(0.0, 1.0);
+  UnitNormal unit;
   SimResult result;
   DriveLog& log = result.log;
   log.vehicle = sc.vehicle;

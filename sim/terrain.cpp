@@ -5,6 +5,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "sim/random.h"
+
 namespace slipgraph {
 namespace sim {
 namespace {
@@ -134,7 +136,7 @@ double TerrainProfile::WheelElevation(double x_m, double patch_m) const {
 
 TerrainProfile MakeTerrainProfile(double roughness_rms_m, double length_m, uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
+  UniformReal u(0.0, 1.0);
   TerrainProfile p;
   for (int k = 0; k < kWavelengths; ++k) {
     const double lambda = kLongestWavelengthM / std::pow(kWavelengthRatio, kWavelengths - 1 - k);

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "factors/diagonal_prior.h"
+#include "factors/difference_prior.h"
 #include "factors/ipd_segment_factor.h"
 #include "factors/marginal_prior.h"
 #include "solvers/chain_covariance.h"
@@ -25,24 +26,12 @@ namespace {
 
 using Alpha = std::array<double, ipd::kAlphaSize>;
 
-// (alpha_{j+1} - alpha_j) / sd: the slip model drifts as the terrain changes.
-struct AlphaWalk {
-  double inverse_sd;
-  template <typename T>
-  bool operator()(const T* a, const T* b, T* r) const {
-    for (int i = 0; i < ipd::kAlphaSize; ++i) r[i] = (b[i] - a[i]) * inverse_sd;
-    return true;
-  }
-};
-
 // The walk from alpha block a to b; huber_sd > 0: Huber beyond that norm (IpdGraphOptions).
-ceres::ResidualBlockId AddWalk(ceres::Problem* problem, double inverse_sd, double huber_sd,
-                               double* a, double* b) {
+ceres::ResidualBlockId AddWalk(ceres::Problem* problem, double sd, double huber_sd, double* a,
+                               double* b) {
   ceres::LossFunction* loss = huber_sd > 0.0 ? new ceres::HuberLoss(huber_sd) : nullptr;
-  return problem->AddResidualBlock(
-      new ceres::AutoDiffCostFunction<AlphaWalk, ipd::kAlphaSize, ipd::kAlphaSize, ipd::kAlphaSize>(
-          new AlphaWalk{inverse_sd}),
-      loss, a, b);
+  return problem->AddResidualBlock(DifferencePrior<ipd::kAlphaSize>::Create(Alpha{}, sd), loss, a,
+                                   b);
 }
 
 ceres::Solver::Options SolverOptions(int max_iterations) {
@@ -93,7 +82,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
       Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>::Identity() * options.alpha_prior_sd *
       options.alpha_prior_sd;
   const Alpha zero{};
-  const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(block_s));
+  const double walk_sd = options.alpha_walk_sd * std::sqrt(block_s);
 
   size_t next_segment_to_add = 0;
   size_t next_prediction = 0;
@@ -125,7 +114,7 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
     model_since_t = t;
     problem.RemoveResidualBlock(walk_into[block]);
     walk_into[block] =
-        AddWalk(&problem, 1.0 / graph.jump_sd, 0.0, blocks[index - 1].data(), blocks[index].data());
+        AddWalk(&problem, graph.jump_sd, 0.0, blocks[index - 1].data(), blocks[index].data());
     jumped.insert(block);
     ++jumps;
   };
@@ -150,9 +139,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
         problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
                                  nullptr, alpha);
       } else if (blocks.size() > 1) {
-        walk_into[first_block + static_cast<int>(blocks.size()) - 1] =
-            AddWalk(&problem, walk_inverse_sd, graph.walk_huber_sd,
-                    blocks[blocks.size() - 2].data(), alpha);
+        walk_into[first_block + static_cast<int>(blocks.size()) - 1] = AddWalk(
+            &problem, walk_sd, graph.walk_huber_sd, blocks[blocks.size() - 2].data(), alpha);
       }
     }
     // Segments that have ended by the block's end, on the block of their midpoint.
@@ -287,7 +275,7 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
   // residuals the solved alpha leaves (solvers/ipd_noise_likelihood.h), and alpha solved again
   // with the segments weighed by it.
   std::vector<Eigen::Vector3d> q(n_blocks, ekf.final_q);
-  const double walk_inverse_sd = 1.0 / (options.alpha_walk_sd * std::sqrt(graph.block_s));
+  const double walk_sd = options.alpha_walk_sd * std::sqrt(graph.block_s);
   const int rounds = 1 + (graph.q_by_likelihood ? graph.q_likelihood_rounds : 0);
   for (int round = 0; round < rounds; ++round) {
     if (round > 0) {
@@ -318,8 +306,7 @@ IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& op
     problem.AddResidualBlock(DiagonalPrior<ipd::kAlphaSize>::Create(Alpha{}, PriorSd(options)),
                              nullptr, blocks[0].data());
     for (int j = 1; j < n_blocks; ++j) {
-      AddWalk(&problem, walk_inverse_sd, graph.walk_huber_sd, blocks[j - 1].data(),
-              blocks[j].data());
+      AddWalk(&problem, walk_sd, graph.walk_huber_sd, blocks[j - 1].data(), blocks[j].data());
     }
     for (const IpdSegment& seg : segments) {
       const int b = block_of(seg);

@@ -12,21 +12,12 @@
 #include <memory>
 #include <utility>
 
+#include "factors/difference_prior.h"
 #include "factors/linear_factor.h"
 #include "factors/wilcox_factors.h"
 
 namespace slipgraph {
 namespace {
-
-// The odometry prior on an advance: (x_k - x_{k-1} - mean) / sd.
-struct AdvancePrior {
-  double mean, inverse_sd;
-  template <typename T>
-  bool operator()(const T* a, const T* b, T* r) const {
-    r[0] = (b[0] - a[0] - mean) * inverse_sd;
-    return true;
-  }
-};
 
 // One side's profiles on the grid: terrain y and sinkage s as blocks of B nodes, the side's scans
 // and what of its terrain is mapped so far.
@@ -260,9 +251,7 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
         problem.AddResidualBlock(WilcoxMeasurementFactor::Create(f), nullptr, blocks_of(f, p, k));
       }
     }
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<AdvancePrior, 1, 1, 1>(new AdvancePrior{mean, 1.0 / sd}),
-        nullptr, &x[k - 1], &x[k]);
+    problem.AddResidualBlock(DifferencePrior<1>::Create({mean}, sd), nullptr, &x[k - 1], &x[k]);
     // A sliding window: positions and nodes well behind the last `window_cycles` are held, so
     // each refinement costs the window, not the traverse (Ceres drops residuals on held blocks).
     if (k > static_cast<size_t>(g.window_cycles)) {

@@ -10,6 +10,7 @@
 #include "factors/ward_state.h"
 #include "io/measurement_stream.h"
 #include "problems/ward_factor_source.h"
+#include "sim/random.h"
 
 namespace slipgraph {
 namespace {
@@ -156,7 +157,7 @@ IntervalScan ScanIntervals(const ProjectedBasis& projected, size_t min_cells, bo
                                          1e-12 * projected.gram.diagonal().maxCoeff() *
                                              Eigen::MatrixXd::Identity(cells, cells));
   std::mt19937_64 rng(20261123);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  sim::UnitNormal normal;
   const int draws = 4000;
   int exceed = 0;
   Eigen::VectorXd z(cells);
