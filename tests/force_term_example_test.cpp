@@ -12,6 +12,7 @@
 #include "factors/smooth_math.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "tests/estimate_check.h"
 #include "workbench/diagnosis.h"
 #include "workbench/effect_signatures.h"
 
@@ -60,14 +61,15 @@ TEST(ForceTermExample, FoundFittedAndQuietWhenAbsent) {
   EXPECT_EQ(top.effect, "extra_rolling_resistance");
   EXPECT_TRUE(top.significant);
   EXPECT_EQ(top.added_as, "smoother term");
-  EXPECT_NEAR(top.magnitude, kTrueFraction, 3.0 * top.magnitude_sd + 0.003);
+  EXPECT_TRUE(testing::EstimateOf(top.magnitude, top.magnitude_sd, kTrueFraction,
+                                  0.3 * kTrueFraction, 0.3 * kTrueFraction));
 
   const ExtendedModel extended = AddEffects(log, model, before, {"extra_rolling_resistance"});
   const Diagnosis after = Diagnose(extended.log, extended.model);
   ASSERT_EQ(after.fitted_effects.size(), 1u);
   EXPECT_EQ(after.fitted_effects[0].name, "extra_rolling_resistance");
-  EXPECT_NEAR(after.fitted_effects[0].value, kTrueFraction,
-              3.0 * after.fitted_effects[0].sd + 0.003);
+  EXPECT_TRUE(testing::EstimateOf(after.fitted_effects[0].value, after.fitted_effects[0].sd,
+                                  kTrueFraction, 0.3 * kTrueFraction, 0.3 * kTrueFraction));
   ASSERT_TRUE(before.truth.available && after.truth.available);
   EXPECT_LT(after.truth.velocity_rmse, 0.7 * before.truth.velocity_rmse);
   for (const CandidateScore& c : after.candidates) {

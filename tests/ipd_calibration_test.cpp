@@ -11,6 +11,7 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ipd_graph_calibration.h"
+#include "tests/estimate_check.h"
 
 namespace slipgraph {
 namespace {
@@ -33,9 +34,11 @@ TEST(IpdCalibration, RecoversAKnownSlipModelOnOneTerrain) {
   const IpdCalibrationResult result = CalibrateIpdEkf(log);
   const std::array<double, 13>& truth = sim::FindTerrain("loose_rock").ipd.alpha;
   // The parameters the drive excites well (forward slip with speed, yaw gain, lateral skid in
-  // turns): within 3 sd of truth and of the right size.
+  // turns): within 20 % of truth, sd under 0.01, error within 3 sd (measured: alpha 0 -0.063 +-
+  // 0.005 for -0.070, alpha 9 -0.264 +- 0.005 for -0.250, 2.7 sd: that sd is on the tight side).
   for (int i : {0, 9}) {
-    EXPECT_NEAR(result.final_alpha[i], truth[i], 3.0 * result.final_alpha_sd[i] + 0.01)
+    EXPECT_TRUE(testing::EstimateOf(result.final_alpha[i], result.final_alpha_sd[i], truth[i],
+                                    0.2 * std::abs(truth[i]), 0.01))
         << "alpha " << i;
   }
   const PredictionStats no_slip = Summarize(result.no_slip);
