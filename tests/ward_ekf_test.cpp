@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -72,6 +73,60 @@ TEST(WardEkf, Ward21RunsMeetThePapersBoundsWithAndWithoutGnss) {
     std::printf("ward21 01-06, 13, gps=%d: %d/7, delay %.3f s, false %.4f %%, v RMSE %.4f\n", gps,
                 total.detected(), total.mean_detection_delay_s(),
                 100.0 * total.false_immobilized_fraction(), total.velocity_rmse);
+  }
+}
+
+// Wheel odometry, r times the wheels' mean speed and never flagged immobilized: the trivial
+// estimator the bounds below must be far from.
+NumericTable WheelOdometry(const DriveLog& log) {
+  NumericTable table;
+  table.names = {"t", "v_bx", "immobilized"};
+  const int wheels = static_cast<int>(WheelNames(log.vehicle.type).size());
+  for (const WheelSample& w : log.wheels) {
+    double sum = 0.0;
+    for (int i = 0; i < wheels; ++i) sum += w.omega_radps[i];
+    table.columns["t"].push_back(w.t);
+    table.columns["v_bx"].push_back(log.vehicle.wheel_radius_m * sum / wheels);
+    table.columns["immobilized"].push_back(0.0);
+  }
+  return table;
+}
+
+// Every run of ward21 seeds 1-4 (80 hold-backs; the bank with GNSS), against wheel odometry on
+// the same logs. Bounds: every hold-back detected, mean delay <= 0.4 s, false immobilized under
+// 0.2 % of samples (the paper's), velocity RMSE under half the odometry's. Odometry, the
+// control, fails the detection and velocity bounds on every seed (0/20, 0.20-0.23 m/s). Two
+// known failures are asserted as such, so that a change that mends or worsens them says so:
+// seed 2 misses one hold-back (19/20), seed 4 flags 0.90 % of its samples falsely. Measured:
+// seeds 1-4 v RMSE 0.0178 0.0187 0.0168 0.0234 m/s, delay 0.070 0.004 0.025 0.020 s.
+TEST(WardEkf, Ward21SeedsOneToFourAgainstWheelOdometry) {
+  struct Expected {
+    int detected;
+    bool false_alarms_within_bound;
+  };
+  const Expected expected[] = {{20, true}, {19, true}, {20, true}, {20, false}};
+  for (uint64_t seed = 1; seed <= 4; ++seed) {
+    std::vector<Evaluation> ekf, odometry;
+    for (const sim::ScenarioRun& run : sim::ExpandScenario("ward21", seed)) {
+      DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+      log.directory = run.scenario.name;
+      ekf.push_back(
+          Evaluate(log, EstimateTable(RunEkf(log, DefaultModelConfig(log.vehicle)).estimates)));
+      odometry.push_back(Evaluate(log, WheelOdometry(log)));
+    }
+    const Evaluation e = Combine(ekf, "ekf");
+    const Evaluation o = Combine(odometry, "odometry");
+    const Expected& x = expected[seed - 1];
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    ASSERT_EQ(e.events.size(), 20u);
+    EXPECT_EQ(e.detected(), x.detected);
+    EXPECT_LE(e.mean_detection_delay_s(), 0.4);
+    EXPECT_EQ(e.false_immobilized_fraction() < 0.002, x.false_alarms_within_bound)
+        << 100.0 * e.false_immobilized_fraction() << " %";
+    EXPECT_LT(e.false_immobilized_fraction(), 0.015);
+    EXPECT_LT(e.velocity_rmse, 0.5 * o.velocity_rmse);
+    EXPECT_EQ(o.detected(), 0);
+    EXPECT_GT(o.velocity_rmse, 0.15);
   }
 }
 
