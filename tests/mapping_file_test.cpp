@@ -1,0 +1,62 @@
+// The importers' mapping files: a parse error names the file and line, an unknown key (a typo)
+// is an error naming it with its section, a missing file is an error naming it.
+#include "io/mapping_file.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "io/input_error.h"
+
+namespace slipgraph {
+namespace {
+
+std::string Write(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+template <typename F>
+std::string ErrorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+TEST(MappingFile, LoadsAndChecksKnownKeys) {
+  const std::string path = Write("mapping_ok.yaml", "format: x\nimu: {topic: /imu, frame: z_up}\n");
+  const YAML::Node m = LoadMappingFile(path);
+  EXPECT_EQ(m["imu"]["topic"].as<std::string>(), "/imu");
+  EXPECT_NO_THROW(CheckMappingKeys(m, "", {"format", "imu"}, path));
+  EXPECT_NO_THROW(CheckMappingKeys(m["imu"], "imu", {"topic", "frame"}, path));
+}
+
+TEST(MappingFile, AnUnknownKeyIsNamedWithItsSection) {
+  const std::string path = Write("mapping_typo.yaml", "imu: {topic: /imu, frmae: z_up}\n");
+  const std::string e = ErrorOf([&] {
+    CheckMappingKeys(LoadMappingFile(path)["imu"], "imu", {"topic", "frame"}, path);
+  });
+  EXPECT_NE(e.find("mapping_typo.yaml"), std::string::npos) << e;
+  EXPECT_NE(e.find("imu.frmae"), std::string::npos) << e;
+}
+
+TEST(MappingFile, ParseErrorsAndMissingFilesAreNamed) {
+  const std::string bad = Write("mapping_bad.yaml", "imu:\n  topic: [unclosed\n");
+  std::string e = ErrorOf([&] { LoadMappingFile(bad); });
+  EXPECT_NE(e.find("mapping_bad.yaml"), std::string::npos) << e;
+  const std::string missing = ::testing::TempDir() + "/no_such_mapping.yaml";
+  e = ErrorOf([&] { LoadMappingFile(missing); });
+  EXPECT_NE(e.find("no_such_mapping.yaml"), std::string::npos) << e;
+  const std::string scalar = Write("mapping_scalar.yaml", "just text\n");
+  e = ErrorOf([&] { CheckMappingKeys(LoadMappingFile(scalar), "", {"format"}, scalar); });
+  EXPECT_NE(e.find("mapping_scalar.yaml"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace slipgraph
