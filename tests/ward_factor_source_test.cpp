@@ -1,0 +1,114 @@
+// The Ward factor source on a simulated fig5 log: every state gets its encoder factor, every
+// GNSS fix and IMU sample goes to one state, the dynamics link consecutive states, every residual
+// is finite at the front end's estimate; an absurd fix is left out and counted; the stiffness
+// walk's nodes cover the log; an empty front end is refused.
+#include "problems/ward_factor_source.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "solvers/ekf_runner.h"
+#include "tests/sim_test_util.h"
+
+namespace slipgraph {
+namespace {
+
+struct Built {
+  std::vector<std::array<double, ward::kStateSize>> states;
+  std::array<double, 2> offsets{};
+  FactorCounts counts;
+  std::vector<AddedFactor> added;
+};
+
+void BuildAll(const WardFactorSource& source, ceres::Problem* problem, Built* b) {
+  b->states.resize(source.size());
+  for (size_t k = 0; k < source.size(); ++k) {
+    std::copy(source.initial(k).x.begin(), source.initial(k).x.end(), b->states[k].begin());
+  }
+  b->offsets = {source.initial(0).accel_offset_mps2, source.initial(0).gyro_offset_radps};
+  source.AddStatePrior(0, b->states[0].data(), problem, &b->added);
+  source.AddOffsetPrior(b->offsets, b->offsets.data(), problem, &b->added);
+  for (size_t k = 0; k < source.size(); ++k) {
+    source.AddStep(k, k > 0 ? b->states[k - 1].data() : nullptr, b->states[k].data(),
+                   {b->offsets.data()}, problem, &b->added, &b->counts);
+  }
+}
+
+TEST(WardFactorSource, EveryMeasurementOnceAndFiniteAtTheFrontEnd) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  const WardFactorSource source(log, model, front.estimates, WardProblemOptions{});
+  ASSERT_EQ(source.size(), log.wheels.size());
+  ceres::Problem problem;
+  Built b;
+  BuildAll(source, &problem, &b);
+  EXPECT_EQ(b.counts.encoders, static_cast<long>(log.wheels.size()));
+  EXPECT_EQ(b.counts.dynamics, static_cast<long>(log.wheels.size()) - 1);
+  EXPECT_EQ(b.counts.gnss + b.counts.gnss_gated, static_cast<long>(log.gps.size()));
+  EXPECT_EQ(b.counts.gnss_gated, 0);
+  EXPECT_GT(b.counts.accelerometer, 0.9 * log.imu.size());
+  EXPECT_LE(b.counts.accelerometer, static_cast<long>(log.imu.size()));
+  EXPECT_EQ(b.counts.gyro, b.counts.accelerometer);
+  double cost = 0.0;
+  ASSERT_TRUE(
+      problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr));
+  EXPECT_TRUE(std::isfinite(cost));
+  // At the front end's estimate the measurements fit: the cost per residual is of order one.
+  EXPECT_LT(cost / problem.NumResiduals(), 5.0);
+}
+
+TEST(WardFactorSource, AnAbsurdGnssFixIsLeftOutAndCounted) {
+  DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  log.gps[log.gps.size() / 2].vx = 50.0;  // 50 m/s on a 1 m/s drive, after the front end ran
+  const WardFactorSource source(log, model, front.estimates, WardProblemOptions{});
+  ceres::Problem problem;
+  Built b;
+  BuildAll(source, &problem, &b);
+  EXPECT_EQ(b.counts.gnss_gated, 1);
+  EXPECT_EQ(b.counts.gnss, static_cast<long>(log.gps.size()) - 1);
+}
+
+TEST(WardFactorSource, StiffnessNodesCoverTheLog) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  WardProblemOptions options;
+  options.stiffness_prior_sd = 0.15;
+  options.stiffness_node_s = 4.0;
+  const WardFactorSource source(log, model, front.estimates, options);
+  const double span = source.times().back() - source.times().front();
+  // Nodes 4 s apart from the first state: the last interval reaches past the last state, and no
+  // node lies wholly beyond it.
+  const double nodes_span = (source.stiffness_node_count() - 1) * 4.0;
+  EXPECT_GE(nodes_span, span);
+  EXPECT_LT(nodes_span - 4.0, span + 1e-9);
+  size_t first = 99;
+  double u = -1.0;
+  source.StiffnessNodesAt(source.times().front() + 6.0, &first, &u);
+  EXPECT_EQ(first, 1u);
+  EXPECT_NEAR(u, 0.5, 1e-9);
+  std::vector<double> nodes(source.stiffness_node_count(), 0.0);
+  ceres::Problem problem;
+  std::vector<AddedFactor> added;
+  for (size_t j = 0; j < nodes.size(); ++j)
+    source.AddStiffnessNode(j, nodes.data(), &problem, &added);
+  EXPECT_EQ(added.size(), nodes.size());  // the prior on the first, a walk step to each other
+  EXPECT_EQ(problem.GetParameterLowerBound(nodes.data(), 0), options.stiffness_min);
+}
+
+TEST(WardFactorSource, AnEmptyFrontEndIsRefused) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const std::vector<WardEstimate> none;
+  EXPECT_THROW(WardFactorSource(log, model, none, WardProblemOptions{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace slipgraph
