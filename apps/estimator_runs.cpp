@@ -8,6 +8,7 @@
 #include "io/estimate_file.h"
 #include "io/input_error.h"
 #include "io/log_reader.h"
+#include "io/log_summary.h"
 #include "io/yaml_config.h"
 #include "solvers/ekf_runner.h"
 #include "solvers/trust_check.h"
@@ -19,6 +20,9 @@ DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad) {
   read_options.skip_bad = skip_bad;
   DriveLog log = ReadDriveLog(path, read_options);
   for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+  for (const std::string& problem : CheckLogForEstimation(log)) {
+    std::cerr << "warning: " << path << ": " << problem << "\n";
+  }
   return log;
 }
 

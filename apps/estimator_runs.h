@@ -48,8 +48,9 @@ struct EstimatorOutput {
 using Estimator = std::function<EstimatorOutput(const DriveLog& log, const ModelConfig& model,
                                                 std::ostream& report)>;
 
-// Reads a log for a subcommand, printing the reader's warnings (rows skipped, keys defaulted) to
-// stderr.
+// Reads a log for a subcommand, printing the reader's warnings (rows skipped, keys defaulted) and
+// what CheckLogForEstimation finds (gaps, time coverage, frozen or stuck sensors, implausible
+// values) to stderr; throws InputError where estimates would mean nothing.
 DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad);
 // The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it, with its
 // calibration (wheel radii, effective track) applied to the log.

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/input_error.h"
 #include "io/plausibility.h"
 
 namespace slipgraph {
@@ -50,6 +51,75 @@ std::string Seconds(double t) {
   return out.str();
 }
 
+// A sensor that repeats one value this long (and this many samples) reads as frozen or stuck.
+constexpr double kFrozenMinS = 1.0;
+constexpr size_t kFrozenMinSamples = 10;
+// GNSS speed above which a wheel that does not change reads as stuck, m/s.
+constexpr double kMovingMps = 0.3;
+
+// Runs [first, last] of samples whose `same(previous, current)` holds throughout, lasting at
+// least kFrozenMinS and kFrozenMinSamples.
+template <typename Sample, typename Same>
+std::vector<std::pair<size_t, size_t>> RepeatedRuns(const std::vector<Sample>& samples,
+                                                    const Same& same) {
+  std::vector<std::pair<size_t, size_t>> runs;
+  size_t first = 0;
+  for (size_t i = 1; i <= samples.size(); ++i) {
+    if (i < samples.size() && same(samples[i - 1], samples[i])) continue;
+    const size_t last = i - 1;
+    if (last + 1 - first >= kFrozenMinSamples &&
+        samples[last].t - samples[first].t >= kFrozenMinS) {
+      runs.emplace_back(first, last);
+    }
+    first = i;
+  }
+  return runs;
+}
+
+// Median GNSS horizontal speed over [t0, t1] (NaN without a fix there).
+double GnssSpeedOver(const DriveLog& log, double t0, double t1) {
+  std::vector<double> speeds;
+  for (const GpsSample& g : log.gps) {
+    if (g.t >= t0 && g.t <= t1 && std::isfinite(g.vx) && std::isfinite(g.vy)) {
+      speeds.push_back(std::hypot(g.vx, g.vy));
+    }
+  }
+  if (speeds.empty()) return std::nan("");
+  std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
+  return speeds[speeds.size() / 2];
+}
+
+// An IMU whose six channels all repeat (a stalled driver), and a wheel that repeats one reading
+// while GNSS says the robot moves (a stuck or disconnected encoder).
+void AddFrozenSensors(const DriveLog& log, std::vector<std::string>* problems) {
+  const auto imu_same = [](const ImuSample& a, const ImuSample& b) {
+    return a.ax == b.ax && a.ay == b.ay && a.az == b.az && a.gx == b.gx && a.gy == b.gy &&
+           a.gz == b.gz;
+  };
+  for (const auto& [first, last] : RepeatedRuns(log.imu, imu_same)) {
+    problems->push_back("imu: every channel frozen at one value for " +
+                        Seconds(log.imu[last].t - log.imu[first].t) +
+                        " s from t=" + Seconds(log.imu[first].t) + " (a stalled driver?)");
+  }
+  const std::vector<std::string>& names = WheelNames(log.vehicle.type);
+  for (size_t w = 0; w < names.size(); ++w) {
+    const auto wheel_same = [w](const WheelSample& a, const WheelSample& b) {
+      return a.omega_radps[w] == b.omega_radps[w];
+    };
+    for (const auto& [first, last] : RepeatedRuns(log.wheels, wheel_same)) {
+      const double t0 = log.wheels[first].t, t1 = log.wheels[last].t;
+      const double speed = GnssSpeedOver(log, t0, t1);
+      if (!(speed > kMovingMps)) continue;
+      std::ostringstream value, moving;
+      value << log.wheels[first].omega_radps[w];
+      moving << std::fixed << std::setprecision(2) << speed;
+      problems->push_back("wheels: " + names[w] + " unchanged at " + value.str() + " rad/s for " +
+                          Seconds(t1 - t0) + " s from t=" + Seconds(t0) + " while GNSS moves at " +
+                          moving.str() + " m/s (a stuck encoder?)");
+    }
+  }
+}
+
 }  // namespace
 
 LogSummary SummarizeLog(const DriveLog& log) {
@@ -88,11 +158,35 @@ LogSummary SummarizeLog(const DriveLog& log) {
                                  Seconds(start_gap) + " s, end by " + Seconds(end_gap) + " s)");
     }
   }
+  AddFrozenSensors(log, &summary.problems);
   // Physical plausibility (gravity at rest, wheels against GNSS and gyro): io/plausibility.
   for (std::string& problem : CheckPlausibility(log).problems) {
     summary.problems.push_back(std::move(problem));
   }
   return summary;
+}
+
+std::vector<std::string> CheckLogForEstimation(const DriveLog& log) {
+  for (const auto& [name, empty] : {std::pair<const char*, bool>{"imu.csv", log.imu.empty()},
+                                    {"wheels.csv", log.wheels.empty()}}) {
+    if (empty) {
+      throw InputError(log.directory + "/" + name, 0, "", "",
+                       "no rows: an estimator needs IMU and wheel data");
+    }
+  }
+  const double imu_first = log.imu.front().t, imu_last = log.imu.back().t;
+  const double wheels_first = log.wheels.front().t, wheels_last = log.wheels.back().t;
+  if (imu_last < wheels_first || wheels_last < imu_first) {
+    throw InputError(log.directory, 0, "", "",
+                     "imu (t " + Seconds(imu_first) + " to " + Seconds(imu_last) +
+                         ") and wheels (t " + Seconds(wheels_first) + " to " +
+                         Seconds(wheels_last) +
+                         ") share no time: are they stamped on different clocks?");
+  }
+  LogSummary summary = SummarizeLog(log);
+  summary.problems.erase(summary.problems.begin(),
+                         summary.problems.begin() + static_cast<long>(log.warnings.size()));
+  return summary.problems;
 }
 
 void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostream& out) {

@@ -28,6 +28,13 @@ struct LogSummary {
 };
 
 LogSummary SummarizeLog(const DriveLog& log);
+
+// What every estimator checks before it runs. Throws InputError naming the log where estimates
+// would mean nothing: no IMU or no wheel rows, or IMU and wheels that share no time (two time
+// bases). Returns the problems SummarizeLog finds beyond the reader's own warnings (gaps,
+// streams covering different times, frozen or stuck sensors, implausible values), one line each,
+// for the caller to show as warnings.
+std::vector<std::string> CheckLogForEstimation(const DriveLog& log);
 void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostream& out);
 
 }  // namespace slipgraph

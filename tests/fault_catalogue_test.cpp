@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -68,6 +70,35 @@ void SetCell(const std::string& path, size_t row, const std::string& column,
   std::ofstream out(path);
   for (const std::string& line : lines) out << line << "\n";
 }
+
+// Rewrites every data row of a CSV file through `edit` (its cells by column name), dropping the
+// rows for which it returns false.
+void EditRows(const std::string& path,
+              const std::function<bool(std::map<std::string, std::string>*)>& edit) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  in.close();
+  ASSERT_FALSE(lines.empty());
+  std::vector<std::string> header;
+  std::stringstream h(lines[0]);
+  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  std::ofstream out(path);
+  out << lines[0] << "\n";
+  for (size_t i = 1; i < lines.size(); ++i) {
+    std::map<std::string, std::string> row;
+    std::stringstream r(lines[i]);
+    size_t c = 0;
+    for (std::string cell; std::getline(r, cell, ',') && c < header.size(); ++c) {
+      row[header[c]] = cell;
+    }
+    if (!edit(&row)) continue;
+    for (size_t j = 0; j < header.size(); ++j) out << (j ? "," : "") << row[header[j]];
+    out << "\n";
+  }
+}
+
+double T(const std::map<std::string, std::string>& row) { return std::stod(row.at("t")); }
 
 // Rows and non-finite values of an estimate file.
 void ExpectCompleteAndFinite(const std::string& path, size_t rows) {
@@ -148,6 +179,93 @@ TEST(FaultCatalogue, AReportThatCannotBeWrittenIsAnError) {
       << json.output;
   EXPECT_EQ(json.output.find("report:"), std::string::npos);
 }
+
+// What every estimator checks before it runs: a warning naming the stream and the time span where
+// the estimates can still mean something, an error where they cannot; each through `filter`,
+// whose estimates stay complete and finite.
+struct LogFault {
+  const char* name;
+  std::function<void(const std::string& log)> make;
+  int exit_code;
+  const char* message;
+};
+
+void PrintTo(const LogFault& fault, std::ostream* os) { *os << fault.name; }
+
+class LogFaults : public ::testing::TestWithParam<LogFault> {};
+
+TEST_P(LogFaults, SaidBeforeTheEstimatorRuns) {
+  const LogFault& fault = GetParam();
+  const std::string log = CopyOfSample(fault.name);
+  fault.make(log);
+  const std::string out = log + "_filter.csv";
+  const ProgramRun run = RunProgram("filter " + log + " --out " + out, fault.name);
+  EXPECT_EQ(run.exit_code, fault.exit_code) << run.output;
+  EXPECT_NE(run.output.find(fault.message), std::string::npos) << run.output;
+  if (fault.exit_code == 0) {
+    EXPECT_NE(run.output.find("warning: " + log + ": "), std::string::npos) << run.output;
+    ExpectCompleteAndFinite(out, ReadNumericTable(log + "/wheels.csv").rows());
+  } else {
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    FaultCatalogue, LogFaults,
+    ::testing::Values(
+        // A 10 s hole in the IMU: velocity RMSE 2.6 m/s (200 x) with nothing said.
+        LogFault{"imu_gap",
+                 [](const std::string& log) {
+                   EditRows(log + "/imu.csv",
+                            [](auto* row) { return T(*row) < 4.0 || T(*row) > 14.0; });
+                 },
+                 0, "imu: gap of 10.020 s from t=3.990"},
+        // An IMU that ends 9 s before the wheels (a truncated file).
+        LogFault{"imu_truncated",
+                 [](const std::string& log) {
+                   EditRows(log + "/imu.csv", [](auto* row) { return T(*row) < 9.0; });
+                 },
+                 0, "imu and wheels cover different times"},
+        // Wheels stamped on another clock (+100 s): they share no time with the IMU.
+        LogFault{"wheels_time_base",
+                 [](const std::string& log) {
+                   EditRows(log + "/wheels.csv", [](auto* row) {
+                     (*row)["t"] = std::to_string(T(*row) + 100.0);
+                     return true;
+                   });
+                 },
+                 2, "share no time: are they stamped on different clocks?"},
+        // Wheels with a header and no rows: a header-only estimate file, exit 0.
+        LogFault{"wheels_empty",
+                 [](const std::string& log) {
+                   EditRows(log + "/wheels.csv", [](auto*) { return false; });
+                 },
+                 2, "wheels.csv: no rows"},
+        // An IMU that repeats one sample for 5 s.
+        LogFault{"imu_frozen",
+                 [](const std::string& log) {
+                   std::map<std::string, std::string> held;
+                   EditRows(log + "/imu.csv", [&held](auto* row) {
+                     if (T(*row) >= 5.0 && T(*row) < 10.0) {
+                       if (held.empty()) held = *row;
+                       const std::string t = (*row)["t"];
+                       *row = held;
+                       (*row)["t"] = t;
+                     }
+                     return true;
+                   });
+                 },
+                 0, "imu: every channel frozen at one value for 4.990 s from t=5.000"},
+        // Encoders stuck at 0 while the robot drives (GNSS 1 m/s).
+        LogFault{"wheels_stuck",
+                 [](const std::string& log) {
+                   EditRows(log + "/wheels.csv", [](auto* row) {
+                     if (T(*row) >= 4.0 && T(*row) < 8.0) (*row)["left"] = "0";
+                     return true;
+                   });
+                 },
+                 0, "wheels: left unchanged at 0 rad/s for 3.990 s from t=4.000 while GNSS"}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace slipgraph
