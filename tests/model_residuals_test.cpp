@@ -44,7 +44,9 @@ TEST(ModelResiduals, EveryStreamThereWithResidualsOfTheirSize) {
     // uncertainty (30 % of the traction: the law is exact here), nor the gyro, which the yaw rate
     // follows sample by sample (each residual's leverage is near one).
     const std::string n = name;
-    if (n != "accelerometer" && n != "gyro") EXPECT_GT(variance, 0.3) << name;
+    if (n != "accelerometer" && n != "gyro") {
+      EXPECT_GT(variance, 0.3) << name;
+    }
   }
   EXPECT_EQ(m.Find("compass"), nullptr);
 }
