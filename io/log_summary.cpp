@@ -76,17 +76,25 @@ std::vector<std::pair<size_t, size_t>> RepeatedRuns(const std::vector<Sample>& s
   return runs;
 }
 
-// Median GNSS horizontal speed over [t0, t1] (NaN without a fix there).
+// GNSS horizontal speed over [t0, t1] from the displacement between the first and last fix in
+// it; NaN without two fixes half the span apart, or when the displacement is within 3 sd of the
+// fixes' position noise (noisy fixes alone do not say the robot moved).
 double GnssSpeedOver(const DriveLog& log, double t0, double t1) {
-  std::vector<double> speeds;
+  const GpsSample* first = nullptr;
+  const GpsSample* last = nullptr;
   for (const GpsSample& g : log.gps) {
-    if (g.t >= t0 && g.t <= t1 && std::isfinite(g.vx) && std::isfinite(g.vy)) {
-      speeds.push_back(std::hypot(g.vx, g.vy));
-    }
+    if (g.t < t0 || g.t > t1 || !std::isfinite(g.x) || !std::isfinite(g.y)) continue;
+    if (first == nullptr) first = &g;
+    last = &g;
   }
-  if (speeds.empty()) return std::nan("");
-  std::nth_element(speeds.begin(), speeds.begin() + speeds.size() / 2, speeds.end());
-  return speeds[speeds.size() / 2];
+  if (first == nullptr || last->t - first->t < 0.5 * (t1 - t0)) return std::nan("");
+  const double distance = std::hypot(last->x - first->x, last->y - first->y);
+  const auto sd_of = [&log](const GpsSample& g) {
+    return g.sd_xy > 0.0 ? g.sd_xy : log.vehicle.sensors.gps_sd_xy_m;
+  };
+  const double sd = std::hypot(sd_of(*first), sd_of(*last));
+  if (!(distance > 3.0 * sd)) return std::nan("");
+  return distance / (last->t - first->t);
 }
 
 // An IMU whose six channels all repeat (a stalled driver), and a wheel that repeats one reading

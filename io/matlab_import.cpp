@@ -9,6 +9,7 @@
 #include "io/hdf5_matrix.h"
 #include "io/input_error.h"
 #include "io/mapping_file.h"
+#include "io/yaml_errors.h"
 
 namespace slipgraph {
 namespace {
@@ -47,8 +48,10 @@ std::vector<SourceEntry> ListMatlab(const std::string& source) {
   return out;
 }
 
-DriveLog ImportMatlab(const std::string& source, const std::string& mapping_path,
-                      const Vehicle& vehicle, ImportReport* report) {
+namespace {
+
+DriveLog Import(const std::string& source, const std::string& mapping_path, const Vehicle& vehicle,
+                ImportReport* report) {
   const YAML::Node mapping = LoadMappingFile(mapping_path);
   CheckMappingKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
   if (mapping["imu"]) {
@@ -177,6 +180,14 @@ DriveLog ImportMatlab(const std::string& source, const std::string& mapping_path
     report->lines.push_back("time: shifted by -" + std::to_string(t0) + " s (the earliest stamp)");
   }
   return log;
+}
+
+}  // namespace
+
+DriveLog ImportMatlab(const std::string& source, const std::string& mapping_path,
+                      const Vehicle& vehicle, ImportReport* report) {
+  return NamingYamlErrors(mapping_path,
+                          [&] { return Import(source, mapping_path, vehicle, report); });
 }
 
 }  // namespace slipgraph

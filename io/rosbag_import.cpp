@@ -16,6 +16,7 @@
 
 #include "io/input_error.h"
 #include "io/mapping_file.h"
+#include "io/yaml_errors.h"
 
 namespace slipgraph {
 namespace {
@@ -86,8 +87,10 @@ bool IsRosBag(const std::string& path) {
   return std::string(header) == "#ROSBAG V2.0";
 }
 
-DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_path,
-                      const Vehicle& vehicle, ImportReport* report) {
+namespace {
+
+DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
+                const Vehicle& vehicle, ImportReport* report) {
   const YAML::Node mapping = LoadMappingFile(mapping_path);
   CheckMappingKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
   if (!mapping["format"] || mapping["format"].as<std::string>() != "ros1_bag") {
@@ -274,6 +277,14 @@ DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_pa
                             " s (the earliest)");
   }
   return log;
+}
+
+}  // namespace
+
+DriveLog ImportRosBag(const std::string& bag_path, const std::string& mapping_path,
+                      const Vehicle& vehicle, ImportReport* report) {
+  return NamingYamlErrors(mapping_path,
+                          [&] { return Import(bag_path, mapping_path, vehicle, report); });
 }
 
 }  // namespace slipgraph

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "io/input_error.h"
+#include "io/yaml_errors.h"
 #include "model/effect_catalogue.h"
 
 namespace slipgraph {
@@ -82,7 +83,9 @@ YAML::Node LoadYaml(const std::string& path) {
 
 }  // namespace
 
-Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warnings) {
+namespace {
+
+Vehicle ReadVehicle(const std::string& path, std::vector<std::string>* warnings) {
   const YAML::Node root = LoadYaml(path);
   if (!root.IsMap()) throw InputError(path, 1, "", "", "expected a mapping at the top level");
   Vehicle v;
@@ -198,7 +201,15 @@ Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warni
   return v;
 }
 
-ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
+}  // namespace
+
+Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warnings) {
+  return NamingYamlErrors(path, [&] { return ReadVehicle(path, warnings); });
+}
+
+namespace {
+
+ModelConfig ReadModel(const std::string& path, const Vehicle& vehicle) {
   ModelConfig m = DefaultModelConfig(vehicle);
   const YAML::Node root = LoadYaml(path);
   if (root.IsNull()) return m;  // an empty file changes nothing
@@ -326,6 +337,12 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
   std::string error;
   if (!m.IsValid(&error)) throw InputError(path, 0, "", "", "invalid model: " + error);
   return m;
+}
+
+}  // namespace
+
+ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
+  return NamingYamlErrors(path, [&] { return ReadModel(path, vehicle); });
 }
 
 void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {
