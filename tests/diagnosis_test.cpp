@@ -105,6 +105,7 @@ TEST_P(SensorEffect, RankedFirstRecoveredAndRemovedByAddingIt) {
   ASSERT_EQ(after.in_model.size(), 1u);
   // What is left of the effect in the residuals is not significant (|z| < 3).
   EXPECT_LT(after.in_model[0].statistic, 9.0) << after.in_model[0].magnitude;
+  ASSERT_FALSE(after.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& other : after.candidates) EXPECT_FALSE(other.significant);
   const std::string effect = c.effect;
   if (effect == "clock_offset") {
@@ -199,6 +200,7 @@ TEST_P(ForceEffect, RankedFirstAddedAndTheErrorFalls) {
   EXPECT_LT(after.truth.disturbance_rmse, before.truth.disturbance_rmse);
   EXPECT_LT(Stream(after, "accelerometer").whiteness.q,
             0.75 * Stream(before, "accelerometer").whiteness.q);
+  ASSERT_FALSE(after.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& other : after.candidates) {
     EXPECT_FALSE(other.significant) << other.effect << " magnitude " << other.magnitude;
   }
@@ -253,6 +255,7 @@ TEST(Diagnosis, TerrainChangeRankedFirstAddedAndTheErrorFalls) {
                                   0.1, 0.06));
   EXPECT_LT(after.truth.velocity_rmse, 0.7 * before.truth.velocity_rmse);
   EXPECT_LT(after.truth.disturbance_rmse, 0.7 * before.truth.disturbance_rmse);
+  ASSERT_FALSE(after.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& other : after.candidates) {
     EXPECT_FALSE(other.significant) << other.effect << " magnitude " << other.magnitude;
   }

@@ -48,6 +48,7 @@ TEST(EffectExample, FoundCorrectedAndQuietWhenAbsent) {
   EXPECT_LT(std::abs(after.in_model[0].magnitude), 0.1 * top.magnitude);
 
   const Diagnosis quiet = Diagnose(clean, model);
+  ASSERT_FALSE(quiet.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& c : quiet.candidates) {
     EXPECT_FALSE(c.significant) << c.effect << " " << c.magnitude;
   }

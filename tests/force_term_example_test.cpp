@@ -72,11 +72,13 @@ TEST(ForceTermExample, FoundFittedAndQuietWhenAbsent) {
                                   kTrueFraction, 0.3 * kTrueFraction, 0.3 * kTrueFraction));
   ASSERT_TRUE(before.truth.available && after.truth.available);
   EXPECT_LT(after.truth.velocity_rmse, 0.7 * before.truth.velocity_rmse);
+  ASSERT_FALSE(after.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& c : after.candidates) {
     EXPECT_FALSE(c.significant) << c.effect << " " << c.magnitude;
   }
 
   const Diagnosis quiet = Diagnose(HiddenNone(false), model);
+  ASSERT_FALSE(quiet.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& c : quiet.candidates) {
     EXPECT_FALSE(c.significant) << c.effect << " " << c.magnitude;
   }

@@ -308,20 +308,39 @@ TEST(WardEkf, ScoresOneGnssFixWithoutTrackingTheRest) {
   tracked_options.track_log_likelihood = true;
   WardEkf plain(log.vehicle, DefaultModelConfig(log.vehicle));
   WardEkf tracked(log.vehicle, DefaultModelConfig(log.vehicle), tracked_options);
-  // Per fix: the score, and what TakeLogLikelihood then returns.
+  // Per fix: the score, and what TakeLogLikelihood then returns. Each score is also checked
+  // against log N(nu; 0, P_vv + r) by hand from the filter's estimate before the fix: nu the fix's
+  // velocity along body x (at the last attitude fed) minus v_bx.
+  int checked = 0;
   const auto score_fixes = [&](WardEkf* ekf) {
     std::vector<std::pair<double, double>> fixes;
+    const AttitudeSample* attitude = nullptr;
     testing::FeedStreams(log, ekf, [&](const StreamEntry& e) {
       if (e.t > 6.0) return false;
+      if (e.stream == Stream::kAttitude) attitude = &log.attitude[e.index];
       if (e.stream != Stream::kGps) return true;
       ekf->TakeLogLikelihood();  // the other streams' share so far
-      const double scored = ekf->AddGpsScored(log.gps[e.index]);
+      const GpsSample& g = log.gps[e.index];
+      const WardEstimate before = ekf->Estimate();
+      const double scored = ekf->AddGpsScored(g);
       fixes.emplace_back(scored, ekf->TakeLogLikelihood());
+      if (attitude != nullptr && before.sd[ward::kVbx] > 0.0) {
+        const double cp = std::cos(attitude->pitch);
+        const double along = g.vx * std::cos(attitude->yaw) * cp +
+                             g.vy * std::sin(attitude->yaw) * cp - g.vz * std::sin(attitude->pitch);
+        const double nu = along - before.x[ward::kVbx];
+        const double r =
+            GnssVelocitySd(g, DefaultModelConfig(log.vehicle).measurement.gps_sd_v_mps);
+        const double s = before.sd[ward::kVbx] * before.sd[ward::kVbx] + r * r;
+        EXPECT_NEAR(scored, -0.5 * (nu * nu / s + std::log(2.0 * M_PI * s)), 1e-9) << g.t;
+        ++checked;
+      }
       return false;  // fed here
     });
     return fixes;
   };
   const auto untracked = score_fixes(&plain), summed = score_fixes(&tracked);
+  EXPECT_GE(checked, 8);
   ASSERT_GE(untracked.size(), 5u);
   ASSERT_EQ(untracked.size(), summed.size());
   for (size_t i = 0; i < untracked.size(); ++i) {
