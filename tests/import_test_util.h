@@ -1,5 +1,6 @@
 // Helpers for the importer and plausibility tests: a mapping file with one piece of text replaced
-// (a deliberately wrong mapping), and whether a plausibility report names a problem.
+// (a deliberately wrong mapping), a reader's error message, and whether a plausibility report
+// names a problem.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/input_error.h"
 #include "io/plausibility.h"
 
 namespace slipgraph {
@@ -37,6 +39,18 @@ const typename Reports::value_type& Named(const Reports& reports, const std::str
   }
   ADD_FAILURE() << "no report named '" << name << "'";
   throw std::out_of_range(name);
+}
+
+// The message of the InputError `f` throws (empty, and a test failure, when it throws none).
+template <typename F>
+std::string ErrorOf(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
 }
 
 inline bool Mentions(const Plausibility& p, const std::string& text) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/input_error.h"
+#include "tests/import_test_util.h"
 
 namespace slipgraph {
 namespace {
@@ -18,16 +19,7 @@ std::string Write(const std::string& name, const std::string& text) {
   return path;
 }
 
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError";
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(MappingFile, LoadsAndChecksKnownKeys) {
   const std::string path = Write("mapping_ok.yaml", "format: x\nimu: {topic: /imu, frame: z_up}\n");

@@ -14,6 +14,7 @@
 #include "io/matlab_import.h"
 #include "io/rosbag_import.h"
 #include "io/yaml_config.h"
+#include "tests/import_test_util.h"
 #include "tests/tiny_recordings.h"
 
 namespace slipgraph {
@@ -80,17 +81,7 @@ TEST(SyntheticImport, MatlabFileEveryStreamAndConvention) {
   EXPECT_TRUE(listed);
 }
 
-// The message of the InputError `f` throws (empty and a failure when it throws none).
-template <typename F>
-std::string ErrorOf(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError";
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(SyntheticImport, MatlabErrorsNameTheFileAndTheVariable) {
   const std::string mat = WriteTinyMat("tiny_short_gps.mat");
