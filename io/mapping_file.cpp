@@ -3,12 +3,15 @@
 #include <algorithm>
 
 #include "io/input_error.h"
+#include "io/yaml_errors.h"
 
 namespace slipgraph {
 
 YAML::Node LoadMappingFile(const std::string& path) {
   try {
-    return YAML::LoadFile(path);
+    const YAML::Node root = YAML::LoadFile(path);
+    RejectDuplicateKeys(root, path);
+    return root;
   } catch (const YAML::Exception& e) {
     throw InputError(path, e.mark.line + 1, "", "", e.what());
   }

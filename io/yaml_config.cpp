@@ -73,7 +73,9 @@ void ReadNumbers(const std::string& path, const YAML::Node& map, const std::stri
 
 YAML::Node LoadYaml(const std::string& path) {
   try {
-    return YAML::LoadFile(path);
+    const YAML::Node root = YAML::LoadFile(path);
+    RejectDuplicateKeys(root, path);
+    return root;
   } catch (const YAML::BadFile&) {
     throw InputError(path, 0, "", "", "cannot open file");
   } catch (const YAML::ParserException& e) {

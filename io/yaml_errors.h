@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <set>
 #include <string>
 
 #include "io/input_error.h"
@@ -19,6 +20,26 @@ auto NamingYamlErrors(const std::string& path, const Read& read) -> decltype(rea
   } catch (const YAML::Exception& e) {
     throw InputError(path, e.mark.is_null() ? 0 : e.mark.line + 1, "", "",
                      "not the structure expected here: " + e.msg);
+  }
+}
+
+// Throws InputError naming the file, line and key where a mapping of `node`, or of anything under
+// it, repeats a key: yaml-cpp keeps both and a lookup silently takes the first.
+inline void RejectDuplicateKeys(const YAML::Node& node, const std::string& path,
+                                const std::string& prefix = "") {
+  if (node.IsMap()) {
+    std::set<std::string> seen;
+    for (const auto& entry : node) {
+      const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "";
+      if (!key.empty() && !seen.insert(key).second) {
+        const YAML::Mark mark = entry.first.Mark();
+        throw InputError(path, mark.is_null() ? 0 : mark.line + 1, prefix + key, "",
+                         "duplicate key (a lookup would silently take the first)");
+      }
+      RejectDuplicateKeys(entry.second, path, prefix + key + ".");
+    }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node) RejectDuplicateKeys(item, path, prefix);
   }
 }
 

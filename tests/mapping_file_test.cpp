@@ -38,6 +38,15 @@ TEST(MappingFile, AnUnknownKeyIsNamedWithItsSection) {
   EXPECT_NE(e.find("imu.frmae"), std::string::npos) << e;
 }
 
+TEST(MappingFile, ADuplicateKeyIsNamed) {
+  const std::string path =
+      Write("mapping_duplicate.yaml", "imu:\n  topic: /imu\n  frame: z_up\n  frame: z_down\n");
+  const std::string e = ErrorOf([&] { LoadMappingFile(path); });
+  EXPECT_NE(e.find("mapping_duplicate.yaml:4"), std::string::npos) << e;
+  EXPECT_NE(e.find("imu.frame"), std::string::npos) << e;
+  EXPECT_NE(e.find("duplicate key"), std::string::npos) << e;
+}
+
 TEST(MappingFile, ParseErrorsAndMissingFilesAreNamed) {
   const std::string bad = Write("mapping_bad.yaml", "imu:\n  topic: [unclosed\n");
   std::string e = ErrorOf([&] { LoadMappingFile(bad); });

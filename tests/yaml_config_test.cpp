@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "io/input_error.h"
 #include "tests/test_log_files.h"
@@ -45,6 +47,30 @@ TEST(YamlConfig, UnknownModelKeyIsAnErrorNamingIt) {
     EXPECT_EQ(e.line(), 3);
   }
   EXPECT_THROW(ReadModelYaml(WriteModel("tyre: {C1: 0.6}\n"), LagrVehicle()), InputError);
+}
+
+// yaml-cpp keeps both entries of a repeated key and a lookup takes the first: an error instead.
+TEST(YamlConfig, ADuplicateKeyIsAnErrorNamingIt) {
+  try {
+    ReadModelYaml(WriteModel("process_noise:\n  a_dist: 3.0\n  a_dist: 0.3\n"), LagrVehicle());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.column(), "process_noise.a_dist");
+    EXPECT_EQ(e.line(), 3);
+  }
+  EXPECT_THROW(ReadModelYaml(WriteModel("tire: {C1: 0.6}\ntire: {C1: 0.7}\n"), LagrVehicle()),
+               InputError);
+}
+
+// A file whose YAML parses but whose structure is another (a scalar where a mapping belongs):
+// an error naming the file, not yaml-cpp's exception (found by fuzz/config_fuzzer).
+TEST(YamlConfig, AnUnexpectedStructureIsAnInputError) {
+  std::string text = testing::kLagrVehicleYaml;
+  text = text.substr(0, text.find("sensors:")) + "sensors: just text\n";
+  const std::string dir = testing::FreshDirectory("structure");
+  testing::WriteText(dir, "vehicle.yaml", text);
+  std::vector<std::string> warnings;
+  EXPECT_THROW(ReadVehicleYaml(dir + "/vehicle.yaml", &warnings), InputError);
 }
 
 TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
