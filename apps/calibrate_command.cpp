@@ -80,7 +80,8 @@ Plot Scatter(const std::string& title, const std::vector<PredictionError>& error
 void RegisterCalibrateCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, out, method = "ekf";
-    bool json = false, skip_bad = false;
+    bool json = false;
+    ReadOptions read;  // --skip-bad, --max-bad
     IpdOptions ipd;
     IpdGraphOptions graph;
   };
@@ -109,10 +110,10 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
   cmd->add_option("--window", options->graph.window_s, "window: seconds of alpha blocks kept")
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
-  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
-    const DriveLog log = ReadLogWithWarnings(options->log, options->skip_bad);
+    const DriveLog log = ReadLogWithWarnings(options->log, options->read);
     const IpdCalibrationResult result =
         options->method == "ekf"      ? CalibrateIpdEkf(log, options->ipd)
         : options->method == "window" ? CalibrateIpdWindow(log, options->ipd, options->graph)

@@ -133,7 +133,8 @@ void AddPlots(const DriveLog& log, const std::vector<EstimatorRun>& runs, HtmlRe
 void RegisterCompareCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, model, html;
-    bool no_gps = false, skip_bad = false, no_plots = false;
+    bool no_gps = false, no_plots = false;
+    ReadOptions read;  // --skip-bad, --max-bad
     WindowSmootherOptions window;
     double stiffness_sd = kPostProcessingStiffnessPriorSd;
   };
@@ -144,7 +145,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       ->check(NonEmptyPath());
   cmd->add_option("--model", options->model, "Model YAML overriding the vehicle's nominal values");
   cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
-  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  AddReadOptions(cmd, &options->read);
   cmd->add_option("--window", options->window.window_s, "Window length, s")->capture_default_str();
   AddWindowSolverOption(cmd, &options->window.solver);
   cmd->add_option("--report,--html", options->html,
@@ -162,7 +163,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::map<std::string, int> untrusted;  // logs the trust check failed, per estimator
     const std::vector<std::string> names = {"EKF", "window", "batch"};
     for (const std::string& log_dir : ListLogs(path)) {
-      DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
+      DriveLog log = ReadLogWithWarnings(log_dir, options->read);
       const ModelConfig model = ModelForLog(&log, options->model);
       std::vector<EstimatorRun> runs(3);
       FilterRunOptions filter;

@@ -22,7 +22,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, model, report, json;
     std::vector<std::string> with;
-    bool skip_bad = false, no_gps = false, add_best = false;
+    bool no_gps = false, add_best = false;
+    ReadOptions read;  // --skip-bad, --max-bad
     DiagnosisOptions diagnosis;
   };
   auto options = std::make_shared<Options>();
@@ -51,7 +52,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-gps", options->no_gps, "Ignore GNSS");
-  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     for (const std::string& effect : options->with) {
       if (FindEffect(effect) == nullptr && FindSignature(effect) == nullptr) {
@@ -70,7 +71,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     int unexplained = 0;
     std::string html;
     for (const std::string& log_dir : ListLogs(path)) {
-      DriveLog log = ReadLogWithWarnings(log_dir, options->skip_bad);
+      DriveLog log = ReadLogWithWarnings(log_dir, options->read);
       const ModelConfig model = ModelForLog(&log, options->model);
       const Diagnosis before = Diagnose(log, model, diagnosis);
       PrintDiagnosis(before, text);

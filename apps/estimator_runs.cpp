@@ -15,10 +15,18 @@
 
 namespace slipgraph {
 
-DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad) {
-  ReadOptions read_options;
-  read_options.skip_bad = skip_bad;
-  DriveLog log = ReadDriveLog(path, read_options);
+void AddReadOptions(CLI::App* cmd, ReadOptions* read) {
+  cmd->add_flag("--skip-bad", read->skip_bad,
+                "Drop bad input rows and unusable optional files, with a warning each");
+  cmd->add_option("--max-bad", read->max_bad_fraction,
+                  "With --skip-bad: the largest share of a file's rows that may be dropped (more, "
+                  "and more than 10 rows, is an error quoting the first bad row)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+}
+
+DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read) {
+  DriveLog log = ReadDriveLog(path, read);
   for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
   for (const std::string& problem : CheckLogForEstimation(log)) {
     std::cerr << "warning: " << path << ": " << problem << "\n";
@@ -42,7 +50,7 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
       ->check(NonEmptyPath());
   cmd->add_option("--model", run->model, "Model YAML overriding the vehicle's nominal values");
   cmd->add_flag("--no-gps", *no_gps, "Leave GNSS out");
-  cmd->add_flag("--skip-bad", run->skip_bad, "Drop bad input rows, with a warning each");
+  AddReadOptions(cmd, &run->read);
   cmd->add_flag("--strict", run->strict,
                 "Exit with status 3 when the trust check fails on a log (estimates still "
                 "written)");
@@ -77,7 +85,7 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
   if (suite) fs::create_directories(out);
   int untrusted = 0;
   for (const std::string& log_dir : logs) {
-    DriveLog log = ReadLogWithWarnings(log_dir, options.skip_bad);
+    DriveLog log = ReadLogWithWarnings(log_dir, options.read);
     const ModelConfig model = ModelForLog(&log, options.model);
     const std::string file =
         suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;

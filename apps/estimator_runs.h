@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/drive_log.h"
+#include "io/log_reader.h"
 #include "model/model_config.h"
 #include "solvers/ekf_runner.h"
 #include "solvers/window_smoother.h"
@@ -27,8 +28,8 @@ struct EstimatorRunOptions {
   std::string log;    // empty: the bundled sample
   std::string model;  // empty: the vehicle's nominal model
   std::string out;    // empty: ./<log>_<name>.csv, or ./<suite>_<name>/ for a suite
-  bool skip_bad = false;
-  std::string name;  // "filter", "smooth": the default output suffix and report prefix
+  ReadOptions read;   // --skip-bad, --max-bad
+  std::string name;   // "filter", "smooth": the default output suffix and report prefix
   // A log whose estimates fail the trust check (solvers/trust_check.h) is an error, not only a
   // warning: RunEstimatorOverLogs then returns kUntrustedExit.
   bool strict = false;
@@ -48,10 +49,13 @@ struct EstimatorOutput {
 using Estimator = std::function<EstimatorOutput(const DriveLog& log, const ModelConfig& model,
                                                 std::ostream& report)>;
 
+// --skip-bad and --max-bad on a subcommand: how it reads its logs.
+void AddReadOptions(CLI::App* cmd, ReadOptions* read);
+
 // Reads a log for a subcommand, printing the reader's warnings (rows skipped, keys defaulted) and
 // what CheckLogForEstimation finds (gaps, time coverage, frozen or stuck sensors, implausible
 // values) to stderr; throws InputError where estimates would mean nothing.
-DriveLog ReadLogWithWarnings(const std::string& path, bool skip_bad);
+DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read);
 // The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it, with its
 // calibration (wheel radii, effective track) applied to the log.
 ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);

@@ -98,7 +98,8 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     std::string model, out, json;
     double train = 0.5;
     std::string part = "first";
-    bool no_gps = false, skip_bad = false;
+    bool no_gps = false;
+    ReadOptions read;  // --skip-bad, --max-bad
     IdentifyOptions identify;
   };
   auto options = std::make_shared<Options>();
@@ -128,14 +129,14 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
   cmd->add_option("--threads", options->identify.threads, "Solver threads")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  AddReadOptions(cmd, &options->read);
   cmd->add_option("--json", options->json, "Write one JSON object to this file ('-': stdout)");
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     std::vector<DriveLog> train, held_out;
     ModelConfig model;
     for (size_t i = 0; i < options->logs.size(); ++i) {
-      const DriveLog log = ReadLogWithWarnings(options->logs[i], options->skip_bad);
+      const DriveLog log = ReadLogWithWarnings(options->logs[i], options->read);
       if (i == 0) {
         model = options->model.empty() ? DefaultModelConfig(log.vehicle)
                                        : ReadModelYaml(options->model, log.vehicle);

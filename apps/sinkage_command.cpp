@@ -18,7 +18,8 @@ namespace slipgraph {
 void RegisterSinkageCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, out, method = "baseline";
-    bool json = false, skip_bad = false;
+    bool json = false;
+    ReadOptions read;  // --skip-bad, --max-bad
     WilcoxOptions wilcox;
     WilcoxGraphOptions graph;
   };
@@ -59,10 +60,10 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
                 "on by default, --no-learn-slip keeps them fixed (the paper: slip 0)");
   cmd->add_option("--bin", options->wilcox.bin_m, "Histogram bin, m")->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
-  cmd->add_flag("--skip-bad", options->skip_bad, "Drop bad input rows, with a warning each");
+  AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
-    const DriveLog log = ReadLogWithWarnings(options->log, options->skip_bad);
+    const DriveLog log = ReadLogWithWarnings(options->log, options->read);
     const WilcoxResult result = options->method == "graph"
                                     ? EstimateWilcoxGraph(log, options->wilcox, options->graph)
                                     : EstimateWilcoxBaseline(log, options->wilcox);

@@ -56,9 +56,12 @@ void ReadCsvFile(const std::string& directory, const std::string& name, bool req
   }
   if (skipped > kMaxWarningsPerFile &&
       skipped > options.max_bad_fraction * static_cast<double>(skipped + kept)) {
-    throw InputError(path, 0, "", "",
-                     std::to_string(skipped) + " of " + std::to_string(skipped + kept) +
-                         " rows are bad, more than --skip-bad drops; the first: " + first_bad);
+    throw InputError(
+        path, 0, "", "",
+        std::to_string(skipped) + " of " + std::to_string(skipped + kept) +
+            " rows are bad, more than --skip-bad drops (--max-bad sets the share); the "
+            "first: " +
+            first_bad);
   }
   if (skipped > kMaxWarningsPerFile) {
     log->warnings.push_back(path + ": " + std::to_string(skipped) + " bad rows skipped in all");

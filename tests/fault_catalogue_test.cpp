@@ -180,6 +180,27 @@ TEST(FaultCatalogue, AReportThatCannotBeWrittenIsAnError) {
   EXPECT_EQ(json.output.find("report:"), std::string::npos);
 }
 
+// --skip-bad drops at most 1 % of a file's rows by default; --max-bad sets the share. 40 bad IMU
+// rows of 1818 (2.2 %): an error quoting the first, then a run with the share raised.
+TEST(FaultCatalogue, SkipBadHasALimitTheUserCanSet) {
+  const std::string log = CopyOfSample("max_bad");
+  for (size_t row = 100; row < 140; ++row) SetCell(log + "/imu.csv", row, "ax", "x");
+  const std::string out = log + "_filter.csv";
+  const ProgramRun limited = RunProgram("filter " + log + " --skip-bad --out " + out, "max_bad");
+  EXPECT_EQ(limited.exit_code, 2) << limited.output;
+  EXPECT_NE(limited.output.find("40 of 1818 rows are bad, more than --skip-bad drops"),
+            std::string::npos)
+      << limited.output;
+  const ProgramRun raised =
+      RunProgram("filter " + log + " --skip-bad --max-bad 0.05 --out " + out, "max_bad_raised");
+  EXPECT_EQ(raised.exit_code, 0) << raised.output;
+  EXPECT_NE(raised.output.find("40 bad rows skipped in all"), std::string::npos) << raised.output;
+  ExpectCompleteAndFinite(out, WheelRows());
+  EXPECT_NE(RunProgram("filter " + log + " --skip-bad --max-bad 2", "max_bad_range")
+                .output.find("--max-bad"),
+            std::string::npos);
+}
+
 // What every estimator checks before it runs: a warning naming the stream and the time span where
 // the estimates can still mean something, an error where they cannot; each through `filter`,
 // whose estimates stay complete and finite.
