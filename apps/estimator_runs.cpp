@@ -68,10 +68,14 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
   const std::string name = fs::path(path).filename().string();
   std::string out = options.out;
   if (out.empty()) out = name + "_" + options.name + (suite ? "" : ".csv");
+  // A log's estimate file: `out` itself, or one CSV per log in the suite's directory `out`.
+  const auto output_of = [&](const std::string& log_dir) {
+    return suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string()
+                 : out;
+  };
   // The output may not be one of the inputs: a log's own file would be overwritten.
   for (const std::string& log_dir : logs) {
-    const std::string file =
-        suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
+    const std::string file = output_of(log_dir);
     if (!fs::exists(file)) continue;
     std::error_code error;
     for (const fs::directory_entry& entry : fs::directory_iterator(log_dir, error)) {
@@ -87,8 +91,7 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
   for (const std::string& log_dir : logs) {
     DriveLog log = ReadLogWithWarnings(log_dir, options.read);
     const ModelConfig model = ModelForLog(&log, options.model);
-    const std::string file =
-        suite ? (fs::path(out) / (fs::path(log_dir).filename().string() + ".csv")).string() : out;
+    const std::string file = output_of(log_dir);
     std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";
     EstimatorOutput output = estimate(log, model, std::cerr);
     // Whether the estimates hold against the log's own wheels and GNSS (solvers/trust_check.h).
