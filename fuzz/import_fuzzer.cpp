@@ -1,6 +1,7 @@
 // Fuzzes the importers' mapping files: the first byte picks the tiny MATLAB v7.3 file or the tiny
-// ROS bag (tests/tiny_recordings.h), the rest is the mapping. Import must give a log or throw
-// InputError. (The recordings' own bytes are parsed by the HDF5 and rosbag libraries.)
+// ROS bag (tests/tiny_recordings.h), the rest is the mapping. Import must give a log that reads
+// back, or throw InputError. (The recordings' own bytes are parsed by the HDF5 and rosbag
+// libraries.)
 #include <cstdint>
 #include <string>
 
@@ -18,13 +19,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string mapping = dir + "/mapping.yaml";
   slipgraph::fuzz::WriteFile(mapping, data + 1, size - 1);
   slipgraph::ImportReport report;
+  slipgraph::DriveLog log;
   try {
-    if (data[0] & 1) {
-      slipgraph::ImportRosBag(bag, mapping, slipgraph::testing::TinyVehicle(), &report);
-    } else {
-      slipgraph::ImportMatlab(mat, mapping, slipgraph::testing::TinyVehicle(), &report);
-    }
+    log = (data[0] & 1)
+              ? slipgraph::ImportRosBag(bag, mapping, slipgraph::testing::TinyVehicle(), &report)
+              : slipgraph::ImportMatlab(mat, mapping, slipgraph::testing::TinyVehicle(), &report);
   } catch (const slipgraph::InputError&) {
+    return 0;
   }
+  slipgraph::fuzz::CheckReadsBack(log);
   return 0;
 }

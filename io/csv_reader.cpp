@@ -2,11 +2,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "io/input_error.h"
+#include "io/text_file.h"
 
 namespace slipgraph {
 namespace {
@@ -33,6 +32,12 @@ void SplitCells(std::string_view line, std::vector<std::string_view>* cells) {
   }
 }
 
+// The characters after a number's decimal point (its exponent included), -1 without a point.
+int CharactersAfterPoint(std::string_view cell) {
+  const size_t point = cell.find('.');
+  return point == std::string_view::npos ? -1 : static_cast<int>(cell.size() - point - 1);
+}
+
 bool IsMissing(std::string_view cell) {
   return cell.empty() || cell == "nan" || cell == "NaN" || cell == "NAN";
 }
@@ -41,13 +46,22 @@ bool IsMissing(std::string_view cell) {
 
 CsvReader::CsvReader(std::string path, std::vector<CsvColumn> columns)
     : path_(std::move(path)), columns_(std::move(columns)), positions_(columns_.size(), -1) {
-  std::ifstream file(path_, std::ios::binary);
-  if (!file) throw InputError(path_, 0, "", "", "cannot open file");
-  std::ostringstream contents;
-  contents << file.rdbuf();
-  buffer_ = contents.str();
+  owned_ = ReadTextFile(path_);
+  text_ = owned_;
+  ReadHeader();
+}
+
+CsvReader::CsvReader(std::string name, std::string_view text, std::vector<CsvColumn> columns)
+    : path_(std::move(name)),
+      columns_(std::move(columns)),
+      positions_(columns_.size(), -1),
+      text_(text) {
+  ReadHeader();
+}
+
+void CsvReader::ReadHeader() {
   // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
-  if (buffer_.compare(0, 3, "\xEF\xBB\xBF") == 0) cursor_ = 3;
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF") cursor_ = 3;
 
   // The header is the first line that is neither blank nor a comment.
   std::vector<std::string_view> header;
@@ -69,17 +83,35 @@ CsvReader::CsvReader(std::string path, std::vector<CsvColumn> columns)
 }
 
 bool CsvReader::Next() {
-  while (cursor_ < buffer_.size()) {
-    size_t end = buffer_.find('\n', cursor_);
-    if (end == std::string::npos) end = buffer_.size();
-    const std::string_view line = Trim(std::string_view(buffer_).substr(cursor_, end - cursor_));
+  while (cursor_ < text_.size()) {
+    size_t end = text_.find('\n', cursor_);
+    const bool ends_the_file = end == std::string_view::npos;
+    if (ends_the_file) end = text_.size();
+    const std::string_view line = Trim(text_.substr(cursor_, end - cursor_));
     cursor_ = end + 1;
     ++line_number_;
     if (line.empty() || line.front() == '#') continue;
+    if (rows_read_ > 0) previous_rows_[(rows_read_ - 1) % 3] = cells_;
+    ++rows_read_;
     SplitCells(line, &cells_);
+    cut_position_ = ends_the_file ? CutCell() : -1;
     return true;
   }
   return false;
+}
+
+int CsvReader::CutCell() const {
+  if (rows_read_ < 4) return -1;  // the header and three rows before this one
+  const auto tail_before = [&](size_t p, int row) {
+    const std::vector<std::string_view>& cells = previous_rows_[row];
+    return p < cells.size() ? CharactersAfterPoint(cells[p]) : -1;
+  };
+  for (size_t p = 0; p < cells_.size(); ++p) {
+    const int before = tail_before(p, 0);
+    if (before < 1 || tail_before(p, 1) != before || tail_before(p, 2) != before) continue;
+    if (CharactersAfterPoint(cells_[p]) < before) return static_cast<int>(p);
+  }
+  return -1;
 }
 
 std::string_view CsvReader::Cell(int column) const {
@@ -102,6 +134,11 @@ double CsvReader::Number(int column) const {
   const std::string_view cell = Cell(column);
   if (positions_[column] >= 0 && positions_[column] >= static_cast<int>(cells_.size())) {
     Fail(column, "", "row has fewer cells than the header");
+  }
+  if (positions_[column] == cut_position_ && cut_position_ >= 0) {
+    Fail(column, std::string(cell),
+         "the file ends inside this row without a line end, and this number has fewer digits "
+         "than the rows before: cut short? (end the file with a line end if the row is whole)");
   }
   if (IsMissing(cell)) {
     if (columns_[column].required)

@@ -75,14 +75,22 @@ Hdf5Matrix ReadHdf5Matrix(const std::string& path, const std::string& name) {
   const int rank = H5Sget_simple_extent_ndims(space.id);
   const H5T_class_t type_class = H5Tget_class(type.id);
   if (dataset.id < 0 || rank < 1 || rank > 2 ||
-      (type_class != H5T_FLOAT && type_class != H5T_INTEGER)) {
+      (type_class != H5T_FLOAT && type_class != H5T_INTEGER) || H5Tget_size(type.id) > 8) {
     throw InputError(path, 0, name, "", "not a numeric vector or matrix");
   }
   hsize_t dims[2] = {1, 1};
   H5Sget_simple_extent_dims(space.id, dims, nullptr);
+  // The file states the size: a corrupted one must not make us allocate what it claims.
+  const hsize_t rows = rank == 2 ? dims[0] : 1, columns = rank == 2 ? dims[1] : dims[0];
+  if (columns != 0 && rows > kMaxHdf5Values / columns) {
+    throw InputError(path, 0, name, "",
+                     std::to_string(rows) + " x " + std::to_string(columns) +
+                         " values: more than this reader takes (" + std::to_string(kMaxHdf5Values) +
+                         "; a corrupted file?)");
+  }
   Hdf5Matrix m;
-  m.rows = rank == 2 ? dims[0] : 1;
-  m.columns = rank == 2 ? dims[1] : dims[0];
+  m.rows = rows;
+  m.columns = columns;
   m.values.resize(m.rows * m.columns);
   if (H5Dread(dataset.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.values.data()) < 0) {
     throw InputError(path, 0, name, "", "could not be read as numbers");

@@ -23,7 +23,12 @@ struct Hdf5Matrix {
 std::vector<std::pair<std::string, std::vector<unsigned long long>>> ListHdf5Datasets(
     const std::string& path);
 
-// Throws InputError naming the file and the variable when it is missing or not numeric.
+// The most values one variable may hold (512 MB as doubles: 93 hours of a 200 Hz IMU channel).
+inline constexpr unsigned long long kMaxHdf5Values = 1ULL << 26;
+
+// Throws InputError naming the file and the variable when it is missing, not numeric (or of a
+// number type wider than 8 bytes), or holds more than kMaxHdf5Values: a corrupted file's
+// dimensions are not allocated as read.
 Hdf5Matrix ReadHdf5Matrix(const std::string& path, const std::string& name);
 
 }  // namespace slipgraph

@@ -9,6 +9,7 @@
 #include "io/csv_reader.h"
 #include "io/csv_writer.h"
 #include "io/input_error.h"
+#include "io/text_file.h"
 #include "io/yaml_config.h"
 
 namespace slipgraph {
@@ -21,17 +22,18 @@ constexpr int kMaxWarningsPerFile = 10;
 // Reads one CSV file of the log row by row. `parse(reader, samples_so_far, &sample)` fills a
 // sample or throws InputError; a row is kept only when it parses whole.
 template <typename Sample, typename Parse>
-void ReadCsvFile(const std::string& directory, const std::string& name, bool required,
+void ReadCsvFile(const LogFiles& files, const std::string& name, bool required,
                  std::vector<CsvColumn> columns, const ReadOptions& options, DriveLog* log,
                  std::vector<Sample>* samples, Parse parse) {
-  const std::string path = (fs::path(directory) / name).string();
-  if (!fs::exists(path)) {
+  const std::string path = (fs::path(files.directory) / name).string();
+  const std::optional<std::string> text = files.read(name);
+  if (!text) {
     if (required) throw InputError(path, 0, "", "", "required file is missing");
     return;
   }
   std::optional<CsvReader> reader;
   try {
-    reader.emplace(path, std::move(columns));
+    reader.emplace(path, *text, std::move(columns));
   } catch (const InputError& error) {
     if (required || !options.skip_bad) throw;
     log->warnings.push_back(std::string(error.what()) + " (optional file left out: --skip-bad)");
@@ -141,25 +143,46 @@ std::vector<std::string> ListLogs(const std::string& path) {
   return logs;
 }
 
+LogFiles LogFilesIn(const std::string& directory) {
+  return {directory, [directory](const std::string& name) -> std::optional<std::string> {
+            const std::string path = (fs::path(directory) / name).string();
+            if (!fs::exists(path)) return std::nullopt;
+            return ReadTextFile(path);
+          }};
+}
+
+LogFiles LogFilesInMemory(std::string directory, std::map<std::string, std::string> files) {
+  return {std::move(directory),
+          [files = std::move(files)](const std::string& name) -> std::optional<std::string> {
+            const auto file = files.find(name);
+            if (file == files.end()) return std::nullopt;
+            return file->second;
+          }};
+}
+
 DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) {
-  DriveLog log;
-  log.directory = directory;
   if (!fs::is_directory(directory)) {
     throw InputError(directory, 0, "", "", "not a directory (a log is a directory of files)");
   }
+  return ReadDriveLog(LogFilesIn(directory), options);
+}
+
+DriveLog ReadDriveLog(const LogFiles& files, const ReadOptions& options) {
+  DriveLog log;
+  const std::string& directory = files.directory;
+  log.directory = directory;
   const std::string vehicle_path = (fs::path(directory) / "vehicle.yaml").string();
-  if (!fs::exists(vehicle_path)) {
-    throw InputError(vehicle_path, 0, "", "", "required file is missing");
-  }
-  log.vehicle = ReadVehicleYaml(vehicle_path, &log.warnings);
+  const std::optional<std::string> vehicle_text = files.read("vehicle.yaml");
+  if (!vehicle_text) throw InputError(vehicle_path, 0, "", "", "required file is missing");
+  log.vehicle = ParseVehicleYaml(vehicle_path, *vehicle_text, &log.warnings);
   if (log.vehicle.name.empty()) log.vehicle.name = fs::path(directory).filename().string();
   for (const std::string& key : log.vehicle.defaulted_keys) {
     log.warnings.push_back(vehicle_path + ": '" + key + "' not given, nominal defaults used");
   }
   log.present_files.push_back("vehicle.yaml");
 
-  ReadCsvFile(directory, "imu.csv", true, Columns({"t", "ax", "ay", "az", "gx", "gy", "gz"}),
-              options, &log, &log.imu,
+  ReadCsvFile(files, "imu.csv", true, Columns({"t", "ax", "ay", "az", "gx", "gy", "gz"}), options,
+              &log, &log.imu,
               [](const CsvReader& r, const std::vector<ImuSample>& prev, ImuSample* s) {
                 s->t = r.Number(0);
                 CheckIncreasing(r, 0, s->t, LastTime(prev));
@@ -170,7 +193,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
   const std::vector<std::string>& wheel_names = WheelNames(log.vehicle.type);
   std::vector<CsvColumn> wheel_columns = {{"t", true}};
   for (const std::string& name : wheel_names) wheel_columns.push_back({name, true});
-  ReadCsvFile(directory, "wheels.csv", true, wheel_columns, options, &log, &log.wheels,
+  ReadCsvFile(files, "wheels.csv", true, wheel_columns, options, &log, &log.wheels,
               [&](const CsvReader& r, const std::vector<WheelSample>& prev, WheelSample* s) {
                 s->t = r.Number(0);
                 CheckIncreasing(r, 0, s->t, LastTime(prev));
@@ -179,7 +202,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 }
               });
 
-  ReadCsvFile(directory, "attitude.csv", false,
+  ReadCsvFile(files, "attitude.csv", false,
               Columns({"t", "roll", "pitch", "yaw"}, {"sd_roll", "sd_pitch", "sd_yaw"}), options,
               &log, &log.attitude,
               [](const CsvReader& r, const std::vector<AttitudeSample>& prev, AttitudeSample* s) {
@@ -189,7 +212,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 s->sd_roll = Sd(r, 4), s->sd_pitch = Sd(r, 5), s->sd_yaw = Sd(r, 6);
               });
 
-  ReadCsvFile(directory, "gps.csv", false,
+  ReadCsvFile(files, "gps.csv", false,
               Columns({"t", "x", "y", "z", "vx", "vy", "vz"}, {"sd_xy", "sd_z", "sd_v"}), options,
               &log, &log.gps,
               [](const CsvReader& r, const std::vector<GpsSample>& prev, GpsSample* s) {
@@ -200,7 +223,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 s->sd_xy = Sd(r, 7), s->sd_z = Sd(r, 8), s->sd_v = Sd(r, 9);
               });
 
-  ReadCsvFile(directory, "pose.csv", false,
+  ReadCsvFile(files, "pose.csv", false,
               Columns({"t", "x", "y", "z", "roll", "pitch", "yaw"}, {"sd_x", "sd_y", "sd_yaw"}),
               options, &log, &log.pose,
               [](const CsvReader& r, const std::vector<PoseSample>& prev, PoseSample* s) {
@@ -212,8 +235,8 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
               });
 
   ReadCsvFile(
-      directory, "articulation.csv", false, Columns({"t", "side", "dz_mid", "dz_front"}), options,
-      &log, &log.articulation,
+      files, "articulation.csv", false, Columns({"t", "side", "dz_mid", "dz_front"}), options, &log,
+      &log.articulation,
       [](const CsvReader& r, const std::vector<ArticulationSample>& prev, ArticulationSample* s) {
         s->t = r.Number(0);
         s->side = ReadSide(r, 1);
@@ -222,7 +245,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
       });
 
   // Several range rows share a time stamp: time must not decrease.
-  ReadCsvFile(directory, "range.csv", false, Columns({"t", "side", "d", "dz"}), options, &log,
+  ReadCsvFile(files, "range.csv", false, Columns({"t", "side", "d", "dz"}), options, &log,
               &log.range,
               [](const CsvReader& r, const std::vector<RangeSample>& prev, RangeSample* s) {
                 s->t = r.Number(0);
@@ -231,7 +254,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 s->d = r.Number(2), s->dz = r.Number(3);
               });
 
-  ReadCsvFile(directory, "commands.csv", false, Columns({"t", "v", "omega"}), options, &log,
+  ReadCsvFile(files, "commands.csv", false, Columns({"t", "v", "omega"}), options, &log,
               &log.commands,
               [](const CsvReader& r, const std::vector<CommandSample>& prev, CommandSample* s) {
                 s->t = r.Number(0);
@@ -246,7 +269,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
   for (const std::string& name : wheel_names) truth_columns.push_back({"slip_" + name, false});
   for (const std::string& name : wheel_names) truth_columns.push_back({"sinkage_" + name, false});
   const int wheel_count = static_cast<int>(wheel_names.size());
-  ReadCsvFile(directory, "truth.csv", false, truth_columns, options, &log, &log.truth,
+  ReadCsvFile(files, "truth.csv", false, truth_columns, options, &log, &log.truth,
               [&](const CsvReader& r, const std::vector<TruthSample>& prev, TruthSample* s) {
                 s->t = r.Number(0);
                 CheckIncreasing(r, 0, s->t, LastTime(prev));
@@ -262,7 +285,7 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
                 }
               });
 
-  ReadCsvFile(directory, "events.csv", false, {{"t_start", true}, {"t_end", true}, {"label", true}},
+  ReadCsvFile(files, "events.csv", false, {{"t_start", true}, {"t_end", true}, {"label", true}},
               options, &log, &log.events,
               [](const CsvReader& r, const std::vector<Event>&, Event* e) {
                 e->t_start = r.Number(0);

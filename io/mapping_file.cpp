@@ -3,19 +3,8 @@
 #include <algorithm>
 
 #include "io/input_error.h"
-#include "io/yaml_errors.h"
 
 namespace slipgraph {
-
-YAML::Node LoadMappingFile(const std::string& path) {
-  try {
-    const YAML::Node root = YAML::LoadFile(path);
-    RejectDuplicateKeys(root, path);
-    return root;
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, e.mark.line + 1, "", "", e.what());
-  }
-}
 
 void CheckMappingKeys(const YAML::Node& node, const std::string& section,
                       const std::vector<std::string>& known, const std::string& path) {

@@ -1,5 +1,5 @@
-// What the importers' mapping files (YAML) share: loading with an error naming the file and line,
-// and the strict key check (a key the importer does not know is an error naming it: a typo must
+// What the importers' mapping files (YAML, loaded by LoadYamlFile of io/yaml_errors.h) share: the
+// strict key check (a key the importer does not know is an error naming it: a typo must
 // not fall back to a default silently). Used by matlab_import and rosbag_import.
 #pragma once
 
@@ -9,9 +9,6 @@
 #include <vector>
 
 namespace slipgraph {
-
-// Throws InputError naming the file and line when it cannot be read or parsed.
-YAML::Node LoadMappingFile(const std::string& path);
 
 // Throws InputError when `node` is not a map or has a key outside `known`; `section` ("" at the
 // top) prefixes the key in the message ("imu.frame").

@@ -52,7 +52,7 @@ namespace {
 
 DriveLog Import(const std::string& source, const std::string& mapping_path, const Vehicle& vehicle,
                 ImportReport* report) {
-  const YAML::Node mapping = LoadMappingFile(mapping_path);
+  const YAML::Node mapping = LoadYamlFile(mapping_path);
   CheckMappingKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
   if (mapping["imu"]) {
     CheckMappingKeys(mapping["imu"], "imu", {"t", "ax", "ay", "az", "gx", "gy", "gz", "frame"},
@@ -179,6 +179,7 @@ DriveLog Import(const std::string& source, const std::string& mapping_path, cons
     for (GpsSample& s : log.gps) s.t -= t0;
     report->lines.push_back("time: shifted by -" + std::to_string(t0) + " s (the earliest stamp)");
   }
+  KeepReadableSamples(&log, report);
   return log;
 }
 

@@ -18,12 +18,9 @@
 #include <vector>
 
 #include "io/drive_log.h"
+#include "io/import_report.h"
 
 namespace slipgraph {
-
-struct ImportReport {
-  std::vector<std::string> lines;  // what was mapped how, one line each
-};
 
 // One topic or variable of a recording (`import --list`): its name, type (a ROS message type, or
 // an HDF5 dataset's dimensions), how many messages or values, and, for a topic, its rate.

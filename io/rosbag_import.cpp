@@ -1,6 +1,7 @@
 #include "io/rosbag_import.h"
 
 #include <nav_msgs/Odometry.h>
+#include <ros/exception.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Imu.h>
@@ -10,12 +11,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <tuple>
 
 #include "io/input_error.h"
 #include "io/mapping_file.h"
+#include "io/rosbag_records.h"
 #include "io/yaml_errors.h"
 
 namespace slipgraph {
@@ -59,6 +62,7 @@ Eigen::Matrix3d Rotation(const YAML::Node& node, const std::string& path) {
 std::vector<SourceEntry> ListRosBag(const std::string& bag_path) {
   std::vector<SourceEntry> out;
   try {
+    CheckRosBagRecords(bag_path);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     rosbag::View all(bag);
     std::vector<std::pair<std::string, std::string>> topics;
@@ -74,7 +78,7 @@ std::vector<SourceEntry> ListRosBag(const std::string& bag_path) {
       if (e.count > 1 && span > 0.0) e.rate_hz = (e.count - 1) / span;
       out.push_back(e);
     }
-  } catch (const rosbag::BagException& e) {
+  } catch (const ros::Exception& e) {  // rosbag's and the deserializers' errors
     throw InputError(bag_path, 0, "", "", std::string("ROS bag: ") + e.what());
   }
   return out;
@@ -89,9 +93,24 @@ bool IsRosBag(const std::string& path) {
 
 namespace {
 
+// The message `m` as a `Message`, null when it is of another type. Bytes that do not decode as
+// the type (fewer than it needs) are an InputError naming the bag, the topic and the time.
+template <typename Message>
+boost::shared_ptr<const Message> Decode(const rosbag::MessageInstance& m,
+                                        const std::string& bag_path) {
+  try {
+    return m.instantiate<Message>();
+  } catch (const ros::Exception& e) {
+    char time[32];
+    std::snprintf(time, sizeof(time), "t=%.6f", m.getTime().toSec());
+    throw InputError(bag_path, 0, m.getTopic(), time,
+                     "message does not decode as " + m.getDataType() + ": " + e.what());
+  }
+}
+
 DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
                 const Vehicle& vehicle, ImportReport* report) {
-  const YAML::Node mapping = LoadMappingFile(mapping_path);
+  const YAML::Node mapping = LoadYamlFile(mapping_path);
   CheckMappingKeys(mapping, "", {"format", "imu", "wheels", "gps"}, mapping_path);
   if (!mapping["format"] || mapping["format"].as<std::string>() != "ros1_bag") {
     throw InputError(mapping_path, 0, "format", "", "expected 'ros1_bag' for a ROS bag");
@@ -128,6 +147,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
   long imu_n = 0, wheel_n = 0, gps_n = 0, skipped = 0;
   std::vector<double> fix_t, fix_lat, fix_lon, fix_alt, fix_sd;
   try {
+    CheckRosBagRecords(bag_path);
     rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
     std::vector<std::string> topics;
     for (const std::string& t : {imu_topic, wheel_topic, gps_topic}) {
@@ -137,7 +157,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
     for (const rosbag::MessageInstance& m : view) {
       const std::string& topic = m.getTopic();
       if (topic == imu_topic) {
-        const sensor_msgs::Imu::ConstPtr imu = m.instantiate<sensor_msgs::Imu>();
+        const sensor_msgs::Imu::ConstPtr imu = Decode<sensor_msgs::Imu>(m, bag_path);
         if (!imu) throw InputError(bag_path, 0, topic, m.getDataType(), "not a sensor_msgs/Imu");
         const Eigen::Vector3d f = body_from_sensor * Eigen::Vector3d(imu->linear_acceleration.x,
                                                                      imu->linear_acceleration.y,
@@ -171,7 +191,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
           log.attitude.push_back(a);
         }
       } else if (topic == wheel_topic) {
-        const nav_msgs::Odometry::ConstPtr odom = m.instantiate<nav_msgs::Odometry>();
+        const nav_msgs::Odometry::ConstPtr odom = Decode<nav_msgs::Odometry>(m, bag_path);
         if (!odom) throw InputError(bag_path, 0, topic, m.getDataType(), "not a nav_msgs/Odometry");
         const double v = odom->twist.twist.linear.x, wz = odom->twist.twist.angular.z;
         WheelSample s;
@@ -182,7 +202,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
         log.wheels.push_back(s);
         ++wheel_n;
       } else if (topic == gps_topic) {
-        const sensor_msgs::NavSatFix::ConstPtr fix = m.instantiate<sensor_msgs::NavSatFix>();
+        const sensor_msgs::NavSatFix::ConstPtr fix = Decode<sensor_msgs::NavSatFix>(m, bag_path);
         if (!fix) {
           throw InputError(bag_path, 0, topic, m.getDataType(), "not a sensor_msgs/NavSatFix");
         }
@@ -200,7 +220,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
         ++gps_n;
       }
     }
-  } catch (const rosbag::BagException& e) {
+  } catch (const ros::Exception& e) {  // rosbag's and the deserializers' errors
     throw InputError(bag_path, 0, "", "", std::string("ROS bag: ") + e.what());
   }
   for (const auto& [key, topic, count] :
@@ -213,10 +233,6 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
                            " (`slipgraph import --list` shows the bag's topics)");
     }
   }
-  const auto by_time = [](const auto& a, const auto& b) { return a.t < b.t; };
-  std::stable_sort(log.imu.begin(), log.imu.end(), by_time);
-  std::stable_sort(log.attitude.begin(), log.attitude.end(), by_time);
-  std::stable_sort(log.wheels.begin(), log.wheels.end(), by_time);
   if (!log.imu.empty()) log.present_files.push_back("imu.csv");
   if (!log.attitude.empty()) log.present_files.push_back("attitude.csv");
   if (!log.wheels.empty()) log.present_files.push_back("wheels.csv");
@@ -276,6 +292,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
     report->lines.push_back("time: header stamps, shifted by -" + std::to_string(t0) +
                             " s (the earliest)");
   }
+  KeepReadableSamples(&log, report);
   return log;
 }
 

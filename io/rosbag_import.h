@@ -25,7 +25,8 @@
 #include <vector>
 
 #include "io/drive_log.h"
-#include "io/matlab_import.h"  // ImportReport
+#include "io/import_report.h"
+#include "io/matlab_import.h"  // SourceEntry
 
 namespace slipgraph {
 

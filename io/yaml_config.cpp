@@ -5,6 +5,7 @@
 #include <set>
 
 #include "io/input_error.h"
+#include "io/text_file.h"
 #include "io/yaml_errors.h"
 #include "model/effect_catalogue.h"
 
@@ -71,24 +72,13 @@ void ReadNumbers(const std::string& path, const YAML::Node& map, const std::stri
   }
 }
 
-YAML::Node LoadYaml(const std::string& path) {
-  try {
-    const YAML::Node root = YAML::LoadFile(path);
-    RejectDuplicateKeys(root, path);
-    return root;
-  } catch (const YAML::BadFile&) {
-    throw InputError(path, 0, "", "", "cannot open file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(path, e.mark.line + 1, "", "", "YAML syntax error: " + e.msg);
-  }
-}
-
 }  // namespace
 
 namespace {
 
-Vehicle ReadVehicle(const std::string& path, std::vector<std::string>* warnings) {
-  const YAML::Node root = LoadYaml(path);
+Vehicle ReadVehicle(const std::string& path, const std::string& text,
+                    std::vector<std::string>* warnings) {
+  const YAML::Node root = LoadYaml(path, text);
   if (!root.IsMap()) throw InputError(path, 1, "", "", "expected a mapping at the top level");
   Vehicle v;
   const YAML::Node type = root["type"];
@@ -206,14 +196,19 @@ Vehicle ReadVehicle(const std::string& path, std::vector<std::string>* warnings)
 }  // namespace
 
 Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warnings) {
-  return NamingYamlErrors(path, [&] { return ReadVehicle(path, warnings); });
+  return ParseVehicleYaml(path, ReadTextFile(path), warnings);
+}
+
+Vehicle ParseVehicleYaml(const std::string& name, const std::string& text,
+                         std::vector<std::string>* warnings) {
+  return NamingYamlErrors(name, [&] { return ReadVehicle(name, text, warnings); });
 }
 
 namespace {
 
-ModelConfig ReadModel(const std::string& path, const Vehicle& vehicle) {
+ModelConfig ReadModel(const std::string& path, const std::string& text, const Vehicle& vehicle) {
   ModelConfig m = DefaultModelConfig(vehicle);
-  const YAML::Node root = LoadYaml(path);
+  const YAML::Node root = LoadYaml(path, text);
   if (root.IsNull()) return m;  // an empty file changes nothing
   if (!root.IsMap()) throw InputError(path, 1, "", "", "expected a mapping at the top level");
 
@@ -344,7 +339,12 @@ ModelConfig ReadModel(const std::string& path, const Vehicle& vehicle) {
 }  // namespace
 
 ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
-  return NamingYamlErrors(path, [&] { return ReadModel(path, vehicle); });
+  return ParseModelYaml(path, ReadTextFile(path), vehicle);
+}
+
+ModelConfig ParseModelYaml(const std::string& name, const std::string& text,
+                           const Vehicle& vehicle) {
+  return NamingYamlErrors(name, [&] { return ReadModel(name, text, vehicle); });
 }
 
 void WriteVehicleYaml(const Vehicle& v, std::ostream& out) {

@@ -19,10 +19,16 @@ namespace slipgraph {
 // unknown vehicle type or a non-positive physical dimension. Unknown keys and sensor sections
 // left to defaults are appended to `warnings`.
 Vehicle ReadVehicleYaml(const std::string& path, std::vector<std::string>* warnings);
+// The same from the text of a vehicle.yaml held in memory; `name` stands for its path in errors.
+Vehicle ParseVehicleYaml(const std::string& name, const std::string& text,
+                         std::vector<std::string>* warnings);
 
 // The vehicle's nominal values, then the in-class defaults, overridden by the keys of `path`.
 // Throws InputError on an unknown key or bad value, and when the result fails IsValid().
 ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle);
+// The same from the text of a model file held in memory; `name` stands for its path in errors.
+ModelConfig ParseModelYaml(const std::string& name, const std::string& text,
+                           const Vehicle& vehicle);
 
 void WriteVehicleYaml(const Vehicle& vehicle, std::ostream& out);
 // The effective configuration, in the model-file schema (loadable by ReadModelYaml).

@@ -1,4 +1,5 @@
-// yaml-cpp's errors as the readers' own. A file whose YAML parses but whose structure is not the
+// yaml-cpp's errors as the readers' own, and the one YAML loader of the readers (vehicle.yaml,
+// model files, the importers' mappings). A file whose YAML parses but whose structure is not the
 // one expected (a scalar where a mapping belongs, a list where a number does) makes yaml-cpp
 // throw from inside a lookup or a conversion; the readers walk their files through
 // NamingYamlErrors so that this reaches the user as an InputError naming the file and line.
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "io/input_error.h"
+#include "io/text_file.h"
 
 namespace slipgraph {
 
@@ -41,6 +43,25 @@ inline void RejectDuplicateKeys(const YAML::Node& node, const std::string& path,
   } else if (node.IsSequence()) {
     for (const auto& item : node) RejectDuplicateKeys(item, path, prefix);
   }
+}
+
+// Parses `text`, the YAML document named `name` (its path, or what stands for it in errors).
+// Throws InputError naming it and the line on a syntax error or a repeated key.
+inline YAML::Node LoadYaml(const std::string& name, const std::string& text) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(name, e.mark.is_null() ? 0 : e.mark.line + 1, "", "",
+                     "YAML syntax error: " + e.msg);
+  }
+  RejectDuplicateKeys(root, name);
+  return root;
+}
+
+// The YAML file at `path`; InputError naming it when it cannot be read or parsed.
+inline YAML::Node LoadYamlFile(const std::string& path) {
+  return LoadYaml(path, ReadTextFile(path));
 }
 
 }  // namespace slipgraph

@@ -49,6 +49,50 @@ TEST(LogReader, ReadsValidLogWithCommentsAnyColumnOrderExtraColumnsAndMissingOpt
   EXPECT_TRUE(log.warnings.empty());
 }
 
+TEST(LogReader, ReadsFilesHeldInMemoryAsFromTheirDirectory) {
+  const DriveLog from_disk = ReadDriveLog(WriteValidLog("in_memory_twin"));
+  const DriveLog in_memory =
+      ReadDriveLog(LogFilesInMemory("memory/valid", testing::ValidLogFiles()));
+  EXPECT_EQ(in_memory.directory, "memory/valid");
+  ASSERT_EQ(in_memory.imu.size(), from_disk.imu.size());
+  EXPECT_EQ(in_memory.imu.back().az, from_disk.imu.back().az);
+  EXPECT_EQ(in_memory.wheels.size(), from_disk.wheels.size());
+  EXPECT_EQ(in_memory.gps.size(), from_disk.gps.size());
+  EXPECT_EQ(in_memory.present_files, from_disk.present_files);
+
+  try {
+    ReadDriveLog(LogFilesInMemory("memory/bad", testing::ValidLogFiles({{"imu.csv", "t\nx\n"}})));
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "memory/bad/imu.csv");
+  }
+}
+
+// A recorder stopped inside the IMU's last number: an error naming the row, which --skip-bad
+// drops with a warning, keeping every whole row.
+TEST(LogReader, ACutLastRowIsAnErrorThatSkipBadDrops) {
+  const std::string imu =
+      "t,ax,ay,az,gx,gy,gz\n"
+      "0.00,0.10,0.00,9.81,0.00,0.00,0.01\n"
+      "0.01,0.11,0.00,9.80,0.00,0.00,0.01\n"
+      "0.02,0.12,0.01,9.81,0.00,0.00,0.02\n"
+      "0.03,0.10,0.00,9.82,0.00,0.00,0.0";
+  const LogFiles files = LogFilesInMemory("cut", testing::ValidLogFiles({{"imu.csv", imu}}));
+  try {
+    ReadDriveLog(files);
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 5);
+    EXPECT_EQ(e.column(), "gz");
+  }
+  ReadOptions options;
+  options.skip_bad = true;
+  const DriveLog log = ReadDriveLog(files, options);
+  EXPECT_EQ(log.imu.size(), 3u);
+  ASSERT_EQ(log.warnings.size(), 1u);
+  EXPECT_NE(log.warnings[0].find("cut short"), std::string::npos) << log.warnings[0];
+}
+
 TEST(LogReader, MissingRequiredFileNamesIt) {
   const InputError e = ReadExpectingError(WriteValidLog("no_imu", {{"imu.csv", ""}}));
   EXPECT_EQ(FileName(e), "imu.csv");

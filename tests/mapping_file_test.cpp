@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/input_error.h"
+#include "io/yaml_errors.h"
 #include "tests/import_test_util.h"
 
 namespace slipgraph {
@@ -23,7 +24,7 @@ using testing::ErrorOf;
 
 TEST(MappingFile, LoadsAndChecksKnownKeys) {
   const std::string path = Write("mapping_ok.yaml", "format: x\nimu: {topic: /imu, frame: z_up}\n");
-  const YAML::Node m = LoadMappingFile(path);
+  const YAML::Node m = LoadYamlFile(path);
   EXPECT_EQ(m["imu"]["topic"].as<std::string>(), "/imu");
   EXPECT_NO_THROW(CheckMappingKeys(m, "", {"format", "imu"}, path));
   EXPECT_NO_THROW(CheckMappingKeys(m["imu"], "imu", {"topic", "frame"}, path));
@@ -32,7 +33,7 @@ TEST(MappingFile, LoadsAndChecksKnownKeys) {
 TEST(MappingFile, AnUnknownKeyIsNamedWithItsSection) {
   const std::string path = Write("mapping_typo.yaml", "imu: {topic: /imu, frmae: z_up}\n");
   const std::string e = ErrorOf([&] {
-    CheckMappingKeys(LoadMappingFile(path)["imu"], "imu", {"topic", "frame"}, path);
+    CheckMappingKeys(LoadYamlFile(path)["imu"], "imu", {"topic", "frame"}, path);
   });
   EXPECT_NE(e.find("mapping_typo.yaml"), std::string::npos) << e;
   EXPECT_NE(e.find("imu.frmae"), std::string::npos) << e;
@@ -41,7 +42,7 @@ TEST(MappingFile, AnUnknownKeyIsNamedWithItsSection) {
 TEST(MappingFile, ADuplicateKeyIsNamed) {
   const std::string path =
       Write("mapping_duplicate.yaml", "imu:\n  topic: /imu\n  frame: z_up\n  frame: z_down\n");
-  const std::string e = ErrorOf([&] { LoadMappingFile(path); });
+  const std::string e = ErrorOf([&] { LoadYamlFile(path); });
   EXPECT_NE(e.find("mapping_duplicate.yaml:4"), std::string::npos) << e;
   EXPECT_NE(e.find("imu.frame"), std::string::npos) << e;
   EXPECT_NE(e.find("duplicate key"), std::string::npos) << e;
@@ -49,13 +50,13 @@ TEST(MappingFile, ADuplicateKeyIsNamed) {
 
 TEST(MappingFile, ParseErrorsAndMissingFilesAreNamed) {
   const std::string bad = Write("mapping_bad.yaml", "imu:\n  topic: [unclosed\n");
-  std::string e = ErrorOf([&] { LoadMappingFile(bad); });
+  std::string e = ErrorOf([&] { LoadYamlFile(bad); });
   EXPECT_NE(e.find("mapping_bad.yaml"), std::string::npos) << e;
   const std::string missing = ::testing::TempDir() + "/no_such_mapping.yaml";
-  e = ErrorOf([&] { LoadMappingFile(missing); });
+  e = ErrorOf([&] { LoadYamlFile(missing); });
   EXPECT_NE(e.find("no_such_mapping.yaml"), std::string::npos) << e;
   const std::string scalar = Write("mapping_scalar.yaml", "just text\n");
-  e = ErrorOf([&] { CheckMappingKeys(LoadMappingFile(scalar), "", {"format"}, scalar); });
+  e = ErrorOf([&] { CheckMappingKeys(LoadYamlFile(scalar), "", {"format"}, scalar); });
   EXPECT_NE(e.find("mapping_scalar.yaml"), std::string::npos) << e;
 }
 

@@ -46,9 +46,10 @@ inline void WriteText(const std::string& directory, const std::string& file,
   std::ofstream(std::filesystem::path(directory) / file) << text;
 }
 
-// A valid diff_drive_castor log; `overrides` replaces whole files (empty text removes the file).
-inline std::string WriteValidLog(const std::string& name,
-                                 const std::map<std::string, std::string>& overrides = {}) {
+// The files of a valid diff_drive_castor log by name; `overrides` replaces whole files (empty
+// text removes the file).
+inline std::map<std::string, std::string> ValidLogFiles(
+    const std::map<std::string, std::string>& overrides = {}) {
   std::map<std::string, std::string> files = {
       {"vehicle.yaml", kLagrVehicleYaml},
       {"imu.csv",
@@ -70,11 +71,21 @@ inline std::string WriteValidLog(const std::string& name,
        "1.0,1.0,0.0,0.0,1.0,0.0,0.0,\n"
        "2.0,2.0,0.0,0.0,1.0,0.0,0.0,nan\n"},
   };
-  for (const auto& [file, text] : overrides) files[file] = text;
-  const std::string dir = FreshDirectory(name);
-  for (const auto& [file, text] : files) {
-    if (!text.empty()) WriteText(dir, file, text);
+  for (const auto& [file, text] : overrides) {
+    if (text.empty()) {
+      files.erase(file);
+    } else {
+      files[file] = text;
+    }
   }
+  return files;
+}
+
+// ValidLogFiles(overrides) written to a fresh directory `name`; returns its path.
+inline std::string WriteValidLog(const std::string& name,
+                                 const std::map<std::string, std::string>& overrides = {}) {
+  const std::string dir = FreshDirectory(name);
+  for (const auto& [file, text] : ValidLogFiles(overrides)) WriteText(dir, file, text);
   return dir;
 }
 

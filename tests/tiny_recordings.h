@@ -34,12 +34,17 @@ inline std::string WriteText(const std::string& directory, const std::string& na
   return path;
 }
 
+// A whole vehicle (every dimension vehicle.yaml requires of a diff_drive_castor).
 inline Vehicle TinyVehicle() {
   Vehicle v;
   v.name = "tiny";
   v.mass_kg = 50.0;
+  v.yaw_inertia_kgm2 = 2.0;
   v.wheel_radius_m = 0.1;
   v.track_width_m = 0.5;
+  v.cg_to_front_m = 0.2;
+  v.cg_to_rear_m = 0.2;
+  v.cg_height_m = 0.15;
   return v;
 }
 

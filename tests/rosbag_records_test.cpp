@@ -1,0 +1,94 @@
+// The ROS bag record check that runs before the rosbag library: bags written by rosbag pass, and
+// a length that claims more than its file, chunk or header holds is an error naming its byte.
+#include "io/rosbag_records.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+
+#include "io/input_error.h"
+#include "io/text_file.h"
+#include "tests/import_test_util.h"
+#include "tests/tiny_recordings.h"
+
+namespace slipgraph {
+namespace {
+
+using testing::ErrorOf;
+
+std::string Le32(uint32_t n) {
+  std::string bytes(4, '\0');
+  for (int i = 0; i < 4; ++i) bytes[i] = static_cast<char>((n >> (8 * i)) & 0xff);
+  return bytes;
+}
+
+std::string Field(const std::string& name, const std::string& value) {
+  return Le32(static_cast<uint32_t>(name.size() + 1 + value.size())) + name + "=" + value;
+}
+
+std::string Record(const std::string& header, const std::string& data) {
+  return Le32(static_cast<uint32_t>(header.size())) + header +
+         Le32(static_cast<uint32_t>(data.size())) + data;
+}
+
+// A bag header record, then a chunk holding one message record.
+std::string HandMadeBag(const std::string& compression, const std::string& chunk_data) {
+  return "#ROSBAG V2.0\n" + Record(Field("op", "\x03") + Field("conn_count", Le32(0)), "") +
+         Record(Field("op", "\x05") + Field("compression", compression) +
+                    Field("size", Le32(static_cast<uint32_t>(chunk_data.size()))),
+                chunk_data);
+}
+
+const std::string kMessage = Record(Field("op", "\x02") + Field("conn", Le32(0)), "abc");
+
+std::string Write(const std::string& name, const std::string& bytes) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+TEST(RosBagRecords, ABagRosbagWrotePasses) {
+  EXPECT_NO_THROW(CheckRosBagRecords(testing::WriteTinyBag(::testing::TempDir(), "records.bag")));
+  EXPECT_NO_THROW(CheckRosBagRecords(Write("hand_made.bag", HandMadeBag("none", kMessage))));
+}
+
+// The fuzzer's finding: a length the library allocated as read (2.3 GB for a 71 kB file).
+TEST(RosBagRecords, ALengthBeyondTheFileIsNamedWithItsByte) {
+  std::string bytes = HandMadeBag("none", kMessage);
+  bytes.replace(13, 4, Le32(0x8a000000u));
+  const std::string e = ErrorOf([&] { CheckRosBagRecords(Write("long_header.bag", bytes)); });
+  EXPECT_NE(e.find("long_header.bag"), std::string::npos) << e;
+  EXPECT_NE(e.find("record at byte 13 (in the file): header length 2315255808"), std::string::npos)
+      << e;
+}
+
+TEST(RosBagRecords, ABagCutShortIsNamed) {
+  const std::string bag = ReadTextFile(testing::WriteTinyBag(::testing::TempDir(), "whole.bag"));
+  const std::string e =
+      ErrorOf([&] { CheckRosBagRecords(Write("cut.bag", bag.substr(0, bag.size() / 2))); });
+  EXPECT_NE(e.find("cut short"), std::string::npos) << e;
+}
+
+TEST(RosBagRecords, AnUncompressedChunksRecordsAreChecked) {
+  const std::string inner = Le32(1000) + kMessage.substr(4);
+  const std::string e =
+      ErrorOf([&] { CheckRosBagRecords(Write("bad_chunk.bag", HandMadeBag("none", inner))); });
+  EXPECT_NE(e.find("in the chunk at byte"), std::string::npos) << e;
+  EXPECT_NE(e.find("header length 1000"), std::string::npos) << e;
+  // A compressed chunk's bytes are the decompressor's to judge.
+  EXPECT_NO_THROW(CheckRosBagRecords(Write("bz2_chunk.bag", HandMadeBag("bz2", inner))));
+}
+
+TEST(RosBagRecords, AHeaderFieldBeyondItsHeaderAndNotABagAreErrors) {
+  std::string bytes = HandMadeBag("none", kMessage);
+  bytes.replace(13 + 4, 4, Le32(200));  // the bag header's first field claims 200 bytes
+  std::string e = ErrorOf([&] { CheckRosBagRecords(Write("long_field.bag", bytes)); });
+  EXPECT_NE(e.find("in its header"), std::string::npos) << e;
+  e = ErrorOf([&] { CheckRosBagRecords(Write("not_a.bag", "#ROSBAG V1.2\nold")); });
+  EXPECT_NE(e.find("not a ROS bag of format 2.0"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace slipgraph
