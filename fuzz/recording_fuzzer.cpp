@@ -1,16 +1,88 @@
-// Fuzzes the importers on the recordings' own bytes: the first byte picks a MATLAB v7.3 file
-// (HDF5) or a ROS 1 bag, the rest is that file, imported with the tiny recordings' mapping
-// (tests/tiny_recordings.h). Import must give a log that reads back, or throw InputError. The bytes
-// are parsed by the HDF5 and rosbag libraries first, so a finding may be theirs: the importers must
-// still turn what those libraries report into an InputError naming the file.
+// Fuzzes the importers on recordings. The first byte picks:
+// - odd: a ROS 1 bag, the rest its bytes. CheckRosBagRecords and the rosbag library parse them;
+//   what passes is decoded message by message.
+// - even: a MATLAB v7.3 file whose content the rest chooses (FuzzedDataProvider): for each
+//   variable the tiny recording's mapping names, present or not, a dataset or a group, its number
+//   type, rank, dimensions and values (NaN, infinities and extremes among them), written with
+//   the HDF5 library. The HDF5 format's own bytes are not fuzzed here: Debian's HDF5 allocates
+//   what a corrupted file's metadata claims (terabytes, inside H5C_protect), a fault of that
+//   library that no caller can guard against.
+// Either way, import must give a log that reads back, or throw InputError.
+#include <fuzzer/FuzzedDataProvider.h>
+#include <hdf5.h>
+
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "fuzz/fuzz_util.h"
 #include "io/input_error.h"
 #include "io/matlab_import.h"
 #include "io/rosbag_import.h"
 #include "tests/tiny_recordings.h"
+
+namespace {
+
+const char* const kVariables[] = {"tTimu",
+                                  "Ax",
+                                  "Ay",
+                                  "Az",
+                                  "Gx",
+                                  "Gy",
+                                  "Gz",
+                                  "tTodom",
+                                  "frontLeftVel",
+                                  "rearLeftVel",
+                                  "frontRightVel",
+                                  "rearRightVel",
+                                  "tTGPS",
+                                  "ENUGPS"};
+
+double Value(FuzzedDataProvider& input) {
+  switch (input.ConsumeIntegralInRange(0, 7)) {
+    case 0:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 1:
+      return std::numeric_limits<double>::infinity();
+    case 2:
+      return -std::numeric_limits<double>::max();
+    case 3:
+      return 0.01 * input.ConsumeIntegralInRange(0, 400);  // a plausible clock
+    default:
+      return input.ConsumeFloatingPointInRange(-1e3, 1e3);
+  }
+}
+
+// A MATLAB file the input describes, at `path`.
+void WriteMatlab(FuzzedDataProvider& input, const std::string& path) {
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t types[] = {H5T_IEEE_F64LE, H5T_IEEE_F32LE, H5T_STD_I32LE, H5T_STD_U8LE,
+                         H5T_STD_I64LE};
+  for (const char* name : kVariables) {
+    const int kind = input.ConsumeIntegralInRange(0, 9);
+    if (kind == 0) continue;  // absent
+    if (kind == 1) {          // a group (a MATLAB struct), not a dataset
+      H5Gclose(H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+      continue;
+    }
+    const int rank = input.ConsumeIntegralInRange(1, 3);
+    std::vector<hsize_t> dims(rank);
+    hsize_t count = 1;
+    for (hsize_t& d : dims) count *= (d = input.ConsumeIntegralInRange<hsize_t>(0, 40));
+    std::vector<double> values(count);
+    for (double& v : values) v = Value(input);
+    const hid_t space = H5Screate_simple(rank, dims.data(), nullptr);
+    const hid_t set = H5Dcreate2(file, name, types[input.ConsumeIntegralInRange(0, 4)], space,
+                                 H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (count > 0) H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    H5Dclose(set);
+    H5Sclose(space);
+  }
+  H5Fclose(file);
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
@@ -21,7 +93,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       slipgraph::testing::WriteText(dir, "bag_mapping.yaml", slipgraph::testing::kBagMapping);
   const bool bag = (data[0] & 1) != 0;
   const std::string recording = dir + (bag ? "/recording.bag" : "/recording.mat");
-  slipgraph::fuzz::WriteFile(recording, data + 1, size - 1);
+  if (bag) {
+    slipgraph::fuzz::WriteFile(recording, data + 1, size - 1);
+  } else {
+    FuzzedDataProvider input(data + 1, size - 1);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    WriteMatlab(input, recording);
+  }
   slipgraph::ImportReport report;
   slipgraph::DriveLog log;
   try {

@@ -1,8 +1,9 @@
 #include "io/rosbag_records.h"
 
 #include <cstdint>
-#include <cstring>
 #include <fstream>
+#include <map>
+#include <set>
 #include <string>
 
 #include "io/input_error.h"
@@ -11,6 +12,43 @@ namespace slipgraph {
 namespace {
 
 constexpr char kVersionLine[] = "#ROSBAG V2.0\n";
+
+// Record kinds (the header's "op" field).
+constexpr char kMessageData = 0x02, kBagHeader = 0x03, kIndexData = 0x04, kChunk = 0x05,
+               kChunkInfo = 0x06;
+
+// Little-endian unsigned integer of `bytes` (at most 8).
+uint64_t LittleEndian(const std::string& bytes, size_t at = 0, size_t size = 0) {
+  if (size == 0) size = bytes.size() - at;
+  uint64_t value = 0;
+  for (size_t i = size; i-- > 0;) value = (value << 8) | static_cast<uint8_t>(bytes[at + i]);
+  return value;
+}
+
+// The byte size of the header fields that hold numbers; "op" is one byte.
+const std::map<std::string, size_t>& FieldSizes() {
+  static const std::map<std::string, size_t> sizes = {
+      {"op", 1},        {"index_pos", 8}, {"conn_count", 4}, {"chunk_count", 4},
+      {"size", 4},      {"ver", 4},       {"conn", 4},       {"count", 4},
+      {"chunk_pos", 8}, {"time", 8},      {"start_time", 8}, {"end_time", 8}};
+  return sizes;
+}
+
+struct Record {
+  uint64_t at = 0;  // the byte of its header length
+  std::map<std::string, std::string> fields;
+  uint64_t data_at = 0, data_size = 0;
+  char op() const {
+    const auto op = fields.find("op");
+    return op == fields.end() ? 0 : op->second[0];
+  }
+};
+
+struct Chunk {
+  uint64_t size = 0;                 // uncompressed
+  bool compressed = false;           // its records are the decompressor's to judge
+  std::set<uint64_t> record_starts;  // within the uncompressed data, when not compressed
+};
 
 class RecordWalker {
  public:
@@ -25,69 +63,145 @@ class RecordWalker {
     if (size_ < version_size || Read(0, version_size) != kVersionLine) {
       throw InputError(path_, 0, "", "", "not a ROS bag of format 2.0 (no '#ROSBAG V2.0' line)");
     }
-    WalkRecords(version_size, size_, "in the file");
+    std::set<uint64_t> record_starts;
+    std::map<uint64_t, Chunk> chunks;  // by position
+    const Chunk* last_chunk = nullptr;
+    uint64_t index_pos = 0;
+    bool has_header = false;
+    for (uint64_t at = version_size; at < size_;) {
+      const Record record = ReadRecord(at, size_, "in the file");
+      record_starts.insert(at);
+      switch (record.op()) {
+        case kBagHeader:
+          index_pos = Number(record, "index_pos");
+          has_header = true;
+          break;
+        case kChunk:
+          last_chunk = &(chunks[at] = ReadChunk(record));
+          break;
+        case kIndexData:
+          CheckIndexData(record, last_chunk);
+          break;
+        case kChunkInfo:
+          CheckCount(record, 8);
+          break;
+        default:
+          break;
+      }
+      at = record.data_at + record.data_size;
+    }
+    if (!has_header) Fail(version_size, "in the file", "no bag header record");
+    // rosbag seeks to the index and to each chunk its chunk infos name.
+    if (index_pos != size_ && record_starts.count(index_pos) == 0) {
+      Fail(version_size, "the bag header",
+           "index_pos " + std::to_string(index_pos) + " is not the start of a record");
+    }
+    for (uint64_t at = version_size; at < size_;) {
+      const Record record = ReadRecord(at, size_, "in the file");
+      if (record.op() == kChunkInfo && chunks.count(Number(record, "chunk_pos")) == 0) {
+        Fail(at, "a chunk info",
+             "chunk_pos " + std::to_string(Number(record, "chunk_pos")) + " is not a chunk");
+      }
+      at = record.data_at + record.data_size;
+    }
   }
 
  private:
-  // The records from `begin` to `end` of the file; `where` says in what, for errors.
-  void WalkRecords(uint64_t begin, uint64_t end, const std::string& where) {
-    uint64_t at = begin;
-    while (at < end) {
-      const uint64_t header_size = Length(at, end, where, "header length");
-      const std::string header = Read(at + 4, header_size);
-      const uint64_t data_at = at + 4 + header_size + 4;
-      const uint64_t data_size = Length(at + 4 + header_size, end, where, "data length");
-      const std::string compression = CheckFields(header, at);
-      if (Field(header, "op") == std::string(1, '\x05') && compression == "none") {
-        WalkRecords(data_at, data_at + data_size, "in the chunk at byte " + std::to_string(at));
+  // The record whose header length is at `at`, within `end`; its fields checked.
+  Record ReadRecord(uint64_t at, uint64_t end, const std::string& where) {
+    Record record;
+    record.at = at;
+    const uint64_t header_size = Length(at, end, where, "header length");
+    const std::string header = Read(at + 4, header_size);
+    record.data_size = Length(at + 4 + header_size, end, where, "data length");
+    record.data_at = at + 4 + header_size + 4;
+    for (size_t f = 0; f < header.size();) {
+      if (f + 4 > header.size()) Fail(at, "in its header", "a field length beyond its end");
+      const uint64_t length = LittleEndian(header, f, 4);
+      if (f + 4 + length > header.size()) {
+        Fail(at, "in its header", "a field of " + std::to_string(length) + " bytes");
       }
-      at = data_at + data_size;
+      const std::string field = header.substr(f + 4, length);
+      const size_t equals = field.find('=');
+      if (equals == std::string::npos) Fail(at, "in its header", "a field without '='");
+      const std::string name = field.substr(0, equals), value = field.substr(equals + 1);
+      const auto size = FieldSizes().find(name);
+      if (size != FieldSizes().end() && value.size() != size->second) {
+        Fail(at, "in its header",
+             "field '" + name + "' of " + std::to_string(value.size()) + " bytes, not " +
+                 std::to_string(size->second));
+      }
+      record.fields[name] = value;
+      f += 4 + length;
     }
+    if (record.fields.count("op") == 0) Fail(at, where, "a record without 'op'");
+    return record;
+  }
+
+  Chunk ReadChunk(const Record& record) {
+    Chunk chunk;
+    chunk.size = Number(record, "size");
+    const auto compression = record.fields.find("compression");
+    chunk.compressed = compression == record.fields.end() || compression->second != "none";
+    if (chunk.compressed) return chunk;
+    if (chunk.size != record.data_size) {
+      Fail(record.at, "an uncompressed chunk",
+           "size " + std::to_string(chunk.size) + " where it holds " +
+               std::to_string(record.data_size) + " bytes");
+    }
+    const std::string where = "in the chunk at byte " + std::to_string(record.at);
+    const uint64_t end = record.data_at + record.data_size;
+    for (uint64_t at = record.data_at; at < end;) {
+      const Record inner = ReadRecord(at, end, where);
+      if (inner.op() == kMessageData) chunk.record_starts.insert(at - record.data_at);
+      at = inner.data_at + inner.data_size;
+    }
+    return chunk;
+  }
+
+  // An index of the chunk before it: (time, offset) per message, each offset a message's record.
+  void CheckIndexData(const Record& record, const Chunk* chunk) {
+    if (chunk == nullptr) Fail(record.at, "in the file", "an index before any chunk");
+    const uint64_t count = CheckCount(record, 12);
+    const std::string entries = Read(record.data_at, record.data_size);
+    for (uint64_t i = 0; i < count; ++i) {
+      const uint64_t offset = LittleEndian(entries, 12 * i + 8, 4);
+      const bool fits =
+          chunk->compressed ? offset < chunk->size : chunk->record_starts.count(offset) > 0;
+      if (!fits) {
+        Fail(record.at, "an index",
+             "message offset " + std::to_string(offset) + " is not a message of its chunk");
+      }
+    }
+  }
+
+  // The record's "count" field, checked against its data of `entry_size` bytes an entry.
+  uint64_t CheckCount(const Record& record, uint64_t entry_size) {
+    const uint64_t count = Number(record, "count");
+    if (count * entry_size != record.data_size) {
+      Fail(record.at, "in its header",
+           "count " + std::to_string(count) + " for " + std::to_string(record.data_size) +
+               " bytes of entries");
+    }
+    return count;
+  }
+
+  uint64_t Number(const Record& record, const std::string& name) {
+    const auto field = record.fields.find(name);
+    if (field == record.fields.end()) Fail(record.at, "in its header", "no field '" + name + "'");
+    return LittleEndian(field->second);
   }
 
   // A 4-byte length at `at` and the bytes it claims after it, within `end`.
   uint64_t Length(uint64_t at, uint64_t end, const std::string& where, const std::string& what) {
     if (at + 4 > end) Fail(at, where, what + " beyond its end");
-    const std::string bytes = Read(at, 4);
-    uint32_t length = 0;
-    for (int i = 3; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(bytes[i]);
+    const uint64_t length = LittleEndian(Read(at, 4));
     if (at + 4 + length > end) {
       Fail(at, where,
            what + " " + std::to_string(length) + " reaches beyond its end (" +
                std::to_string(end - at - 4) + " bytes left)");
     }
     return length;
-  }
-
-  // Checks that the header's fields fit in it; returns its compression field ("" when none).
-  std::string CheckFields(const std::string& header, uint64_t record_at) {
-    size_t at = 0;
-    while (at < header.size()) {
-      if (at + 4 > header.size()) Fail(record_at, "in its header", "a field length beyond its end");
-      uint32_t length = 0;
-      for (int i = 3; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(header[at + i]);
-      if (at + 4 + length > header.size()) {
-        Fail(record_at, "in its header", "a field of " + std::to_string(length) + " bytes");
-      }
-      if (header.substr(at + 4, length).find('=') == std::string::npos) {
-        Fail(record_at, "in its header", "a field without '='");
-      }
-      at += 4 + length;
-    }
-    return Field(header, "compression");
-  }
-
-  // The value of the header field `name`, "" when it has none (the fields fit: CheckFields).
-  static std::string Field(const std::string& header, const std::string& name) {
-    size_t at = 0;
-    while (at + 4 <= header.size()) {
-      uint32_t length = 0;
-      for (int i = 3; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(header[at + i]);
-      const std::string field = header.substr(at + 4, length);
-      if (field.compare(0, name.size() + 1, name + "=") == 0) return field.substr(name.size() + 1);
-      at += 4 + length;
-    }
-    return "";
   }
 
   std::string Read(uint64_t at, uint64_t size) {

@@ -24,6 +24,8 @@ std::string Le32(uint32_t n) {
   return bytes;
 }
 
+std::string Le64(uint64_t n) { return Le32(n & 0xffffffffu) + Le32(n >> 32); }
+
 std::string Field(const std::string& name, const std::string& value) {
   return Le32(static_cast<uint32_t>(name.size() + 1 + value.size())) + name + "=" + value;
 }
@@ -33,12 +35,40 @@ std::string Record(const std::string& header, const std::string& data) {
          Le32(static_cast<uint32_t>(data.size())) + data;
 }
 
-// A bag header record, then a chunk holding one message record.
-std::string HandMadeBag(const std::string& compression, const std::string& chunk_data) {
-  return "#ROSBAG V2.0\n" + Record(Field("op", "\x03") + Field("conn_count", Le32(0)), "") +
-         Record(Field("op", "\x05") + Field("compression", compression) +
-                    Field("size", Le32(static_cast<uint32_t>(chunk_data.size()))),
-                chunk_data);
+constexpr uint64_t kFirstRecord = 13;  // after "#ROSBAG V2.0\n"
+
+std::string BagHeader(uint64_t index_pos) {
+  return Record(Field("op", "\x03") + Field("index_pos", Le64(index_pos)) +
+                    Field("conn_count", Le32(0)) + Field("chunk_count", Le32(1)),
+                "");
+}
+
+// A bag header record, a chunk holding `chunk_data`, then `after` (its index, chunk infos); the
+// header's index_pos is the end of the file, or `index_pos` when given.
+std::string HandMadeBag(const std::string& compression, const std::string& chunk_data,
+                        const std::string& after = "", uint64_t index_pos = 0) {
+  const std::string chunk =
+      Record(Field("op", "\x05") + Field("compression", compression) +
+                 Field("size", Le32(static_cast<uint32_t>(chunk_data.size()))),
+             chunk_data);
+  const uint64_t end = kFirstRecord + BagHeader(0).size() + chunk.size() + after.size();
+  return "#ROSBAG V2.0\n" + BagHeader(index_pos ? index_pos : end) + chunk + after;
+}
+
+uint64_t ChunkAt() { return kFirstRecord + BagHeader(0).size(); }
+
+// The index of the chunk before it: one message at `offset` of the chunk's data.
+std::string IndexData(uint32_t offset) {
+  return Record(Field("op", "\x04") + Field("ver", Le32(1)) + Field("conn", Le32(0)) +
+                    Field("count", Le32(1)),
+                Le64(7) + Le32(offset));
+}
+
+std::string ChunkInfo(uint64_t chunk_pos) {
+  return Record(Field("op", "\x06") + Field("ver", Le32(1)) + Field("chunk_pos", Le64(chunk_pos)) +
+                    Field("start_time", Le64(0)) + Field("end_time", Le64(0)) +
+                    Field("count", Le32(0)),
+                "");
 }
 
 const std::string kMessage = Record(Field("op", "\x02") + Field("conn", Le32(0)), "abc");
@@ -52,12 +82,31 @@ std::string Write(const std::string& name, const std::string& bytes) {
 TEST(RosBagRecords, ABagRosbagWrotePasses) {
   EXPECT_NO_THROW(CheckRosBagRecords(testing::WriteTinyBag(::testing::TempDir(), "records.bag")));
   EXPECT_NO_THROW(CheckRosBagRecords(Write("hand_made.bag", HandMadeBag("none", kMessage))));
+  EXPECT_NO_THROW(CheckRosBagRecords(
+      Write("indexed.bag", HandMadeBag("none", kMessage, IndexData(0) + ChunkInfo(ChunkAt())))));
+}
+
+// rosbag reads a message where the index says, and a chunk where a chunk info says: a corrupted
+// offset read past its buffer (a segmentation fault in rosbag::Bag::readHeaderFromBuffer).
+TEST(RosBagRecords, AnIndexThatPointsOffARecordIsAnError) {
+  std::string e = ErrorOf([&] {
+    CheckRosBagRecords(Write("bad_offset.bag", HandMadeBag("none", kMessage, IndexData(5))));
+  });
+  EXPECT_NE(e.find("message offset 5 is not a message of its chunk"), std::string::npos) << e;
+  e = ErrorOf([&] {
+    CheckRosBagRecords(Write("bad_chunk_pos.bag", HandMadeBag("none", kMessage, ChunkInfo(20))));
+  });
+  EXPECT_NE(e.find("chunk_pos 20 is not a chunk"), std::string::npos) << e;
+  e = ErrorOf([&] {
+    CheckRosBagRecords(Write("bad_index_pos.bag", HandMadeBag("none", kMessage, "", 14)));
+  });
+  EXPECT_NE(e.find("index_pos 14 is not the start of a record"), std::string::npos) << e;
 }
 
 // The fuzzer's finding: a length the library allocated as read (2.3 GB for a 71 kB file).
 TEST(RosBagRecords, ALengthBeyondTheFileIsNamedWithItsByte) {
   std::string bytes = HandMadeBag("none", kMessage);
-  bytes.replace(13, 4, Le32(0x8a000000u));
+  bytes.replace(kFirstRecord, 4, Le32(0x8a000000u));
   const std::string e = ErrorOf([&] { CheckRosBagRecords(Write("long_header.bag", bytes)); });
   EXPECT_NE(e.find("long_header.bag"), std::string::npos) << e;
   EXPECT_NE(e.find("record at byte 13 (in the file): header length 2315255808"), std::string::npos)
@@ -83,7 +132,7 @@ TEST(RosBagRecords, AnUncompressedChunksRecordsAreChecked) {
 
 TEST(RosBagRecords, AHeaderFieldBeyondItsHeaderAndNotABagAreErrors) {
   std::string bytes = HandMadeBag("none", kMessage);
-  bytes.replace(13 + 4, 4, Le32(200));  // the bag header's first field claims 200 bytes
+  bytes.replace(kFirstRecord + 4, 4, Le32(200));  // the bag header's first field claims 200 bytes
   std::string e = ErrorOf([&] { CheckRosBagRecords(Write("long_field.bag", bytes)); });
   EXPECT_NE(e.find("in its header"), std::string::npos) << e;
   e = ErrorOf([&] { CheckRosBagRecords(Write("not_a.bag", "#ROSBAG V1.2\nold")); });
