@@ -15,7 +15,7 @@ constexpr char kVersionLine[] = "#ROSBAG V2.0\n";
 
 // Record kinds (the header's "op" field).
 constexpr char kMessageData = 0x02, kBagHeader = 0x03, kIndexData = 0x04, kChunk = 0x05,
-               kChunkInfo = 0x06;
+               kChunkInfo = 0x06, kConnection = 0x07;
 
 // Little-endian unsigned integer of `bytes` (at most 8).
 uint64_t LittleEndian(const std::string& bytes, size_t at = 0, size_t size = 0) {
@@ -115,27 +115,40 @@ class RecordWalker {
     const std::string header = Read(at + 4, header_size);
     record.data_size = Length(at + 4 + header_size, end, where, "data length");
     record.data_at = at + 4 + header_size + 4;
-    for (size_t f = 0; f < header.size();) {
-      if (f + 4 > header.size()) Fail(at, "in its header", "a field length beyond its end");
-      const uint64_t length = LittleEndian(header, f, 4);
-      if (f + 4 + length > header.size()) {
-        Fail(at, "in its header", "a field of " + std::to_string(length) + " bytes");
-      }
-      const std::string field = header.substr(f + 4, length);
-      const size_t equals = field.find('=');
-      if (equals == std::string::npos) Fail(at, "in its header", "a field without '='");
-      const std::string name = field.substr(0, equals), value = field.substr(equals + 1);
-      const auto size = FieldSizes().find(name);
-      if (size != FieldSizes().end() && value.size() != size->second) {
-        Fail(at, "in its header",
-             "field '" + name + "' of " + std::to_string(value.size()) + " bytes, not " +
-                 std::to_string(size->second));
-      }
-      record.fields[name] = value;
-      f += 4 + length;
+    record.fields = Fields(header, at, "in its header");
+    // A connection record's data is a header too (topic, type, md5sum, definition).
+    if (record.op() == kConnection) {
+      Fields(Read(record.data_at, record.data_size), at, "in its data");
     }
     if (record.fields.count("op") == 0) Fail(at, where, "a record without 'op'");
     return record;
+  }
+
+  // The "name=value" fields of `bytes`, each behind its 4-byte length, all within `bytes`; the
+  // numeric fields of their size.
+  std::map<std::string, std::string> Fields(const std::string& bytes, uint64_t at,
+                                            const std::string& where) {
+    std::map<std::string, std::string> fields;
+    for (size_t f = 0; f < bytes.size();) {
+      if (f + 4 > bytes.size()) Fail(at, where, "a field length beyond its end");
+      const uint64_t length = LittleEndian(bytes, f, 4);
+      if (f + 4 + length > bytes.size()) {
+        Fail(at, where, "a field of " + std::to_string(length) + " bytes");
+      }
+      const std::string field = bytes.substr(f + 4, length);
+      const size_t equals = field.find('=');
+      if (equals == std::string::npos) Fail(at, where, "a field without '='");
+      const std::string name = field.substr(0, equals), value = field.substr(equals + 1);
+      const auto size = FieldSizes().find(name);
+      if (size != FieldSizes().end() && value.size() != size->second) {
+        Fail(at, where,
+             "field '" + name + "' of " + std::to_string(value.size()) + " bytes, not " +
+                 std::to_string(size->second));
+      }
+      fields[name] = value;
+      f += 4 + length;
+    }
+    return fields;
   }
 
   Chunk ReadChunk(const Record& record) {

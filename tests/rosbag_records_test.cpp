@@ -130,6 +130,22 @@ TEST(RosBagRecords, AnUncompressedChunksRecordsAreChecked) {
   EXPECT_NO_THROW(CheckRosBagRecords(Write("bz2_chunk.bag", HandMadeBag("bz2", inner))));
 }
 
+// A connection record's data is parsed as a header: a field running past it read past rosbag's
+// buffer (a heap overflow in ros::Header::parse).
+TEST(RosBagRecords, AConnectionsDataIsCheckedAsAHeader) {
+  const std::string fields = Field("topic", "/imu") + Field("type", "sensor_msgs/Imu");
+  const auto connection = [&](const std::string& data) {
+    return Record(Field("op", "\x07") + Field("conn", Le32(0)) + Field("topic", "/imu"), data);
+  };
+  EXPECT_NO_THROW(CheckRosBagRecords(
+      Write("connection.bag", HandMadeBag("none", connection(fields) + kMessage))));
+  const std::string e = ErrorOf([&] {
+    CheckRosBagRecords(Write("bad_connection.bag",
+                             HandMadeBag("none", connection(Le32(500) + fields) + kMessage)));
+  });
+  EXPECT_NE(e.find("in its data"), std::string::npos) << e;
+}
+
 TEST(RosBagRecords, AHeaderFieldBeyondItsHeaderAndNotABagAreErrors) {
   std::string bytes = HandMadeBag("none", kMessage);
   bytes.replace(kFirstRecord + 4, 4, Le32(200));  // the bag header's first field claims 200 bytes
