@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "io/estimate_file.h"
+#include "io/text_file.h"
 
 namespace slipgraph {
 namespace {
@@ -277,6 +279,23 @@ INSTANTIATE_TEST_SUITE_P(
                    });
                  },
                  0, "imu: every channel frozen at one value for 4.990 s from t=5.000"},
+        // A recorder that writes six decimals stopped inside the IMU's last number: "0.0037"
+        // read as a whole sample.
+        LogFault{"imu_cut_in_a_number",
+                 [](const std::string& log) {
+                   EditRows(log + "/imu.csv", [](auto* row) {
+                     for (auto& [column, cell] : *row) {
+                       char fixed[32];
+                       std::snprintf(fixed, sizeof(fixed), "%.6f", std::stod(cell));
+                       cell = fixed;
+                     }
+                     return true;
+                   });
+                   std::string text = ReadTextFile(log + "/imu.csv");
+                   text.resize(text.size() - 4);  // the line end and three digits
+                   std::ofstream(log + "/imu.csv", std::ios::binary) << text;
+                 },
+                 2, "this number has fewer digits than the rows before: cut short?"},
         // Encoders stuck at 0 while the robot drives (GNSS 1 m/s).
         LogFault{"wheels_stuck",
                  [](const std::string& log) {
