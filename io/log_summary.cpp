@@ -142,7 +142,7 @@ LogSummary SummarizeLog(const DriveLog& log) {
   AddStream("commands", log.commands, log.Has("commands.csv"), &summary);
   AddStream("truth", log.truth, log.Has("truth.csv"), &summary);
 
-  summary.problems = log.warnings;
+  summary.reader_warnings = log.warnings;
   bool first = true;
   for (const StreamSummary& s : summary.streams) {
     if (s.samples == 0) {
@@ -191,10 +191,7 @@ std::vector<std::string> CheckLogForEstimation(const DriveLog& log) {
                          Seconds(wheels_last) +
                          ") share no time: are they stamped on different clocks?");
   }
-  LogSummary summary = SummarizeLog(log);
-  summary.problems.erase(summary.problems.begin(),
-                         summary.problems.begin() + static_cast<long>(log.warnings.size()));
-  return summary.problems;
+  return SummarizeLog(log).problems;
 }
 
 void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostream& out) {
@@ -221,11 +218,14 @@ void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostrea
     if (!log.Has(optional)) out << "  (no " << optional << ")\n";
   }
   if (!log.events.empty()) out << "events:   " << log.events.size() << " labelled intervals\n";
-  if (summary.problems.empty()) {
+  const size_t count = summary.reader_warnings.size() + summary.problems.size();
+  if (count == 0) {
     out << "problems: none found\n";
   } else {
-    out << "problems: " << summary.problems.size() << "\n";
-    for (const std::string& problem : summary.problems) out << "  - " << problem << "\n";
+    out << "problems: " << count << "\n";
+    for (const auto* list : {&summary.reader_warnings, &summary.problems}) {
+      for (const std::string& problem : *list) out << "  - " << problem << "\n";
+    }
   }
 }
 

@@ -24,16 +24,17 @@ struct LogSummary {
   std::vector<StreamSummary> streams;  // present streams only
   double t_start_s = 0.0;
   double t_end_s = 0.0;
-  std::vector<std::string> problems;
+  std::vector<std::string> reader_warnings;  // the log reader's (DriveLog::warnings)
+  std::vector<std::string> problems;         // found in the data: gaps, frozen sensors, ...
 };
 
 LogSummary SummarizeLog(const DriveLog& log);
 
 // What every estimator checks before it runs. Throws InputError naming the log where estimates
 // would mean nothing: no IMU or no wheel rows, or IMU and wheels that share no time (two time
-// bases). Returns the problems SummarizeLog finds beyond the reader's own warnings (gaps,
-// streams covering different times, frozen or stuck sensors, implausible values), one line each,
-// for the caller to show as warnings.
+// bases). Returns the problems SummarizeLog finds in the data (gaps, streams covering different
+// times, frozen or stuck sensors, implausible values), one line each, for the caller to show as
+// warnings beside the reader's own.
 std::vector<std::string> CheckLogForEstimation(const DriveLog& log);
 void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostream& out);
 

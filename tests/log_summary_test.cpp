@@ -100,6 +100,23 @@ TEST(LogSummary, AWheelStuckWhileGnssMovesIsNamed) {
   EXPECT_FALSE(Mentions(SummarizeLog(standing).problems, "stuck encoder"));
 }
 
+// The reader's warnings are kept apart from what the summary finds: `info` lists both, an
+// estimator shows its reader's warnings once and the summary's findings beside them.
+TEST(LogSummary, ReaderWarningsAreKeptApartFromWhatTheDataShows) {
+  DriveLog log = SteadyLog();
+  log.warnings = {"imu.csv:7: column 'ax': value 'x': not a number (row skipped: --skip-bad)"};
+  const LogSummary s = SummarizeLog(log);
+  EXPECT_EQ(s.reader_warnings, log.warnings);
+  ASSERT_EQ(s.problems.size(), 1u);
+  EXPECT_NE(s.problems[0].find("imu: gap"), std::string::npos);
+  const std::vector<std::string> found = CheckLogForEstimation(log);
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0], s.problems[0]);
+  std::ostringstream out;
+  PrintLogSummary(log, s, out);
+  EXPECT_NE(out.str().find("problems: 2\n  - imu.csv:7"), std::string::npos) << out.str();
+}
+
 TEST(LogSummary, EstimationNeedsImuAndWheelsOnOneClock) {
   DriveLog log = SteadyLog();
   EXPECT_TRUE(CheckLogForEstimation(log)[0].find("imu: gap") != std::string::npos);
