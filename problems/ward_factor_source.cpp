@@ -26,6 +26,7 @@
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
+#include "io/nearest_time.h"
 
 namespace slipgraph {
 
@@ -48,15 +49,6 @@ constexpr double kStampToleranceS = 1e-9;
 // A body-velocity measurement with a value and a positive sd (others are left out).
 bool Usable(const BodyVelocityMeasurement& m) { return std::isfinite(m.v_mps) && m.sd_mps > 0.0; }
 
-// Index of the state nearest in time to t (ties go to the earlier state).
-size_t NearestState(const std::vector<double>& times, double t) {
-  const auto it = std::lower_bound(times.begin(), times.end(), t);
-  if (it == times.begin()) return 0;
-  if (it == times.end()) return times.size() - 1;
-  const size_t after = static_cast<size_t>(it - times.begin());
-  return (t - times[after - 1] <= times[after] - t) ? after - 1 : after;
-}
-
 // For samples sorted by time: begin[k] = first sample attached to state k (nearest to it, and
 // within half a second of the state range), begin[n] = one past the last attached sample.
 template <typename Samples>
@@ -67,7 +59,7 @@ std::vector<size_t> AttachToStates(const Samples& samples, const std::vector<dou
   size_t i = 0;
   while (i < samples.size() && samples[i].t < times.front() - 0.5) ++i;
   for (; i < samples.size() && samples[i].t <= times.back() + 0.5; ++i) {
-    const size_t nearest = NearestState(times, samples[i].t);
+    const size_t nearest = NearestInTime(times, samples[i].t, [](double time) { return time; });
     while (k <= nearest) begin[k++] = i;
   }
   while (k <= n) begin[k++] = i;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "io/measurement_stream.h"
+#include "io/nearest_time.h"
 
 namespace slipgraph {
 
@@ -128,15 +129,13 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
   // The GNSS fixes' z and the estimate each is compared with.
   std::vector<double> z;
   std::vector<size_t> at;
-  size_t k = 0;
   for (const GpsSample& fix : log.gps) {
     if (!std::isfinite(fix.vx) || !std::isfinite(fix.vy) || fix.t < estimates.front().t ||
         fix.t > estimates.back().t) {
       continue;
     }
-    while (k + 1 < estimates.size() && estimates[k + 1].t <= fix.t) ++k;
     const size_t nearest =
-        k + 1 < estimates.size() && estimates[k + 1].t - fix.t < fix.t - estimates[k].t ? k + 1 : k;
+        NearestInTime(estimates, fix.t, [](const WardEstimate& e) { return e.t; });
     const WardEstimate& e = estimates[nearest];
     const double sd_gnss_mps = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
     const double v_mps = e.x[ward::kVbx], sd_v_mps = e.sd[ward::kVbx];
