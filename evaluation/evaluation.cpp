@@ -4,11 +4,20 @@
 #include <cmath>
 #include <iomanip>
 #include <ostream>
+#include <stdexcept>
 
 #include "io/csv_writer.h"
 #include "io/input_error.h"
+#include "model/option_check.h"
 
 namespace slipgraph {
+
+bool EvaluationOptions::IsValid(std::string* error) const {
+  return OptionCheck("EvaluationOptions", error)
+      .NonNegative("detection_early_s", detection_early_s)
+      .NonNegative("false_grace_before_s", false_grace_before_s)
+      .NonNegative("false_grace_after_s", false_grace_after_s);
+}
 namespace {
 
 constexpr double kChiSquare95OneDof = 3.841;
@@ -71,6 +80,8 @@ double Evaluation::false_immobilized_fraction() const {
 
 Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
                     const EvaluationOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   if (log.truth.empty()) {
     throw InputError(log.directory + "/truth.csv", 0, "", "", "evaluation needs truth.csv");
   }

@@ -22,6 +22,8 @@ struct EvaluationOptions {
   // a moment to fall after the wheels stop or the robot is released.
   double false_grace_before_s = 1.0;
   double false_grace_after_s = 0.5;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 struct EventScore {

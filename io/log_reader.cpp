@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "io/csv_reader.h"
@@ -11,8 +12,13 @@
 #include "io/input_error.h"
 #include "io/text_file.h"
 #include "io/yaml_config.h"
+#include "model/option_check.h"
 
 namespace slipgraph {
+
+bool ReadOptions::IsValid(std::string* error) const {
+  return OptionCheck("ReadOptions", error).Within("max_bad_fraction", max_bad_fraction, 0.0, 1.0);
+}
 namespace {
 
 namespace fs = std::filesystem;
@@ -168,6 +174,8 @@ DriveLog ReadDriveLog(const std::string& directory, const ReadOptions& options) 
 }
 
 DriveLog ReadDriveLog(const LogFiles& files, const ReadOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   DriveLog log;
   const std::string& directory = files.directory;
   log.directory = directory;

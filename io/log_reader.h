@@ -20,6 +20,8 @@ struct ReadOptions {
   // InputError quoting the first: the file is not what the format says, and dropping the rest
   // (every row after a forward time typo, say) would lose what was good.
   double max_bad_fraction = 0.01;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 // Where a log's files come from: a directory, or texts held in memory (a test, a fuzzer, a

@@ -27,8 +27,31 @@
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
 #include "io/nearest_time.h"
+#include "model/option_check.h"
 
 namespace slipgraph {
+
+bool WardProblemOptions::IsValid(std::string* error) const {
+  return OptionCheck("WardProblemOptions", error)
+      .Positive("gnss_gate_chi2", gnss_gate_chi2)
+      .NonNegative("gnss_max_consecutive_rejections", gnss_max_consecutive_rejections)
+      .Positive("wheel_still_radps", wheel_still_radps)
+      .Positive("disturbance_huber_sigmas", disturbance_huber_sigmas)
+      .Positive("decay_cauchy_sigmas", decay_cauchy_sigmas)
+      .Positive("decay_sd_density", decay_sd_density)
+      .Require("tire_law_correlation_time_s",
+               std::isnan(tire_law_correlation_time_s) || tire_law_correlation_time_s >= 0.0,
+               tire_law_correlation_time_s, "must be non-negative (NaN: the model's)")
+      .Require("omega_walk_radps2_per_sqrt_hz",
+               std::isnan(omega_walk_radps2_per_sqrt_hz) || omega_walk_radps2_per_sqrt_hz > 0.0,
+               omega_walk_radps2_per_sqrt_hz, "must be positive (NaN: the model's)")
+      .NonNegative("omega_walk_huber_sigmas", omega_walk_huber_sigmas)
+      .NonNegative("stiffness_prior_sd", stiffness_prior_sd)
+      .Positive("stiffness_node_s", stiffness_node_s)
+      .NonNegative("stiffness_walk_sd", stiffness_walk_sd)
+      .Require("stiffness_min", stiffness_min > -1.0 && stiffness_min <= 0.0, stiffness_min,
+               "must lie in (-1, 0] (the law's scale 1 + theta stays positive)");
+}
 
 using namespace ward;  // NOLINT: state indices
 
@@ -91,6 +114,8 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
       options_(options),
       params_(MakeParams(log.vehicle, model)),
       tire_uncertainty_(model.tire_uncertainty) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   for (const std::string& name : model.effects) {
     const ForceTerm* term = FindForceTerm(name);
     if (term != nullptr &&

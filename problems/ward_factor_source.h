@@ -119,6 +119,8 @@ struct WardProblemOptions {
   // bank then holds the law the bank's estimate came from. The stiffness walk and the law
   // blocks scale or replace it as they do the model's.
   std::vector<LawSample> law_per_state;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 // A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).

@@ -8,20 +8,20 @@
 
 #include "factors/force_term.h"
 #include "factors/model_effects.h"
+#include "model/option_check.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
 
 bool BatchSmootherOptions::IsValid(std::string* error) const {
-  if (max_iterations < 1 || threads < 1 || !(function_tolerance > 0.0) ||
-      !(initial_trust_region_radius > 0.0) || !(min_immobilized_s >= 0.0)) {
-    *error =
-        "BatchSmootherOptions: max_iterations, threads, function_tolerance and "
-        "initial_trust_region_radius must be positive, min_immobilized_s non-negative";
-    return false;
-  }
-  return true;
+  return OptionCheck("BatchSmootherOptions", error)
+             .AtLeast("max_iterations", max_iterations, 1)
+             .Positive("function_tolerance", function_tolerance)
+             .AtLeast("threads", threads, 1)
+             .Positive("initial_trust_region_radius", initial_trust_region_radius)
+             .NonNegative("min_immobilized_s", min_immobilized_s) &&
+         filter.IsValid(error) && problem.IsValid(error);
 }
 
 WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter) {

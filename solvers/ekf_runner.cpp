@@ -9,6 +9,10 @@
 
 namespace slipgraph {
 
+bool FilterRunOptions::IsValid(std::string* error) const {
+  return ekf.IsValid(error) && (!multiple_model || multiple_model_options.IsValid(error));
+}
+
 namespace {
 
 // The streams merged in time order into any filter with the WardEkf interface.
@@ -55,6 +59,8 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
 
 FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
                     const FilterRunOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   FilterResult result;
   StreamSelection selection;
   selection.Set(Stream::kGps, options.use_gps);

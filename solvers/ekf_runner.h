@@ -23,6 +23,8 @@ struct FilterRunOptions {
   // false, or no law samples: the paper's single filter.
   bool multiple_model = true;
   MultipleModelOptions multiple_model_options;
+  // The EKF's options valid, and the bank's when it runs.
+  bool IsValid(std::string* error) const;
 };
 
 struct FilterResult {

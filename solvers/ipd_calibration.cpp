@@ -8,10 +8,35 @@
 #include <stdexcept>
 
 #include "io/measurement_stream.h"
+#include "model/option_check.h"
 #include "solvers/ipd_covariance_matching.h"
 #include "solvers/ipd_terrain_memory.h"
 
 namespace slipgraph {
+
+bool IpdOptions::IsValid(std::string* error) const {
+  return OptionCheck("IpdOptions", error)
+      .Positive("segment_s", segment_s)
+      .Positive("spacing_s", spacing_s)
+      .Positive("gravity_mps2", gravity_mps2)
+      .Positive("alpha_prior_sd", alpha_prior_sd)
+      .NonNegative("alpha_walk_sd", alpha_walk_sd)
+      .Require("q_initial", (q_initial.array() > 0.0).all(), q_initial.minCoeff(),
+               "each entry must be positive")
+      .Positive("q_prior_sd", q_prior_sd)
+      .NonNegative("q_walk_sd", q_walk_sd)
+      .Positive("min_pose_sd_m", min_pose_sd_m)
+      .NonNegative("readmit_after", readmit_after)
+      .Positive("match_covariance_segments", match_covariance_segments)
+      .NonNegative("terrain_memory.capacity", terrain_memory.capacity)
+      .Positive("terrain_memory.settle_s", terrain_memory.settle_s)
+      .Positive("terrain_memory.search_s", terrain_memory.search_s)
+      .AtLeast("terrain_memory.window", terrain_memory.window, 1)
+      .Positive("terrain_memory.log_bayes_factor", terrain_memory.log_bayes_factor)
+      .Positive("jump.jump_sd", jump.jump_sd)
+      .Positive("jump.log_bayes_factor", jump.log_bayes_factor)
+      .Positive("jump.window_s", jump.window_s);
+}
 namespace {
 
 using ipd::kAlphaSize;
@@ -224,6 +249,8 @@ JumpDetectorOptions IpdJumpDetectorOptions(const IpdOptions& options) {
 }
 
 IpdCalibrationResult CalibrateIpdEkf(const DriveLog& log, const IpdOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   IpdCalibrationResult result;
   result.segments = BuildIpdSegments(log, options);
   const std::vector<IpdSegment>& segments = result.segments;

@@ -67,6 +67,9 @@ struct IpdOptions {
   double match_covariance_segments = 20.0;
   IpdTerrainMemoryOptions terrain_memory;
   IpdJumpOptions jump;
+  // Each field in its range, the terrain memory's and the jumps' too; the first that is not
+  // is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 // The segments' innovation gate: chi-square with 3 dof at 99.99 % (a pose glitch must not wreck

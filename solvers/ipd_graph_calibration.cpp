@@ -10,11 +10,13 @@
 #include <deque>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 #include "factors/diagonal_prior.h"
 #include "factors/difference_prior.h"
 #include "factors/ipd_segment_factor.h"
 #include "factors/marginal_prior.h"
+#include "model/option_check.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/ipd_covariance_matching.h"
 #include "solvers/ipd_noise_likelihood.h"
@@ -22,6 +24,18 @@
 #include "solvers/marginalization.h"
 
 namespace slipgraph {
+
+bool IpdGraphOptions::IsValid(std::string* error) const {
+  return OptionCheck("IpdGraphOptions", error)
+             .Positive("block_s", block_s)
+             .Positive("window_block_s", window_block_s)
+             .Positive("window_s", window_s)
+             .AtLeast("max_iterations", max_iterations, 1)
+             .Positive("walk_huber_sd", walk_huber_sd)
+             .Positive("jump_sd", jump_sd)
+             .NonNegative("q_likelihood_rounds", q_likelihood_rounds) &&
+         q_likelihood.IsValid(error);
+}
 namespace {
 
 using Alpha = std::array<double, ipd::kAlphaSize>;
@@ -65,6 +79,8 @@ std::array<double, ipd::kAlphaSize> PriorSd(const IpdOptions& options) {
 
 IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options,
                                         const IpdGraphOptions& graph) {
+  std::string error;
+  if (!options.IsValid(&error) || !graph.IsValid(&error)) throw std::invalid_argument(error);
   IpdCalibrationResult result;
   result.segments = BuildIpdSegments(log, options);
   const std::vector<IpdSegment>& segments = result.segments;
@@ -259,6 +275,8 @@ IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& o
 
 IpdCalibrationResult CalibrateIpdBatch(const DriveLog& log, const IpdOptions& options,
                                        const IpdGraphOptions& graph) {
+  std::string error;
+  if (!options.IsValid(&error) || !graph.IsValid(&error)) throw std::invalid_argument(error);
   // Q first, from the online EKF's stochastic calibration; then every block at once.
   const IpdCalibrationResult ekf = CalibrateIpdEkf(log, options);
   IpdCalibrationResult result;

@@ -44,6 +44,8 @@ struct IpdGraphOptions {
   bool q_by_likelihood = true;
   int q_likelihood_rounds = 2;
   NoiseLikelihoodOptions q_likelihood;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 IpdCalibrationResult CalibrateIpdWindow(const DriveLog& log, const IpdOptions& options = {},
                                         const IpdGraphOptions& graph = {});

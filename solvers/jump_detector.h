@@ -29,6 +29,8 @@
 #include <cmath>
 #include <deque>
 
+#include "model/option_check.h"
+
 namespace slipgraph {
 
 struct JumpDetectorOptions {
@@ -37,6 +39,17 @@ struct JumpDetectorOptions {
   int window = 40;                // hypotheses kept: jumps before the last `window` measurements
   int min_measurements = 2;       // a hypothesis is tested after this many measurements
   double overlap = 1.0;           // each datum enters this many measurements
+
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const {
+    return OptionCheck("JumpDetectorOptions", error)
+        .Positive("jump_sd", jump_sd)
+        .Require("log_bayes_factor", std::isfinite(log_bayes_factor), log_bayes_factor,
+                 "must be finite")
+        .AtLeast("window", window, 1)
+        .AtLeast("min_measurements", min_measurements, 1)
+        .Positive("overlap", overlap);
+  }
 };
 
 template <int N, int M>
@@ -59,6 +72,8 @@ class JumpDetector {
   };
 
   explicit JumpDetector(const Options& options) : options_(options) {
+    std::string error;
+    if (!options.IsValid(&error)) throw std::invalid_argument(error);
     J_inverse_ = Matrix::Identity() / (options.jump_sd * options.jump_sd);
   }
 

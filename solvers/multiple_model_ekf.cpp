@@ -2,15 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include "model/option_check.h"
 
 namespace slipgraph {
 
 bool MultipleModelOptions::IsValid(std::string* error) const {
-  if (!(switch_time_s > 0.0)) {
-    *error = "switch_time_s must be positive";
-    return false;
-  }
-  return true;
+  return OptionCheck("MultipleModelOptions", error).Positive("switch_time_s", switch_time_s);
 }
 
 MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& model,
@@ -18,6 +17,8 @@ MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& mo
     : options_(options),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
       encoder_timeout_s_(ekf.encoder_timeout_s) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   filters_.push_back(std::make_unique<WardEkf>(vehicle, model, ekf));
   laws_.push_back({model.tire, model.rolling});
   if (model.law_samples.size() >= 2) {

@@ -14,6 +14,9 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <cmath>
+#include <string>
+
+#include "model/option_check.h"
 
 namespace slipgraph {
 
@@ -25,6 +28,16 @@ struct SlipSlopeLawOptions {
   // A cycle whose matching carries less information than this fraction of the prior's is not a
   // measurement of the slip (smooth ground: the MAP is the prior).
   double min_data_fraction = 0.2;
+
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const {
+    return OptionCheck("SlipSlopeLawOptions", error)
+        .Positive("slip_sd", slip_sd)
+        .Positive("slip_per_slope_sd", slip_per_slope_sd)
+        .Positive("memory_cycles", memory_cycles)
+        .NonNegative("slip_noise_sd", slip_noise_sd)
+        .Within("min_data_fraction", min_data_fraction, 0.0, 1.0);
+  }
 };
 
 class SlipSlopeLaw {

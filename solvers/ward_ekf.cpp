@@ -3,13 +3,16 @@
 #include <ceres/jet.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "factors/frames.h"
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_accel_driven_step.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_measurement.h"
+#include "model/option_check.h"
 
 namespace slipgraph {
 namespace {
@@ -51,30 +54,21 @@ Eigen::Matrix<double, N, N> Sandwich(const Eigen::Matrix<double, N, N>& A,
 }  // namespace
 
 bool EkfOptions::IsValid(std::string* error) const {
-  if (!(wheels_gate_chi2 > 0.0 && gps_gate_chi2 > 0.0 && imu_gate_chi2 > 0.0)) {
-    *error = "gates must be positive";
-    return false;
-  }
-  if (imu_max_consecutive_rejections < 0 || wheels_max_consecutive_rejections < 0 ||
-      gps_max_consecutive_rejections < 0 || !(encoder_timeout_s > 0.0) ||
-      !(wheel_still_radps > 0.0)) {
-    *error = "max_consecutive_rejections, encoder_timeout and wheel_still must be positive";
-    return false;
-  }
-  for (double sd : initial_sd) {
-    if (!(sd > 0.0)) {
-      *error = "initial_sd entries must be positive";
-      return false;
-    }
-  }
-  if (!(gnss_fading_fixes >= 0.0 && (gnss_fading_fixes == 0.0 || gnss_fading_fixes >= 1.0) &&
-        gnss_fading_threshold > 0.0 && gnss_fading_max >= 1.0)) {
-    *error =
-        "gnss_fading_fixes must be 0 (off) or at least 1, gnss_fading_threshold positive, "
-        "gnss_fading_max at least 1";
-    return false;
-  }
-  return true;
+  const double min_initial_sd = *std::min_element(initial_sd.begin(), initial_sd.end());
+  return OptionCheck("EkfOptions", error)
+      .Positive("wheels_gate_chi2", wheels_gate_chi2)
+      .Positive("gps_gate_chi2", gps_gate_chi2)
+      .Positive("imu_gate_chi2", imu_gate_chi2)
+      .NonNegative("imu_max_consecutive_rejections", imu_max_consecutive_rejections)
+      .NonNegative("wheels_max_consecutive_rejections", wheels_max_consecutive_rejections)
+      .NonNegative("gps_max_consecutive_rejections", gps_max_consecutive_rejections)
+      .Positive("encoder_timeout_s", encoder_timeout_s)
+      .Positive("wheel_still_radps", wheel_still_radps)
+      .Require("initial_sd", min_initial_sd > 0.0, min_initial_sd, "each entry must be positive")
+      .Require("gnss_fading_fixes", gnss_fading_fixes == 0.0 || gnss_fading_fixes >= 1.0,
+               gnss_fading_fixes, "must be 0 (off) or at least 1")
+      .Positive("gnss_fading_threshold", gnss_fading_threshold)
+      .AtLeast("gnss_fading_max", gnss_fading_max, 1.0);
 }
 
 WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOptions& options)
@@ -84,6 +78,8 @@ WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOpti
       offsets_(model.offset_init_samples, model.offset_ema_samples, model.offset_rest_guard_s,
                vehicle.type == VehicleType::kSkidSteer ? 1.0 : 0.2),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   for (int i = 0; i < kStateSize; ++i) P_(i, i) = options.initial_sd[i] * options.initial_sd[i];
   loads_ = ComputeAttitudeLoads(CurrentAttitude(), params_);
 }

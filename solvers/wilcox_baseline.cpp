@@ -7,8 +7,25 @@
 #include <stdexcept>
 
 #include "io/measurement_stream.h"
+#include "model/option_check.h"
 
 namespace slipgraph {
+
+bool WilcoxOptions::IsValid(std::string* error) const {
+  return OptionCheck("WilcoxOptions", error)
+             .Positive("bin_m", bin_m)
+             .Positive("prior_fraction", prior_fraction)
+             .Require("prior_slip", prior_slip < 1.0, prior_slip, "must be below 1")
+             .Positive("range_sd_m", range_sd_m)
+             .Positive("articulation_sd_m", articulation_sd_m)
+             .Positive("histogram_sd_m", histogram_sd_m)
+             .Require("contact_patch_fraction",
+                      contact_patch_fraction > 0.0 && contact_patch_fraction <= 1.0,
+                      contact_patch_fraction, "must lie in (0, 1]")
+             .Positive("agree_sinkage_m", agree_sinkage_m)
+             .Positive("agree_advance_fraction", agree_advance_fraction) &&
+         learn.IsValid(error);
+}
 namespace {
 
 // A histogram on [0, (n-1) b]: values at x = i b, linear in between, clamped at the ends.
@@ -312,6 +329,8 @@ void CheckWilcoxSides(const DriveLog& log, const WilcoxOptions& options, WilcoxR
 }
 
 WilcoxResult EstimateWilcoxBaseline(const DriveLog& log, const WilcoxOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   if (log.articulation.empty() || log.range.empty()) {
     throw std::invalid_argument(log.directory +
                                 ": sinkage needs articulation.csv and range.csv (a rocker_bogie6 "

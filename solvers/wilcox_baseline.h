@@ -58,6 +58,8 @@ struct WilcoxOptions {
   // by more than agree_advance_fraction.
   double agree_sinkage_m = 0.007;
   double agree_advance_fraction = 0.02;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 struct WilcoxCycle {

@@ -10,13 +10,28 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <utility>
 
 #include "factors/difference_prior.h"
 #include "factors/linear_factor.h"
 #include "factors/wilcox_factors.h"
+#include "model/option_check.h"
 
 namespace slipgraph {
+
+bool WilcoxGraphOptions::IsValid(std::string* error) const {
+  return OptionCheck("WilcoxGraphOptions", error)
+      .Positive("node_spacing_m", node_spacing_m)
+      .AtLeast("nodes_per_block", nodes_per_block, 1)
+      .Positive("margin_m", margin_m)
+      .Positive("y_curvature_sd_m", y_curvature_sd_m)
+      .Positive("s_slope_sd_m", s_slope_sd_m)
+      .Positive("s_prior_sd_m", s_prior_sd_m)
+      .AtLeast("max_iterations", max_iterations, 1)
+      .AtLeast("refine_every", refine_every, 1)
+      .AtLeast("window_cycles", window_cycles, 1);
+}
 namespace {
 
 // One side's profiles on the grid: terrain y and sinkage s as blocks of B nodes, the side's scans
@@ -383,6 +398,8 @@ std::vector<WilcoxSide> SolveSides(const DriveLog& log, const std::vector<Side>&
 
 WilcoxResult EstimateWilcoxGraph(const DriveLog& log, const WilcoxOptions& options,
                                  const WilcoxGraphOptions& graph) {
+  std::string error;
+  if (!graph.IsValid(&error)) throw std::invalid_argument(error);
   const WilcoxResult baseline = EstimateWilcoxBaseline(log, options);
   WilcoxResult result;
   result.notes = baseline.notes;

@@ -30,6 +30,8 @@ struct WilcoxGraphOptions {
   bool shared_advance = false;
   // Marginal sd of each advance and front sinkage (ceres::Covariance, SPARSE_QR).
   bool covariance = true;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 // The advance prior's slip law is WilcoxOptions' prior_slip and prior_slip_per_slope; with

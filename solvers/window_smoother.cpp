@@ -8,12 +8,24 @@
 #include <cmath>
 #include <deque>
 #include <sstream>
+#include <stdexcept>
 
+#include "model/option_check.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/marginalization.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
+
+bool WindowSmootherOptions::IsValid(std::string* error) const {
+  return OptionCheck("WindowSmootherOptions", error)
+             .Positive("window_s", window_s)
+             .AtLeast("update_every", update_every, 1)
+             .AtLeast("max_iterations", max_iterations, 1)
+             .NonNegative("stiffness_prior_sd", stiffness_prior_sd)
+             .NonNegative("min_immobilized_s", min_immobilized_s) &&
+         filter.IsValid(error) && problem.IsValid(error);
+}
 namespace {
 
 using namespace ward;  // NOLINT: state indices
@@ -317,11 +329,15 @@ class Window {
 
 WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
                                     const WindowSmootherOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   return SmoothWindowed(log, model, RunEkf(log, model, options.filter), options);
 }
 
 WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
                                     const FilterResult& ekf, const WindowSmootherOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   WindowSmootherResult result;
   result.ekf = ekf;
   result.estimates = result.ekf.estimates;

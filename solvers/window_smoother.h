@@ -59,6 +59,8 @@ struct WindowSmootherOptions {
   FilterRunOptions filter;
   WardProblemOptions problem;
   double min_immobilized_s = 0.1;  // as the batch smoother's post-processing detection
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 struct WindowSmootherResult {

@@ -10,6 +10,7 @@
 #include "evaluation/html_report.h"
 #include "factors/model_effects.h"
 #include "factors/ward_state.h"
+#include "model/option_check.h"
 #include "solvers/run_concurrently.h"
 #include "workbench/effect_signatures.h"
 
@@ -212,18 +213,13 @@ void FitAndCompare(const DriveLog& log, const ModelConfig& model, const Smoother
 }  // namespace
 
 bool DiagnosisOptions::IsValid(std::string* error) const {
-  if (!(alpha > 0.0 && alpha < 1.0)) {
-    *error = "DiagnosisOptions: alpha must lie in (0, 1)";
-    return false;
-  }
-  if (!(window_s > 0.0) || whiteness_lags < 1 || threads < 1 ||
-      !(fit_initial_trust_region_radius > 0.0)) {
-    *error =
-        "DiagnosisOptions: window_s, whiteness_lags, threads and fit_initial_trust_region_radius "
-        "must be positive";
-    return false;
-  }
-  return smoother.IsValid(error);
+  return OptionCheck("DiagnosisOptions", error)
+             .Require("alpha", alpha > 0.0 && alpha < 1.0, alpha, "must lie in (0, 1)")
+             .Positive("window_s", window_s)
+             .AtLeast("whiteness_lags", whiteness_lags, 1)
+             .AtLeast("threads", threads, 1)
+             .Positive("fit_initial_trust_region_radius", fit_initial_trust_region_radius) &&
+         smoother.IsValid(error);
 }
 
 Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
