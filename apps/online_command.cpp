@@ -41,8 +41,9 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
                   "(law_samples); 0: the law as given")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_flag("!--no-covariance", options->window.covariance,
-                "Skip the window's marginal covariance (report the EKF's sd)");
+  cmd->add_flag_callback(
+      "--no-covariance", [options] { options->window.covariance = false; },
+      "Skip the window's marginal covariance (report the EKF's sd)");
   cmd->add_flag("--advance-velocity", options->advance_velocity,
                 "Rocker-bogie logs with articulation and ranging: Wilcox's advance per cycle (the "
                 "baseline, causal, learning its prior's slip) as a body-velocity measurement, "

@@ -53,11 +53,14 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
                   "the prior's slip grows by this per unit of the slope the ranged points show "
                   "(uphill positive; 1: 10 % more slip on a 0.1 slope)")
       ->capture_default_str();
-  cmd->add_flag("--learn-slip,!--no-learn-slip", options->wilcox.learn_slip,
-                "learn the prior's slip and slip per slope as the rover drives, starting from "
-                "--prior-slip and --slip-per-slope (from what the terrain matching measures on "
-                "rough ground; the graph takes the law cycle by cycle as the baseline learns it); "
-                "on by default, --no-learn-slip keeps them fixed (the paper: slip 0)");
+  cmd->add_flag("--learn-slip", options->wilcox.learn_slip,
+                "Learn the prior's slip and slip per slope as the rover drives (the default), "
+                "starting from --prior-slip and --slip-per-slope (from what the terrain matching "
+                "measures on rough ground; the graph takes the law cycle by cycle as the baseline "
+                "learns it)");
+  cmd->add_flag_callback(
+      "--no-learn-slip", [options] { options->wilcox.learn_slip = false; },
+      "Keep the prior's slip and slip per slope fixed (the paper: slip 0)");
   cmd->add_option("--bin", options->wilcox.bin_m, "Histogram bin, m")->capture_default_str();
   cmd->add_flag("--json", options->json, "Print one JSON object");
   AddReadOptions(cmd, &options->read);

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "apps/commands.h"
 #include "io/input_error.h"
@@ -16,6 +17,7 @@ std::string DefaultHiddenEffectLogPath() { return SLIPGRAPH_DEFAULT_HIDDEN_LOG; 
 
 int main(int argc, char** argv) {
   CLI::App app{"slipgraph: wheel slip, immobilization and sinkage estimation for ground robots"};
+  app.set_version_flag("--version", std::string("slipgraph ") + SLIPGRAPH_VERSION);
   app.require_subcommand(1);
   int status = 0;
   slipgraph::RegisterInfoCommand(&app, &status);
