@@ -18,6 +18,19 @@
 
 namespace slipgraph {
 
+namespace {
+
+// The effects the workbench can test and add, comma-separated.
+std::string EffectNames() {
+  std::string names;
+  for (const EffectSignature& signature : EffectSignatures()) {
+    names += (names.empty() ? "" : ", ") + signature.effect;
+  }
+  return names;
+}
+
+}  // namespace
+
 void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, model, report, json;
@@ -38,7 +51,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->add_option("--model", options->model, "Model YAML over the vehicle's nominal model");
   cmd->add_option("--with", options->with,
                   "Switch a catalogue effect on in the model and report before and after "
-                  "(repeatable)");
+                  "(repeatable): " +
+                      EffectNames());
   cmd->add_flag("--add-best", options->add_best,
                 "The whole loop: add the top-ranked significant candidate (if the smoother has a "
                 "term or a correction for it) and report before and after");
@@ -56,7 +70,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->callback([options, status]() {
     for (const std::string& effect : options->with) {
       if (FindEffect(effect) == nullptr && FindSignature(effect) == nullptr) {
-        throw CLI::ValidationError("--with", "unknown effect '" + effect + "'");
+        throw CLI::ValidationError(
+            "--with", "unknown effect '" + effect + "' (known: " + EffectNames() + ")");
       }
     }
     DiagnosisOptions diagnosis = options->diagnosis;
