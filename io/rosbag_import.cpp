@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
+#include <GeographicLib/LocalCartesian.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -248,17 +249,15 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
                             ", side speeds from the body twist (track " + std::to_string(track) +
                             " m, radius " + std::to_string(radius) + " m)");
   }
-  // GNSS: local ENU at the first fix, velocity by central difference.
+  // GNSS: local ENU at the first fix on the WGS84 ellipsoid (NavSatFix's altitude is above it,
+  // REP-145), velocity by central difference.
   if (!fix_t.empty()) {
-    constexpr double kEarthRadiusM = 6378137.0;
-    const double deg = M_PI / 180.0;
-    const double lat0 = fix_lat[0], lon0 = fix_lon[0], alt0 = fix_alt[0];
+    const GeographicLib::LocalCartesian local(fix_lat[0], fix_lon[0], fix_alt[0]);
     const double sd_v = gps_map["sd_v"] ? gps_map["sd_v"].as<double>() : kMissing;
     const size_t n = fix_t.size();
     std::vector<Eigen::Vector3d> enu(n);
     for (size_t i = 0; i < n; ++i) {
-      enu[i] = {(fix_lon[i] - lon0) * deg * kEarthRadiusM * std::cos(lat0 * deg),
-                (fix_lat[i] - lat0) * deg * kEarthRadiusM, fix_alt[i] - alt0};
+      local.Forward(fix_lat[i], fix_lon[i], fix_alt[i], enu[i].x(), enu[i].y(), enu[i].z());
     }
     for (size_t i = 0; i < n; ++i) {
       const size_t a = i > 0 ? i - 1 : i, b = i + 1 < n ? i + 1 : i;
@@ -274,7 +273,8 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
     }
     log.present_files.push_back("gps.csv");
     report->lines.push_back("gps: " + std::to_string(gps_n) + " fixes from " + gps_topic +
-                            ", local ENU at the first fix, velocity by central difference");
+                            ", local ENU (WGS84) at the first fix, velocity by central "
+                            "difference");
   }
   if (skipped > 0) {
     report->lines.push_back("skipped: " + std::to_string(skipped) +

@@ -127,7 +127,14 @@ inline const char kBagMapping[] =
     "wheels: {topic: /odom, from: body_twist, track: 0.5, radius: 0.1}\n"
     "gps: {topic: /fix, sd_v: 0.3}\n";
 
-inline constexpr double kEarthRadiusM = 6378137.0;
+// WGS84's meridian radius of curvature at a latitude: metres north per radian of latitude there
+// on the ellipsoid (a(1 - e^2) / (1 - e^2 sin^2 phi)^1.5; 6367.4 km at 45 deg, where a sphere of
+// the equatorial radius is 0.17 % long); at a height h above it, M + h.
+inline double MeridianRadiusM(double latitude_deg) {
+  constexpr double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2.0 - f);
+  const double s = std::sin(latitude_deg * M_PI / 180.0);
+  return a * (1.0 - e2) / std::pow(1.0 - e2 * s * s, 1.5);
+}
 
 // 2 s from t = 1000 s: an IMU at 50 Hz mounted as kBagMapping's body_from_sensor says, yawed 0.2
 // rad; odometry at 10 Hz (1 m/s, 0.2 rad/s); fixes at 2 Hz moving north at 1 m/s, the first
@@ -165,7 +172,7 @@ inline std::string WriteTinyBag(const std::string& directory, const std::string&
     fix.header.stamp = ros::Time(1000.05 + 0.5 * i);
     fix.status.status =
         i == 0 ? sensor_msgs::NavSatStatus::STATUS_NO_FIX : sensor_msgs::NavSatStatus::STATUS_FIX;
-    fix.latitude = 45.0 + (0.5 * i) / kEarthRadiusM * 180.0 / M_PI;
+    fix.latitude = 45.0 + (0.5 * i) / (MeridianRadiusM(45.0) + 300.0) * 180.0 / M_PI;
     fix.longitude = 7.0;
     fix.altitude = 300.0;
     fix.position_covariance[0] = 4.0;
