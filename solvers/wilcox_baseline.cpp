@@ -19,9 +19,7 @@ bool WilcoxOptions::IsValid(std::string* error) const {
              .Positive("range_sd_m", range_sd_m)
              .Positive("articulation_sd_m", articulation_sd_m)
              .Positive("histogram_sd_m", histogram_sd_m)
-             .Require("contact_patch_fraction",
-                      contact_patch_fraction > 0.0 && contact_patch_fraction <= 1.0,
-                      contact_patch_fraction, "must lie in (0, 1]")
+             .Within("contact_patch_fraction", contact_patch_fraction, 0.0, 1.0)
              .Positive("agree_sinkage_m", agree_sinkage_m)
              .Positive("agree_advance_fraction", agree_advance_fraction) &&
          learn.IsValid(error);
