@@ -32,7 +32,7 @@ bool IpdGraphOptions::IsValid(std::string* error) const {
              .Positive("window_s", window_s)
              .AtLeast("max_iterations", max_iterations, 1)
              .Positive("walk_huber_sd", walk_huber_sd)
-             .Positive("jump_sd", jump_sd)
+             .NonNegative("jump_sd", jump_sd)
              .NonNegative("q_likelihood_rounds", q_likelihood_rounds) &&
          q_likelihood.IsValid(error);
 }
