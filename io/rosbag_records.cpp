@@ -5,6 +5,8 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "io/input_error.h"
 
@@ -66,6 +68,7 @@ class RecordWalker {
     std::set<uint64_t> record_starts;
     std::map<uint64_t, Chunk> chunks;  // by position
     const Chunk* last_chunk = nullptr;
+    std::vector<std::pair<uint64_t, uint64_t>> chunk_infos;  // (where, its chunk_pos)
     uint64_t index_pos = 0;
     bool has_header = false;
     for (uint64_t at = version_size; at < size_;) {
@@ -84,6 +87,7 @@ class RecordWalker {
           break;
         case kChunkInfo:
           CheckCount(record, 8);
+          chunk_infos.push_back({at, Number(record, "chunk_pos")});
           break;
         default:
           break;
@@ -96,13 +100,10 @@ class RecordWalker {
       Fail(version_size, "the bag header",
            "index_pos " + std::to_string(index_pos) + " is not the start of a record");
     }
-    for (uint64_t at = version_size; at < size_;) {
-      const Record record = ReadRecord(at, size_, "in the file");
-      if (record.op() == kChunkInfo && chunks.count(Number(record, "chunk_pos")) == 0) {
-        Fail(at, "a chunk info",
-             "chunk_pos " + std::to_string(Number(record, "chunk_pos")) + " is not a chunk");
+    for (const auto& [at, chunk_pos] : chunk_infos) {
+      if (chunks.count(chunk_pos) == 0) {
+        Fail(at, "a chunk info", "chunk_pos " + std::to_string(chunk_pos) + " is not a chunk");
       }
-      at = record.data_at + record.data_size;
     }
   }
 
