@@ -6,6 +6,8 @@
 // roll). Convert here, explicitly, never silently.
 #pragma once
 
+#include <cmath>
+
 namespace slipgraph {
 
 // Ward's phi (uphill positive) from a REP-103 pitch (nose down positive).
@@ -18,6 +20,17 @@ inline T WardPitchUphillRad(const T& pitch_rep103_rad) {
 template <typename T>
 inline T WardRollRad(const T& roll_rep103_rad) {
   return roll_rep103_rad;
+}
+
+// A GNSS velocity (world east, north, up) along the body's x axis, eq. (11)'s measurement: its
+// dot product with x_body = (cos yaw cos pitch, sin yaw cos pitch, -sin pitch) at a REP-103
+// attitude. Without an attitude the horizontal speed, signed by the direction the wheels drive
+// (the sign of the left and right wheel speeds' sum; forward at 0).
+inline double GnssVelocityAlongBodyX(double ve, double vn, double vu, bool have_attitude,
+                                     double pitch_rad, double yaw_rad, double wheel_speed_sum) {
+  if (!have_attitude) return (wheel_speed_sum >= 0.0 ? 1.0 : -1.0) * std::hypot(ve, vn);
+  const double cp = std::cos(pitch_rad);
+  return ve * std::cos(yaw_rad) * cp + vn * std::sin(yaw_rad) * cp - vu * std::sin(pitch_rad);
 }
 
 }  // namespace slipgraph

@@ -175,6 +175,13 @@ inline double AccelInputDensitySq(double sd_accel_mps2, double sd_pitch_rad, dou
   return (sd_accel_mps2 * sd_accel_mps2 + gravity_noise * gravity_noise) * imu_period_s;
 }
 
+// A first-order Gauss-Markov process of stationary sd `sd` and time constant `tau_s` (the IMU
+// biases of eq. 10): the variance its exact discretization adds over dt,
+// sd^2 (1 - exp(-2 dt / tau)).
+inline double GaussMarkovStepVariance(double sd, double tau_s, double dt_s) {
+  return sd * sd * -std::expm1(-2.0 * dt_s / tau_s);
+}
+
 // Eq. (10) propagated over dt. The tire law is stiff (d v' / d v ~ -g C1 At, about -150 1/s for
 // the LAGR values), so forward Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78.
 // The EKF and the dynamics factor both call this, so filter and smoother share one

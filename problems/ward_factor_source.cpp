@@ -15,6 +15,7 @@
 #include "factors/effect_accelerometer_factor.h"
 #include "factors/encoder_factor.h"
 #include "factors/force_terms_accelerometer_factor.h"
+#include "factors/frames.h"
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"
 #include "factors/law_accelerometer_factor.h"
@@ -135,22 +136,18 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   }
   times_.resize(n);
   wheel_speeds_.assign(n, {0.0, 0.0});
-  stopped_since_.assign(n, -1.0);
+  stop_timers_.assign(n, WheelStopTimer());
   for (size_t k = 0; k < n; ++k) times_[k] = initial[k].t;
   for (size_t k = 0; k < n && k < log.wheels.size(); ++k) {
     const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
     wheel_speeds_[k] = {s.left_radps, s.right_radps};
   }
-  double stopped_since = -1.0;
+  WheelStopTimer stop_timer;
   for (size_t k = 0; k < n; ++k) {
     const auto& w = wheel_speeds_[k];
     const double still = options.wheel_still_radps;
-    if (std::abs(w[0]) >= still || std::abs(w[1]) >= still) {
-      stopped_since = -1.0;
-    } else if (stopped_since < 0.0) {
-      stopped_since = times_[k];
-    }
-    stopped_since_[k] = stopped_since;
+    stop_timer.Update(times_[k], std::abs(w[0]) < still && std::abs(w[1]) < still);
+    stop_timers_[k] = stop_timer;
   }
   imu_begin_ = AttachToStates(log.imu, times_);
   if (options.use_gps) {
@@ -242,14 +239,8 @@ void WardFactorSource::AddStiffnessNode(size_t j, double* nodes, ceres::Problem*
 bool WardFactorSource::GnssAlong(size_t k, const GpsSample& g, double* along, double* sd) const {
   if (!std::isfinite(g.vx) || !std::isfinite(g.vy) || !std::isfinite(g.vz)) return false;
   const Context c = ContextAt(g.t);
-  if (c.have_attitude) {
-    const double cp = std::cos(c.attitude.pitch_rad);
-    *along = g.vx * std::cos(c.yaw) * cp + g.vy * std::sin(c.yaw) * cp -
-             g.vz * std::sin(c.attitude.pitch_rad);
-  } else {
-    const auto& w = wheel_speeds_[k];
-    *along = (w[0] + w[1] >= 0.0 ? 1.0 : -1.0) * std::hypot(g.vx, g.vy);
-  }
+  *along = GnssVelocityAlongBodyX(g.vx, g.vy, g.vz, c.have_attitude, c.attitude.pitch_rad, c.yaw,
+                                  wheel_speeds_[k][0] + wheel_speeds_[k][1]);
   *sd = GnssVelocitySd(g, model_.measurement.gps_sd_v_mps);
   return std::isfinite(*along);
 }
@@ -404,7 +395,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
         x);
     ++counts->oppose_motion;
   }
-  if (stopped_since_[k] >= 0.0 && times_[k] - stopped_since_[k] >= wc.stop_time_s) {
+  if (stop_timers_[k].AtRestFor(times_[k], wc.stop_time_s)) {
     Add("at_rest", AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt),
         nullptr, x);
     ++counts->at_rest;
@@ -446,7 +437,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
                                 : q.omega_radps2_per_sqrt_hz;
   const bool robust_omega = options_.omega_walk_huber_sigmas > 0.0;
   const auto gauss_markov = [dt](double sd, double tau) {
-    return sd * std::sqrt(1.0 - std::exp(-2.0 * dt / tau));
+    return std::sqrt(GaussMarkovStepVariance(sd, tau, dt));
   };
   const std::array<double, WardDynamicsFactor::kResiduals> sd_step = {
       sd_v,

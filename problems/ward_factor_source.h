@@ -225,7 +225,7 @@ class WardFactorSource {
   std::vector<const ForceTerm*> force_terms_;
   std::vector<double> times_;
   std::vector<std::array<double, 2>> wheel_speeds_;
-  std::vector<double> stopped_since_;  // start of the current stop at state k, or -1 when moving
+  std::vector<WheelStopTimer> stop_timers_;  // the at-rest timer as it stood at state k
   // Per GNSS fix, once: its speed along body x at its state and sd (GnssAlong), and whether the
   // gross-outlier gate (WardProblemOptions::gnss_gate_chi2) took it.
   struct GnssFix {

@@ -132,10 +132,8 @@ void WardEkf::PredictTo(double t) {
   // The biases' exact Gauss-Markov variances, recomputed only when the step changes.
   if (dt != bias_noise_dt_) {
     bias_noise_dt_ = dt;
-    accel_bias_q_ =
-        q.accel_bias_sd_mps2 * q.accel_bias_sd_mps2 * -std::expm1(-2.0 * dt / q.accel_bias_tau_s);
-    gyro_bias_q_ =
-        q.gyro_bias_sd_radps * q.gyro_bias_sd_radps * -std::expm1(-2.0 * dt / q.gyro_bias_tau_s);
+    accel_bias_q_ = GaussMarkovStepVariance(q.accel_bias_sd_mps2, q.accel_bias_tau_s, dt);
+    gyro_bias_q_ = GaussMarkovStepVariance(q.gyro_bias_sd_radps, q.gyro_bias_tau_s, dt);
   }
   q_diag(kAccelBias) = accel_bias_q_;
   // Adaptive w3: the density scales with the recent accelerometer NIS (1 when consistent).
@@ -276,7 +274,7 @@ void WardEkf::AddImu(const ImuSample& imu) {
     imu_period_s_ += 0.05 * (imu.t - last_imu_t_ - imu_period_s_);  // slow average
   }
   last_imu_t_ = imu.t;
-  const bool at_rest = t_ - wheels_stopped_since_ >= model_.weak_constraints.stop_time_s;
+  const bool at_rest = stop_timer_.AtRestFor(t_, model_.weak_constraints.stop_time_s);
   const bool ax_ok = IsFinite(imu.ax), gz_ok = IsFinite(imu.gz);
   if (!offsets_.ready()) {
     if (ax_ok && gz_ok) {
@@ -394,11 +392,7 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
     last_wheel_motion_ = {
         0.5 * params_.wheel_radius_m * (omega_left + omega_right),
         params_.wheel_radius_m * (omega_right - omega_left) / params_.track_width_m, still};
-    if (!still) {
-      wheels_stopped_since_ = 1e300;
-    } else if (wheels_stopped_since_ > t_) {
-      wheels_stopped_since_ = t_;
-    }
+    stop_timer_.Update(t_, still);
   }
   const double dt_cycle = have_previous_cycle_ ? t_ - t_previous_cycle_ : 0.0;
   if (offsets_.ready()) ApplyWeakConstraints(dt_cycle);
@@ -417,7 +411,7 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
   in.slip_ema = detector_.latest().slip_ema;
   in.slip_ema_rate_per_s =
       dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;
-  in.wheels_stopped_s = std::max(0.0, t_ - wheels_stopped_since_);
+  in.wheels_stopped_s = stop_timer_.StoppedFor(t_);
   if (MovingAgainstTheWheels(x_.data(), in.vel_dir)) {  // WC3 alone reads it
     // The tire forces on the body held still: the disturbance that would just hold the robot.
     // At the a priori v_bx (a few cm/s backwards) the rolling law, steep near v = 0, has turned
@@ -466,17 +460,8 @@ void WardEkf::AddGps(const GpsSample& gps) {
     ++stats_.gps.dropped_components;
     return;
   }
-  // GNSS velocity along body x (eq. 11): world velocity dotted with the body x axis.
-  double along;
-  if (have_attitude_) {
-    const double cp = std::cos(pitch_rad_);
-    along = gps.vx * std::cos(yaw_rad_) * cp + gps.vy * std::sin(yaw_rad_) * cp -
-            gps.vz * std::sin(pitch_rad_);
-  } else {
-    // No heading: the horizontal speed, signed by the direction the wheels drive.
-    const double sign = x_(kOmegaLeft) + x_(kOmegaRight) >= 0.0 ? 1.0 : -1.0;
-    along = sign * std::hypot(gps.vx, gps.vy);
-  }
+  const double along = GnssVelocityAlongBodyX(gps.vx, gps.vy, gps.vz, have_attitude_, pitch_rad_,
+                                              yaw_rad_, x_(kOmegaLeft) + x_(kOmegaRight));
   const double sd = GnssVelocitySd(gps, model_.measurement.gps_sd_v_mps);
   RowVector nu(1), r(1);
   RowMatrix H = RowMatrix::Zero(1, kStateSize);

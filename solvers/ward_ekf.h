@@ -195,8 +195,8 @@ class WardEkf {
   bool have_previous_cycle_ = false;
   double previous_slip_ema_ = 0.0;
   double last_wheels_t_ = -1e300;
-  double wheels_stopped_since_ = 1e300;  // time both wheels first read still, 1e300: moving
-  WheelMotion last_wheel_motion_;        // the latest encoder reading, for the offsets' start
+  WheelStopTimer stop_timer_;
+  WheelMotion last_wheel_motion_;  // the latest encoder reading, for the offsets' start
   int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
   EkfStats stats_;
   double log_likelihood_ = 0.0;  // since the last TakeLogLikelihood()

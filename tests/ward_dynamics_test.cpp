@@ -43,6 +43,17 @@ TEST(WardDynamics, BiasesDecayWithTheirCorrelationTime) {
   EXPECT_DOUBLE_EQ(x_dot[kGyroBias], 0.02 / kParams.gyro_bias_tau_s);
 }
 
+TEST(WardDynamics, GaussMarkovStepVarianceIsTheExactDiscretization) {
+  // Over one time constant: sd^2 (1 - e^-2); over a short step about 2 sd^2 dt / tau; over a
+  // long one the stationary variance.
+  EXPECT_NEAR(GaussMarkovStepVariance(0.1, 300.0, 300.0), 0.01 * (1.0 - std::exp(-2.0)), 1e-15);
+  EXPECT_NEAR(GaussMarkovStepVariance(0.1, 300.0, 0.01), 0.01 * 2.0 * 0.01 / 300.0, 1e-10);
+  EXPECT_NEAR(GaussMarkovStepVariance(0.1, 300.0, 1e5), 0.01, 1e-15);
+  // Its stationarity: a decay over dt plus the step's variance keeps sd^2.
+  const double decay = std::exp(-2.5 / 300.0);
+  EXPECT_NEAR(decay * decay * 0.01 + GaussMarkovStepVariance(0.1, 300.0, 2.5), 0.01, 1e-15);
+}
+
 TEST(WardDynamics, FasterRightWheelTurnsLeft) {
   // REP-103: counter-clockwise yaw is positive, so more right traction gives yaw' > 0.
   double x[kStateSize] = {0.5, 0.0, 0.0, 2.0, 2.4, 0.0, 0.0};
