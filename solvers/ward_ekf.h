@@ -6,6 +6,11 @@
 // of the same templated physics (in the accelerometer-driven prediction, its yaw acceleration's,
 // carried through the RK4 stages by the chain rule: factors/ward_accel_driven_step.h).
 //
+// In parts: the prediction (solvers/ward_propagator.h), the sensors' rows and the GNSS fading
+// memory (solvers/ward_updaters.h), the gated sequential update (solvers/ekf_update.h); this
+// class holds the state and the clock, and runs offsets, gates, weak constraints, the detector
+// and the divergence guard around them.
+//
 // Streaming: push measurements in time order (AddImu, AddWheels, ...); each does constant work.
 // Any subset of streams works. A NaN component is dropped alone (as robot_localization does);
 // process noise scales with the gap; innovations are gated and every rejection is counted; a
@@ -26,8 +31,11 @@
 #include "io/drive_log.h"
 #include "io/state_estimate.h"
 #include "model/model_config.h"
+#include "solvers/ekf_update.h"
 #include "solvers/immobilization_detector.h"
 #include "solvers/imu_offsets.h"
+#include "solvers/ward_propagator.h"
+#include "solvers/ward_updaters.h"
 #include "solvers/weak_constraints.h"
 
 namespace slipgraph {
@@ -138,38 +146,35 @@ class WardEkf {
   bool started() const { return started_; }
 
  private:
-  using StateVector = Eigen::Matrix<double, ward::kStateSize, 1>;
-  using StateMatrix = Eigen::Matrix<double, ward::kStateSize, ward::kStateSize>;
-  static constexpr int kMaxRows = 5;
-  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, ward::kStateSize, Eigen::RowMajor,
-                                  kMaxRows, ward::kStateSize>;
-  using RowVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
+  using StateVector = ekf::StateVector;
+  using StateMatrix = ekf::StateMatrix;
+
+  // A stream's gate: a chi-square threshold on the Mahalanobis distance, and re-admission after
+  // a bounded run of rejections.
+  struct StreamGate {
+    double chi2;
+    int max_consecutive_rejections;
+    int consecutive_rejections = 0;
+  };
 
   // Starts the filter clock at t on the first measurement; returns false for a stamp before
   // the filter time (then the measurement is applied at the filter time and counted as late).
   void Begin(double t);
   void PredictTo(double t);
-  // Kalman update with innovation nu, Jacobian H and diagonal noise variances r; gated with
-  // `gate_chi2`. Returns false when gated out.
-  // names (optional): the measurement each row is, for the recorded innovations.
-  bool Update(const RowVector& nu, const RowMatrix& H, const RowVector& r, double gate_chi2,
-              int max_consecutive_rejections, StreamCounters* counters, int* consecutive_rejections,
-              const std::vector<const char*>* names = nullptr);
+  // A sensor's measurement through its gate (ekf_update.h); returns false when gated out. Its
+  // log-likelihood is summed when a bank scores the filter, its rows' normalized innovations
+  // recorded under their names with EkfOptions::record_innovations.
+  bool Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamCounters* counters);
   void ApplyWeakConstraints(double dt_cycle);
   // After every measurement: keep the last sane (x, P); on a diverged one (not finite, or a state
   // beyond kDivergedMagnitude) go back to it with the covariance inflated, and count it. Never a
   // silent NaN, nor a yaw rate of 1e46 rad/s that is still finite.
   void GuardDivergence();
-  double GravityAlongX() const;  // g sin(phi) at the current attitude
   ward::Attitude<double> CurrentAttitude() const { return {roll_rad_, pitch_rad_}; }
   // Normal forces and gravity along x at the current attitude, updated with each attitude sample.
   ward::AttitudeLoads<double> loads_;
-  // The biases' discrete process noise for the last prediction step (PredictTo).
-  double bias_noise_dt_ = -1.0, accel_bias_q_ = 0.0, gyro_bias_q_ = 0.0;
-
-  // EMA of the accelerometer's normalized innovation squared, driving the adaptive w3.
-  double accel_nis_ema_ = 1.0;
-  double gnss_innovation_ema_ = 0.0;  // EkfOptions::gnss_fading_fixes
+  WardPropagator propagator_;
+  GnssFading gnss_fading_;
   // kAccelerometerDriven: the accelerometer x reading driving the current prediction (the mean
   // over the interval ending at its stamp) and the IMU sample interval, for the input noise.
   double accel_input_mps2_ = 0.0;
@@ -197,8 +202,8 @@ class WardEkf {
   double last_wheels_t_ = -1e300;
   WheelStopTimer stop_timer_;
   WheelMotion last_wheel_motion_;  // the latest encoder reading, for the offsets' start
-  int imu_rejections_ = 0, wheel_rejections_ = 0, gps_rejections_ = 0;
   EkfStats stats_;
+  StreamGate imu_gate_, wheels_gate_, gps_gate_;
   double log_likelihood_ = 0.0;  // since the last TakeLogLikelihood()
   bool scoring_ = false;         // inside AddGpsScored: the updates sum their log-likelihood
   StateVector last_good_x_ = StateVector::Zero();

@@ -1,0 +1,100 @@
+// The EKF's prediction: the state as the shared RK4 step gives it, the covariance A P A' + Q with
+// A the step's Jacobian (checked by central differences), Q's entries as their densities and the
+// Gauss-Markov biases say, and w3 growing with the accelerometer's normalized innovations.
+#include "solvers/ward_propagator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "factors/ward_accel_driven_step.h"
+#include "tests/ward_test_params.h"
+
+namespace slipgraph {
+namespace {
+
+using namespace ward;  // NOLINT: state indices
+
+const Params kParams = testing::LagrParams();
+
+ekf::StateVector Moving() {
+  ekf::StateVector x;
+  x << 0.8, 0.02, -0.1, 3.4, 3.5, 0.04, 0.001;
+  return x;
+}
+
+// The prediction's transition matrix by central differences of the state it predicts.
+ekf::StateMatrix NumericTransition(const PropagationInput& input, const AttitudeLoads<double>& l,
+                                   double dt) {
+  const ProcessNoiseConfig q;
+  ekf::StateMatrix A;
+  for (int c = 0; c < kStateSize; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(Moving()(c)));
+    ekf::StateVector plus = Moving(), minus = Moving();
+    plus(c) += h;
+    minus(c) -= h;
+    ekf::StateMatrix P = ekf::StateMatrix::Zero();
+    WardPropagator(q, 0.05).Predict(dt, input, l, kParams, &plus, &P);
+    WardPropagator(q, 0.05).Predict(dt, input, l, kParams, &minus, &P);
+    A.col(c) = (plus - minus) / (2.0 * h);
+  }
+  return A;
+}
+
+TEST(WardPropagator, CovarianceIsTheStepJacobianSandwichPlusQ) {
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.02, -0.05}, kParams);
+  const double dt = 0.01;
+  for (const bool driven : {true, false}) {
+    PropagationInput input;
+    input.accelerometer_driven = driven;
+    input.accel_input_mps2 = 0.3;
+    const ProcessNoiseConfig q;
+    ekf::StateVector x = Moving();
+    ekf::StateMatrix P0 = 0.01 * ekf::StateMatrix::Identity();
+    P0(0, 2) = P0(2, 0) = 0.004;
+    ekf::StateMatrix P_zero = ekf::StateMatrix::Zero();
+    ekf::StateVector x_zero = Moving();
+    WardPropagator(q, 0.05).Predict(dt, input, loads, kParams, &x_zero, &P_zero);
+    ekf::StateMatrix P = P0;
+    WardPropagator(q, 0.05).Predict(dt, input, loads, kParams, &x, &P);
+    EXPECT_EQ(x, x_zero);  // the state does not depend on P
+    const ekf::StateMatrix A = NumericTransition(input, loads, dt);
+    const ekf::StateMatrix expected = A * P0 * A.transpose() + P_zero;
+    EXPECT_LT((P - expected).cwiseAbs().maxCoeff(), 1e-8) << (driven ? "driven" : "paper's");
+    // Q alone: diagonal, each entry as its source says.
+    EXPECT_DOUBLE_EQ(P_zero(kAccelBias, kAccelBias),
+                     GaussMarkovStepVariance(q.accel_bias_sd_mps2, q.accel_bias_tau_s, dt));
+    EXPECT_DOUBLE_EQ(P_zero(kGyroBias, kGyroBias),
+                     GaussMarkovStepVariance(q.gyro_bias_sd_radps, q.gyro_bias_tau_s, dt));
+    EXPECT_DOUBLE_EQ(P_zero(kAdist, kAdist),
+                     q.a_dist_mps3_per_sqrt_hz * q.a_dist_mps3_per_sqrt_hz * dt);
+    const double v_density_sq = driven ? AccelInputDensitySq(0.05, 0.0, kParams.gravity_mps2, 0.01)
+                                       : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz;
+    EXPECT_DOUBLE_EQ(P_zero(kVbx, kVbx), v_density_sq * dt);
+    EXPECT_EQ(P_zero(kVbx, kAdist), 0.0);
+  }
+}
+
+TEST(WardPropagator, DisturbanceNoiseGrowsWithTheAccelerometerNis) {
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.0, 0.0}, kParams);
+  const ProcessNoiseConfig q;
+  WardPropagator propagator(q, 0.05);
+  const auto q_adist = [&] {
+    ekf::StateVector x = Moving();
+    ekf::StateMatrix P = ekf::StateMatrix::Zero();
+    propagator.Predict(0.01, {}, loads, kParams, &x, &P);
+    return P(kAdist, kAdist);
+  };
+  const double consistent = q_adist();
+  for (int i = 0; i < 50; ++i) propagator.ObserveAccelerometerNis(4.0);
+  const double inflated = q_adist();
+  EXPECT_NEAR(inflated / consistent,
+              std::min(4.0, std::pow(q.a_dist_max_mps3_per_sqrt_hz / q.a_dist_mps3_per_sqrt_hz, 2)),
+              1e-6);
+  // A NIS below 1 never lowers the density below its base.
+  for (int i = 0; i < 50; ++i) propagator.ObserveAccelerometerNis(0.01);
+  EXPECT_DOUBLE_EQ(q_adist(), consistent);
+}
+
+}  // namespace
+}  // namespace slipgraph
