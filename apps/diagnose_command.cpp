@@ -7,8 +7,10 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "apps/commands.h"
+#include "apps/diagnosis_report.h"
 #include "apps/estimator_runs.h"
 #include "io/log_reader.h"
 #include "io/text_file.h"
@@ -84,7 +86,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     // nothing explained.
     std::map<std::string, int> top_counts;
     int unexplained = 0;
-    std::string html;
+    std::optional<HtmlReport> report;
     for (const std::string& log_dir : ListLogs(path)) {
       DriveLog log = ReadLogWithWarnings(log_dir, options->read);
       const ModelConfig model = ModelForLog(&log, options->model);
@@ -113,9 +115,9 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
         PrintDiagnosis(after, text);
         PrintComparison(before, after, text);
         j["after"] = ToJson(after);
-        if (html.empty()) html = DiagnosisHtml(before, &after);
-      } else if (html.empty()) {
-        html = DiagnosisHtml(before, nullptr);
+        if (!report) report = DiagnosisReport(before, &after);
+      } else if (!report) {
+        report = DiagnosisReport(before, nullptr);
       }
       all.push_back(j);
       if (!before.candidates.empty() && before.candidates.front().significant) {
@@ -129,8 +131,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       for (const auto& [effect, count] : top_counts) text << " " << effect << " (" << count << ")";
       text << "; unexplained failures in " << unexplained << " log(s)\n";
     }
-    if (!options->report.empty()) {
-      WriteTextFile(options->report, html);
+    if (!options->report.empty() && report) {
+      report->Write(options->report);
       text << "report: " << options->report << "\n";
     }
     if (!options->json.empty()) {

@@ -7,7 +7,6 @@
 
 #include <functional>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -171,14 +170,5 @@ struct ExtendedModel {
 bool CanAddEffect(const std::string& effect);
 ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
                          const std::vector<std::string>& effects);
-
-// The terminal summary: streams, failures, ranked candidates, the verdict.
-void PrintDiagnosis(const Diagnosis& diagnosis, std::ostream& out);
-// Before/after lines for `--with`: truth errors and stream statistics side by side.
-void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostream& out);
-nlohmann::json ToJson(const Diagnosis& diagnosis);
-// A self-contained HTML page: residual plots per stream with the failure segments shaded, the
-// candidates' table, and (with `after`) the same after adding the effects.
-std::string DiagnosisHtml(const Diagnosis& before, const Diagnosis* after);
 
 }  // namespace slipgraph
