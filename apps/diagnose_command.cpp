@@ -95,9 +95,9 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       nlohmann::json j = ToJson(before);
       std::vector<std::string> with = options->with;
       if (options->add_best && with.empty()) {
-        const CandidateScore* best = before.candidates.empty() ? nullptr : &before.candidates[0];
-        if (best == nullptr || !best->significant) {
-          text << "--add-best: no significant candidate to add\n";
+        const CandidateScore* best = BestExplanation(before.candidates);
+        if (best == nullptr) {
+          text << "--add-best: no significant, plausible candidate to add\n";
         } else if (!CanAddEffect(best->effect)) {
           text << "--add-best: " << best->effect
                << " has no smoother term or measurement correction yet\n";
@@ -120,8 +120,8 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
         report = DiagnosisReport(before, nullptr);
       }
       all.push_back(j);
-      if (!before.candidates.empty() && before.candidates.front().significant) {
-        ++top_counts[before.candidates.front().effect];
+      if (const CandidateScore* best = BestExplanation(before.candidates)) {
+        ++top_counts[best->effect];
       }
       unexplained += !before.explained;
     }

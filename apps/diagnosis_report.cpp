@@ -9,6 +9,14 @@
 #include <vector>
 
 namespace slipgraph {
+namespace {
+
+// A JSON number, null when not finite (JSON has no NaN).
+nlohmann::json Number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
 
 void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   out << "diagnose: " << d.log << " (model effects: ";
@@ -61,8 +69,13 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
                   c.effect.c_str(), c.statistic, c.dof, c.p_value, c.significant ? "YES" : "no",
                   c.magnitude, c.magnitude_sd);
     out << line;
+    if (std::isfinite(c.detectable)) {
+      std::snprintf(line, sizeof(line), ", detectable above %.2g", c.detectable);
+      out << line;
+    }
     if (!c.where.empty()) out << "  (" << c.where << ")";
     out << "  [" << (c.added_as.empty() ? "cannot be added yet" : "added as " + c.added_as) << "]";
+    if (!c.implausible.empty()) out << "\n      IMPLAUSIBLE: " << c.implausible;
     if (c.fitted) {
       std::snprintf(
           line, sizeof(line),
@@ -89,17 +102,26 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     }
     out << "\n";
   }
-  if (!d.candidates.empty() && d.candidates.front().significant && d.explained) {
-    out << "  most likely missing: " << d.candidates.front().effect << " ("
-        << d.candidates.front().magnitude << " +- " << d.candidates.front().magnitude_sd << ")\n";
+  for (const CandidateScore& c : d.candidates) {
+    if (c.significant && !c.implausible.empty()) {
+      out << "  " << c.effect << " is significant but " << c.implausible
+          << ": not offered as the fix\n";
+    }
+  }
+  const CandidateScore* best = BestExplanation(d.candidates);
+  if (best != nullptr && d.explained) {
+    out << "  most likely missing: " << best->effect << " (" << best->magnitude << " +- "
+        << best->magnitude_sd << ")\n";
   } else if (!d.explained) {
-    out << (!d.candidates.empty() && d.candidates.front().significant
-                ? "  no candidate explains it: the best, " + d.candidates.front().effect +
-                      ", leaves a significant force along the path\n"
-                : std::string("  no candidate explains it: the failures above are outside the "
-                              "catalogue's tests\n"));
+    out << (best != nullptr ? "  no candidate explains it: the best, " + best->effect +
+                                  ", leaves a significant force along the path\n"
+                            : std::string("  no candidate explains it: the failures above are "
+                                          "outside the catalogue's tests\n"));
   } else {
-    out << "  no candidate is significant, and the model is consistent with the measurements\n";
+    const bool any = std::any_of(d.candidates.begin(), d.candidates.end(),
+                                 [](const CandidateScore& c) { return c.significant; });
+    out << (any ? "  no plausible candidate is significant" : "  no candidate is significant")
+        << ", and the model is consistent with the measurements\n";
   }
   if (d.truth.available) {
     out << "  against truth: velocity RMSE " << d.truth.velocity_rmse << " m/s, disturbance RMSE "
@@ -205,6 +227,9 @@ nlohmann::json ToJson(const Diagnosis& d) {
                          {"significant", c.significant},
                          {"magnitude", c.magnitude},
                          {"magnitude_sd", c.magnitude_sd},
+                         {"detectable", Number(c.detectable)},
+                         {"plausible", c.implausible.empty()},
+                         {"implausible", c.implausible},
                          {"test", c.test},
                          {"added_as", c.added_as}};
     if (!c.where.empty()) cj["where"] = c.where;
@@ -287,10 +312,12 @@ void AddSection(const Diagnosis& d, const std::string& heading, HtmlReport* repo
     rows.push_back(
         {c.effect, Figure(c.statistic), std::to_string(c.dof), Figure(c.p_value),
          c.significant ? "yes" : "no", Figure(c.magnitude), Figure(c.magnitude_sd),
+         Figure(c.detectable), c.implausible.empty() ? "yes" : c.implausible,
          c.test + (c.where.empty() ? "" : " (" + c.where + ")") +
              (c.fitted ? "; fitted: likelihood ratio " + Figure(c.likelihood_ratio) : "")});
   }
-  report->Table({"effect", "statistic", "dof", "p", "significant", "magnitude", "sd", "test"},
+  report->Table({"effect", "statistic", "dof", "p", "significant", "magnitude", "sd",
+                 "detectable above", "plausible", "test"},
                 rows);
   std::ostringstream text;
   PrintDiagnosis(d, text);

@@ -9,12 +9,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "model/effect_catalogue.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "tests/estimate_check.h"
+#include "workbench/robust_statistics.h"
 
 namespace slipgraph {
 namespace {
@@ -43,6 +45,23 @@ TEST(Diagnosis, NothingHiddenNothingSignificant) {
   }
   EXPECT_TRUE(d.explained);
   EXPECT_TRUE(d.failures.empty());
+  // Each candidate's minimum detectable magnitude agrees with its test: a score-tested one is
+  // significant exactly when (|magnitude| - negligible) / sd passes the critical z, which is the
+  // detectable magnitude less 0.84 sd (80 % power) in those units; none is significant here, so
+  // every magnitude stays below that.
+  for (const CandidateScore& c : d.candidates) {
+    if (c.dof == 0) continue;
+    ASSERT_TRUE(std::isfinite(c.detectable)) << c.effect;
+    EXPECT_GT(c.detectable, c.negligible) << c.effect;
+    const double sd = c.fitted ? c.magnitude_sd * std::sqrt(c.dispersion) : c.magnitude_sd;
+    const double critical = c.detectable - c.negligible - 0.8416 * sd;
+    if (!c.fitted) {
+      EXPECT_LT(std::abs(c.magnitude) - c.negligible, critical) << c.effect;
+      // And p = alpha there: the critical z of the candidate's Bonferroni family.
+      EXPECT_NEAR(NormalTwoSided(critical / sd) * c.searched * d.candidates.size(), 0.01, 1e-6)
+          << c.effect;
+    }
+  }
   ASSERT_TRUE(d.path_force.tested);
   EXPECT_GT(d.path_force.p_value, 0.05);
   for (const StreamReport& s : d.streams) EXPECT_GT(s.samples, 0u) << s.name;
@@ -69,6 +88,9 @@ Diagnosis DiagnoseExpectingFirst(const DriveLog& log, const std::string& effect)
   if (!d.candidates.empty()) {
     EXPECT_EQ(d.candidates.front().effect, effect);
     EXPECT_TRUE(d.candidates.front().significant) << effect;
+    // Its magnitude is plausible for the robot, and it is what the diagnosis offers.
+    EXPECT_EQ(d.candidates.front().implausible, "") << effect;
+    EXPECT_EQ(BestExplanation(d.candidates), &d.candidates.front()) << effect;
   }
   return d;
 }

@@ -111,6 +111,10 @@ TEST_F(MatlabImport, SmootherAndDiagnoseRunThroughAndSayWhereTheModelFails) {
   }
   // The EKF's GNSS innovations: NIS mean about 190, 39 % inside the 95 % bound.
   EXPECT_GT(testing::Named(d.filter, "gnss").nis_mean, 20.0);
+  // The candidates that fit are not physical (a negative drag, a wheel radius off by 100 %):
+  // implausible, none offered, and the failures left unexplained.
+  EXPECT_EQ(BestExplanation(d.candidates), nullptr);
+  EXPECT_FALSE(d.explained);
 }
 
 TEST_F(MatlabImport, DivergenceIsCaughtAndReportedNotANaN) {

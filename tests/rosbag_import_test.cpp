@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -133,6 +134,17 @@ TEST_F(HuskyBag, FilterSmootherAndDiagnoseRunThrough) {
   }
   EXPECT_FALSE(d.failures.empty());
   EXPECT_FALSE(d.candidates.empty());
+  // A quadratic drag of several hundred N/(m/s)^2 on a 50 kg robot fits the misfit best and is
+  // significant, but it would hold the robot back with more than half its weight at its top
+  // speed: implausible, and not offered as the fix (docs/real_logs.md).
+  const auto drag =
+      std::find_if(d.candidates.begin(), d.candidates.end(),
+                   [](const CandidateScore& c) { return c.effect == "quadratic_drag"; });
+  ASSERT_NE(drag, d.candidates.end());
+  EXPECT_TRUE(drag->significant);
+  EXPECT_NE(drag->implausible, "");
+  const CandidateScore* best = BestExplanation(d.candidates);
+  EXPECT_TRUE(best == nullptr || best->effect != "quadratic_drag");
   // The EKF's GNSS innovations: NIS mean 2.2, 82 % inside the 95 % bound (docs/real_logs.md).
   ASSERT_EQ(d.filter.size(), 5u);
   const InnovationReport& gnss = testing::Named(d.filter, "gnss");

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "factors/model_effects.h"
@@ -129,6 +131,7 @@ CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, 
   c.magnitude = weighted / precision;
   c.magnitude_sd = 1.0 / std::sqrt(precision);
   const double negligible = signature.negligible ? signature.negligible(log) : 0.0;
+  c.negligible = negligible;
   const double z = std::max(0.0, std::abs(c.magnitude) - negligible) / c.magnitude_sd;
   c.statistic = z * z;
   c.dof = 1;
@@ -207,7 +210,39 @@ void FitAndCompare(const DriveLog& log, const ModelConfig& model, const Smoother
   }
 }
 
+// CandidateScore::detectable. A score test rejects |theta| <= negligible when
+// (|theta| - negligible) / sd passes the two-sided critical z of alpha over its search and the
+// candidates scored; a fitted one when |theta| / (sd sqrt(dispersion)) does (its statistic, the
+// likelihood ratio over the dispersion, is about that squared). 80 % power adds z = 0.84.
+void SetDetectable(double alpha, size_t candidate_count, CandidateScore* c) {
+  if (c->dof == 0 || !(c->magnitude_sd > 0.0)) return;
+  const double tests = c->searched * static_cast<double>(candidate_count);
+  const double critical = NormalTwoSidedQuantile(std::min(1.0, alpha / tests));
+  constexpr double kPower80 = 0.8416212335729143;  // the standard normal's 80 % quantile
+  c->detectable = c->fitted ? (critical + kPower80) * c->magnitude_sd * std::sqrt(c->dispersion)
+                            : c->negligible + (critical + kPower80) * c->magnitude_sd;
+}
+
+// CandidateScore::implausible: empty unless the fit's +-2 sd interval misses the range.
+std::string ImplausibleBy(const PlausibleRange& range, const CandidateScore& c) {
+  if (c.magnitude + 2.0 * c.magnitude_sd >= range.low &&
+      c.magnitude - 2.0 * c.magnitude_sd <= range.high) {
+    return "";
+  }
+  std::ostringstream out;
+  out << std::setprecision(3) << "outside the plausible " << range.low << " to " << range.high
+      << " (" << range.basis << ")";
+  return out.str();
+}
+
 }  // namespace
+
+const CandidateScore* BestExplanation(const std::vector<CandidateScore>& candidates) {
+  for (const CandidateScore& c : candidates) {
+    if (c.significant && c.implausible.empty()) return &c;
+  }
+  return nullptr;
+}
 
 bool DiagnosisOptions::IsValid(std::string* error) const {
   return OptionCheck("DiagnosisOptions", error)
@@ -286,6 +321,13 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
   FitAndCompare(log, model, d.solution, options, candidates.size(), &d.candidates);
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
+  for (CandidateScore& c : d.candidates) {
+    SetDetectable(options.alpha, candidates.size(), &c);
+    const EffectSignature* signature = FindSignature(c.effect);
+    if (c.dof > 0 && signature != nullptr && signature->plausible) {
+      c.implausible = ImplausibleBy(signature->plausible(log), c);
+    }
+  }
   // The model's own effects through their signatures: what is left of each once it is in.
   for (const EffectSignature& s : EffectSignatures()) {
     const bool in_model =
@@ -296,8 +338,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   }
   // A force along the path the model lacks, whatever its shape, and what is left of it once the
   // best candidate is taken out; its local stretches are failures too.
-  const CandidateScore* best =
-      !d.candidates.empty() && d.candidates.front().significant ? &d.candidates.front() : nullptr;
+  const CandidateScore* best = BestExplanation(d.candidates);
   Eigen::VectorXd best_column;
   if (best != nullptr && best->graph_column && m.graph != nullptr && m.graph->ok()) {
     best_column = best->graph_column(*m.graph);
@@ -315,8 +356,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   const bool path_force = d.path_force.tested && d.path_force.p_value < options.alpha;
   bool failing = !d.failures.empty() || path_force;
   for (const StreamReport& s : d.streams) failing = failing || !s.consistent;
-  bool any = false;
-  for (const CandidateScore& c : d.candidates) any = any || c.significant;
+  const bool any = best != nullptr;
   // A significant candidate explains the misfit unless the force along the path stays
   // significant once its direction is taken out (only known for a candidate on the graph).
   const bool left_over = path_force && !std::isnan(d.path_force.after_p_value) &&

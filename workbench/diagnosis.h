@@ -119,7 +119,20 @@ struct CandidateScore {
   double likelihood_ratio = 0.0;
   double score_statistic = 0.0, score_p_value = 1.0, score_magnitude = 0.0,
          score_magnitude_sd = 0.0;
+  // The smallest |magnitude| this log would show as significant (at DiagnosisOptions::alpha,
+  // with this candidate's search and Bonferroni multipliers) with 80 % power, from the test's
+  // own sd: below it, "not significant" says the log cannot tell, not that the effect is absent.
+  // NaN when the candidate was not tested.
+  double detectable = std::numeric_limits<double>::quiet_NaN();
+  double negligible = 0.0;  // the test's null |theta| <= negligible (effect_signatures.h)
+  // Why the magnitude is physically implausible for this vehicle on this log (empty: plausible;
+  // EffectSignature::implausible). An implausible candidate is not offered as the fix.
+  std::string implausible;
 };
+
+// The first candidate (best first) that is significant and plausible: what the diagnosis offers
+// as the missing effect, and what `--add-best` adds. nullptr when there is none.
+const CandidateScore* BestExplanation(const std::vector<CandidateScore>& candidates);
 
 struct TruthErrors {
   bool available = false;

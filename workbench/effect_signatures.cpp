@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <mutex>
 #include <random>
 
@@ -184,6 +186,62 @@ void SetScanFit(const ModelResiduals& m, const std::vector<double>& h, const Int
                 SignatureSeries* s) {
   SetForceFit(m, h, s);
   s->searched = std::max(1.0, scan.p / std::max(1e-300, NormalTwoSided(std::sqrt(scan.statistic))));
+}
+
+// "x.xx" with `digits` significant digits.
+std::string Figure(double value, int digits = 2) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*g", digits, value);
+  return text;
+}
+
+// Each catalogue effect's physical limits (EffectSignature::plausible), generous enough that
+// every magnitude the simulator's catalogue uses passes on its drives. An external force opposing
+// motion cannot push, and beyond half the robot's weight it would stop it.
+void AttachPlausibleRanges(std::vector<EffectSignature>* list) {
+  using Range = std::function<PlausibleRange(const DriveLog&)>;
+  const auto fixed = [](double low, double high, const char* basis) -> Range {
+    return [=](const DriveLog&) { return PlausibleRange{low, high, basis}; };
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto over = [inf](double limit, double extent) {
+    return extent > 0.0 ? limit / extent : inf;
+  };
+  const std::map<std::string, Range> ranges = {
+      {"quadratic_drag",
+       [over](const DriveLog& log) {
+         const DriveExtent e = ExtentOf(log);
+         return PlausibleRange{
+             0.0, over(0.5 * e.weight_n, e.speed_mps * e.speed_mps),
+             "up to half the robot's weight at its top speed, " + Figure(e.speed_mps) + " m/s"};
+       }},
+      {"turn_slip",
+       [over](const DriveLog& log) {
+         const DriveExtent e = ExtentOf(log);
+         return PlausibleRange{0.0, over(0.5, e.yaw_rate_radps),
+                               "up to half the robot's weight at its top yaw rate, " +
+                                   Figure(e.yaw_rate_radps) + " rad/s"};
+       }},
+      {"sinkage_resistance", fixed(0.0, 0.5, "up to half the robot's weight")},
+      {"slope_slip",
+       [over](const DriveLog& log) {
+         const DriveExtent e = ExtentOf(log);
+         const double limit = over(0.9, e.grade_rad);
+         return PlausibleRange{-limit, limit,
+                               "traction changed by at most 90 % on its steepest grade, " +
+                                   Figure(e.grade_rad) + " rad"};
+       }},
+      {"wheel_radius_error", fixed(-0.15, 0.15, "a rolling radius within 15 % of the nominal")},
+      {"terrain_change", fixed(-0.9, 4.0, "traction between a tenth and five times the model's")},
+      {"load_transfer", fixed(0.0, 4.0, "the vehicle's geometry gives 1")},
+      {"gps_velocity_averaging", fixed(0.0, 3.0, "a mean over up to three fix intervals")},
+      {"imu_mounting_pitch", fixed(-0.2, 0.2, "a mounting pitch within 0.2 rad (11 deg)")},
+      {"clock_offset", fixed(-1.0, 1.0, "the streams of one robot within 1 s")},
+  };
+  for (EffectSignature& s : *list) {
+    const auto it = ranges.find(s.effect);
+    if (it != ranges.end()) s.plausible = it->second;
+  }
 }
 
 std::vector<EffectSignature> MakeSignatures() {
@@ -397,6 +455,7 @@ std::vector<EffectSignature> MakeSignatures() {
        [](double offset, DriveLog* log) {
          for (ImuSample& imu : log->imu) imu.t -= offset;
        }});
+  AttachPlausibleRanges(&list);
   return list;
 }
 
@@ -459,6 +518,38 @@ void RegisterEffectSignature(EffectSignature signature) {
     }
   }
   Registry().push_back(std::move(signature));
+}
+
+namespace {
+
+double Percentile99(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const size_t i = static_cast<size_t>(0.99 * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<long>(i), values.end());
+  return values[i];
+}
+
+}  // namespace
+
+DriveExtent ExtentOf(const DriveLog& log) {
+  DriveExtent e;
+  e.weight_n = log.vehicle.mass_kg * 9.80665;
+  std::vector<double> speed, yaw_rate, grade;
+  for (const WheelSample& w : log.wheels) {
+    const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
+    const double v = 0.5 * log.vehicle.wheel_radius_m * (s.left_radps + s.right_radps);
+    if (std::isfinite(v)) speed.push_back(std::abs(v));
+  }
+  for (const ImuSample& imu : log.imu) {
+    if (std::isfinite(imu.gz)) yaw_rate.push_back(std::abs(imu.gz));
+  }
+  for (const AttitudeSample& a : log.attitude) {
+    if (std::isfinite(a.pitch)) grade.push_back(std::abs(a.pitch));
+  }
+  e.speed_mps = Percentile99(std::move(speed));
+  e.yaw_rate_radps = Percentile99(std::move(yaw_rate));
+  e.grade_rad = Percentile99(std::move(grade));
+  return e;
 }
 
 std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,

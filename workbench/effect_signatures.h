@@ -14,6 +14,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -51,6 +52,12 @@ struct SignatureSeries {
   std::function<Eigen::VectorXd(const GraphProjector&)> graph_column;
 };
 
+struct PlausibleRange {
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+  std::string basis;  // what sets the limits ("half the robot's weight at its top speed, 1.4 m/s")
+};
+
 struct EffectSignature {
   std::string effect;  // catalogue name
   std::string test;    // one line: which residuals against which shape
@@ -64,6 +71,10 @@ struct EffectSignature {
   // measurements for a given magnitude, so the unchanged smoother runs on corrected streams
   // (`diagnose --with`). Null when the effect needs a model term instead.
   std::function<void(double magnitude, DriveLog* log)> correct;
+  // The magnitudes the physics allows for this vehicle on this log (its weight, how fast, how
+  // sharply and how steeply it drove): a fit whose +-2 sd interval lies outside is reported as
+  // implausible and not offered as the fix. Null: no limit known.
+  std::function<PlausibleRange(const DriveLog& log)> plausible = nullptr;
 };
 
 // Every effect with a signature: the built-ins in catalogue order, then the registered ones
@@ -83,6 +94,17 @@ struct EffectSignatureRegistration {
     RegisterEffectSignature(std::move(signature));
   }
 };
+
+// What bounds a magnitude's plausibility on a log: the robot's weight and how fast, how sharply
+// and how steeply it drove (99th percentiles of the driven sides' mean rim speed, the gyro's
+// |yaw rate| and the attitude's |pitch|, so that a spike does not set them).
+struct DriveExtent {
+  double weight_n = 0.0;
+  double speed_mps = 0.0;
+  double yaw_rate_radps = 0.0;
+  double grade_rad = 0.0;
+};
+DriveExtent ExtentOf(const DriveLog& log);
 
 // The attitude stream's unwrapped heading beside the gyro's integrated one (trapezoid over the
 // states of g_z - c_gz - b_gz, starting at 0), at the states that have an attitude sample, with
