@@ -115,9 +115,9 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
         PrintDiagnosis(after, text);
         PrintComparison(before, after, text);
         j["after"] = ToJson(after);
-        if (!report) report = DiagnosisReport(before, &after);
+        if (!report) report = DiagnosisReport(log, before, &extended.log, &after);
       } else if (!report) {
-        report = DiagnosisReport(before, nullptr);
+        report = DiagnosisReport(log, before);
       }
       all.push_back(j);
       if (const CandidateScore* best = BestExplanation(before.candidates)) {

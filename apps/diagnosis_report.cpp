@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "apps/estimate_plots.h"
 
 namespace slipgraph {
 namespace {
@@ -14,6 +17,34 @@ namespace {
 // A JSON number, null when not finite (JSON has no NaN).
 nlohmann::json Number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+// The verdict lines: significant candidates not offered (implausible), then the missing
+// effect, or why none explains the misfit, or that the model is consistent.
+std::string Verdict(const Diagnosis& d) {
+  std::ostringstream out;
+  for (const CandidateScore& c : d.candidates) {
+    if (c.significant && !c.implausible.empty()) {
+      out << "  " << c.effect << " is significant but " << c.implausible
+          << ": not offered as the fix\n";
+    }
+  }
+  const CandidateScore* best = BestExplanation(d.candidates);
+  if (best != nullptr && d.explained) {
+    out << "  most likely missing: " << best->effect << " (" << best->magnitude << " +- "
+        << best->magnitude_sd << ")\n";
+  } else if (!d.explained) {
+    out << (best != nullptr ? "  no candidate explains it: the best, " + best->effect +
+                                  ", leaves a significant force along the path\n"
+                            : std::string("  no candidate explains it: the failures above are "
+                                          "outside the catalogue's tests\n"));
+  } else {
+    const bool any = std::any_of(d.candidates.begin(), d.candidates.end(),
+                                 [](const CandidateScore& c) { return c.significant; });
+    out << (any ? "  no plausible candidate is significant" : "  no candidate is significant")
+        << ", and the model is consistent with the measurements\n";
+  }
+  return out.str();
 }
 
 }  // namespace
@@ -102,27 +133,7 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     }
     out << "\n";
   }
-  for (const CandidateScore& c : d.candidates) {
-    if (c.significant && !c.implausible.empty()) {
-      out << "  " << c.effect << " is significant but " << c.implausible
-          << ": not offered as the fix\n";
-    }
-  }
-  const CandidateScore* best = BestExplanation(d.candidates);
-  if (best != nullptr && d.explained) {
-    out << "  most likely missing: " << best->effect << " (" << best->magnitude << " +- "
-        << best->magnitude_sd << ")\n";
-  } else if (!d.explained) {
-    out << (best != nullptr ? "  no candidate explains it: the best, " + best->effect +
-                                  ", leaves a significant force along the path\n"
-                            : std::string("  no candidate explains it: the failures above are "
-                                          "outside the catalogue's tests\n"));
-  } else {
-    const bool any = std::any_of(d.candidates.begin(), d.candidates.end(),
-                                 [](const CandidateScore& c) { return c.significant; });
-    out << (any ? "  no plausible candidate is significant" : "  no candidate is significant")
-        << ", and the model is consistent with the measurements\n";
-  }
+  out << Verdict(d);
   if (d.truth.available) {
     out << "  against truth: velocity RMSE " << d.truth.velocity_rmse << " m/s, disturbance RMSE "
         << d.truth.disturbance_rmse << " m/s^2\n";
@@ -277,14 +288,30 @@ nlohmann::json ToJson(const Diagnosis& d) {
 
 namespace {
 
+// A table cell: four significant digits.
 std::string Figure(double value) {
   std::ostringstream s;
-  s << value;
+  s << std::setprecision(4) << value;
   return s.str();
 }
 
-void AddSection(const Diagnosis& d, const std::string& heading, HtmlReport* report) {
+void AddSection(const DriveLog& log, const Diagnosis& d, const std::string& heading,
+                HtmlReport* report) {
   report->Heading(heading);
+  report->Preformatted(Verdict(d));
+  report->Heading("estimates: the front end's and the smoother's", 3);
+  AddEstimatePlots(log,
+                   {{"EKF", &d.solution.ekf.estimates, "#d62728"},
+                    {"smoother", &d.solution.estimates, "#1f77b4"}},
+                   report);
+  std::vector<std::vector<std::string>> streams;
+  for (const StreamReport& r : d.streams) {
+    streams.push_back({r.name, std::to_string(r.samples), Figure(r.rms),
+                       r.consistent ? "yes" : "no", Figure(r.whiteness.q), r.white ? "yes" : "no"});
+  }
+  report->Heading("measurements against the model", 3);
+  report->Table({"stream", "samples", "rms (normalized)", "consistent", "Ljung-Box Q", "white"},
+                streams);
   std::vector<std::pair<double, double>> shaded;
   for (const FailureSegment& f : d.failures) shaded.push_back({f.t_start, f.t_end});
   for (const StreamResiduals& s : d.residuals.streams) {
@@ -316,25 +343,24 @@ void AddSection(const Diagnosis& d, const std::string& heading, HtmlReport* repo
          c.test + (c.where.empty() ? "" : " (" + c.where + ")") +
              (c.fitted ? "; fitted: likelihood ratio " + Figure(c.likelihood_ratio) : "")});
   }
+  report->Heading("candidate effects", 3);
   report->Table({"effect", "statistic", "dof", "p", "significant", "magnitude", "sd",
                  "detectable above", "plausible", "test"},
                 rows);
-  std::ostringstream text;
-  PrintDiagnosis(d, text);
-  report->Preformatted(text.str());
 }
 
 }  // namespace
 
-HtmlReport DiagnosisReport(const Diagnosis& before, const Diagnosis* after) {
+HtmlReport DiagnosisReport(const DriveLog& log, const Diagnosis& before, const DriveLog* after_log,
+                           const Diagnosis* after) {
   HtmlReport report("slipgraph diagnose: " + before.log);
-  AddSection(before, after != nullptr ? "before" : "model vs measurements", &report);
+  AddSection(log, before, after != nullptr ? "before" : "model vs measurements", &report);
   if (after != nullptr) {
     std::ostringstream text;
     PrintComparison(before, *after, text);
     report.Heading("before -> after");
     report.Preformatted(text.str());
-    AddSection(*after, "after", &report);
+    AddSection(after_log != nullptr ? *after_log : log, *after, "after", &report);
   }
   return report;
 }
