@@ -4,6 +4,13 @@
 // mean and sd of the top candidate's fitted magnitude, and how often the verdict is "no candidate
 // explains it". Prints a table (docs/workbench.md).
 // Run: build/bench/diagnose_monte_carlo [SEEDS=20] [EFFECT...]
+//
+// With --detectable first: the minimum detectable magnitudes checked. For each effect and seed,
+// the diagnosis of the drive with nothing hidden states the effect's detectable magnitude D
+// (CandidateScore::detectable: significant with 80 % power); the same drive and seed is then
+// simulated with the effect at D (the catalogue's sign) and diagnosed. If D is right, the effect
+// is significant on about 80 % of seeds.
+// Run: build/bench/diagnose_monte_carlo --detectable [SEEDS=20] [EFFECT...]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,11 +23,72 @@
 #include "sim/simulation.h"
 #include "workbench/diagnosis.h"
 
+namespace {
+
+using namespace slipgraph;  // NOLINT
+
+const CandidateScore* Candidate(const Diagnosis& d, const std::string& effect) {
+  for (const CandidateScore& c : d.candidates) {
+    if (c.effect == effect) return &c;
+  }
+  return nullptr;
+}
+
+int CheckDetectable(int seeds, std::vector<std::string> effects) {
+  if (effects.empty()) {
+    for (const EffectInfo& e : EffectCatalogue()) {
+      if (e.in_model_catalogue) effects.push_back(e.name);
+    }
+  }
+  std::printf(
+      "| effect | seeds | detectable magnitude, median (range) | significant at it | "
+      "top-1 and significant |\n|---|---|---|---|---|\n");
+  for (const std::string& effect : effects) {
+    const EffectInfo* info = FindEffect(effect);
+    if (info == nullptr) {
+      std::fprintf(stderr, "unknown effect '%s'\n", effect.c_str());
+      return 2;
+    }
+    std::vector<double> detectable;
+    int significant = 0, top1 = 0, tried = 0;
+    for (int seed = 1; seed <= seeds; ++seed) {
+      sim::ScenarioRun run = sim::ExpandScenario("hidden/none", seed).at(0);
+      const DriveLog null_log = sim::Simulate(run.scenario, run.seed).log;
+      const Diagnosis null_d = Diagnose(null_log, DefaultModelConfig(null_log.vehicle));
+      const CandidateScore* c = Candidate(null_d, effect);
+      if (c == nullptr || !std::isfinite(c->detectable)) continue;
+      detectable.push_back(c->detectable);
+      run.scenario.effects[effect] = std::copysign(c->detectable, info->default_value);
+      const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle));
+      ++tried;
+      const CandidateScore* found = Candidate(d, effect);
+      significant += found != nullptr && found->significant;
+      top1 += !d.candidates.empty() && d.candidates.front().effect == effect &&
+              d.candidates.front().significant;
+    }
+    std::sort(detectable.begin(), detectable.end());
+    char range[96] = "-";
+    if (!detectable.empty()) {
+      std::snprintf(range, sizeof(range), "%.3g (%.3g-%.3g)", detectable[detectable.size() / 2],
+                    detectable.front(), detectable.back());
+    }
+    std::printf("| %s | %d | %s | %d/%d | %d/%d |\n", effect.c_str(), tried, range, significant,
+                tried, top1, tried);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  using namespace slipgraph;  // NOLINT
-  const int seeds = argc > 1 ? std::atoi(argv[1]) : 20;
+  const bool check_detectable = argc > 1 && std::string(argv[1]) == "--detectable";
+  const int first = check_detectable ? 2 : 1;
+  const int seeds = argc > first ? std::atoi(argv[first]) : 20;
   std::vector<std::string> effects;
-  for (int i = 2; i < argc; ++i) effects.push_back(argv[i]);
+  for (int i = first + 1; i < argc; ++i) effects.push_back(argv[i]);
+  if (check_detectable) return CheckDetectable(seeds, effects);
   if (effects.empty()) {
     effects.push_back("none");
     for (const EffectInfo& e : EffectCatalogue()) effects.push_back(e.name);

@@ -223,12 +223,11 @@ void SetDetectable(double alpha, size_t candidate_count, CandidateScore* c) {
                             : c->negligible + (critical + kPower80) * c->magnitude_sd;
 }
 
-// CandidateScore::implausible: empty unless the fit's +-2 sd interval misses the range.
+// CandidateScore::implausible: empty unless the fit's +-2 sd interval misses the range (a
+// fitted magnitude's sd widened by the dispersion, as its test is).
 std::string ImplausibleBy(const PlausibleRange& range, const CandidateScore& c) {
-  if (c.magnitude + 2.0 * c.magnitude_sd >= range.low &&
-      c.magnitude - 2.0 * c.magnitude_sd <= range.high) {
-    return "";
-  }
+  const double sd = c.fitted ? c.magnitude_sd * std::sqrt(c.dispersion) : c.magnitude_sd;
+  if (c.magnitude + 2.0 * sd >= range.low && c.magnitude - 2.0 * sd <= range.high) return "";
   std::ostringstream out;
   out << std::setprecision(3) << "outside the plausible " << range.low << " to " << range.high
       << " (" << range.basis << ")";
