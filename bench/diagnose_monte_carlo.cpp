@@ -9,8 +9,8 @@
 // the diagnosis of the drive with nothing hidden states the effect's detectable magnitude D
 // (CandidateScore::detectable: significant with 80 % power); the same drive and seed is then
 // simulated with the effect at D (the catalogue's sign) and diagnosed. If D is right, the effect
-// is significant on about 80 % of seeds.
-// Run: build/bench/diagnose_monte_carlo --detectable [SEEDS=20] [EFFECT...]
+// is significant on about 80 % of seeds. --scale F hides it at F x D instead (the power curve).
+// Run: build/bench/diagnose_monte_carlo --detectable [--scale F] [SEEDS=20] [EFFECT...]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,15 +34,16 @@ const CandidateScore* Candidate(const Diagnosis& d, const std::string& effect) {
   return nullptr;
 }
 
-int CheckDetectable(int seeds, std::vector<std::string> effects) {
+int CheckDetectable(int seeds, double scale, std::vector<std::string> effects) {
   if (effects.empty()) {
     for (const EffectInfo& e : EffectCatalogue()) {
       if (e.in_model_catalogue) effects.push_back(e.name);
     }
   }
   std::printf(
-      "| effect | seeds | detectable magnitude, median (range) | significant at it | "
-      "top-1 and significant |\n|---|---|---|---|---|\n");
+      "| effect | seeds | detectable magnitude D, median (range) | significant at %g D | "
+      "top-1 and significant |\n|---|---|---|---|---|\n",
+      scale);
   for (const std::string& effect : effects) {
     const EffectInfo* info = FindEffect(effect);
     if (info == nullptr) {
@@ -58,7 +59,7 @@ int CheckDetectable(int seeds, std::vector<std::string> effects) {
       const CandidateScore* c = Candidate(null_d, effect);
       if (c == nullptr || !std::isfinite(c->detectable)) continue;
       detectable.push_back(c->detectable);
-      run.scenario.effects[effect] = std::copysign(c->detectable, info->default_value);
+      run.scenario.effects[effect] = std::copysign(scale * c->detectable, info->default_value);
       const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
       const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle));
       ++tried;
@@ -84,11 +85,13 @@ int CheckDetectable(int seeds, std::vector<std::string> effects) {
 
 int main(int argc, char** argv) {
   const bool check_detectable = argc > 1 && std::string(argv[1]) == "--detectable";
-  const int first = check_detectable ? 2 : 1;
+  const bool scaled = check_detectable && argc > 3 && std::string(argv[2]) == "--scale";
+  const double scale = scaled ? std::atof(argv[3]) : 1.0;
+  const int first = check_detectable ? (scaled ? 4 : 2) : 1;
   const int seeds = argc > first ? std::atoi(argv[first]) : 20;
   std::vector<std::string> effects;
   for (int i = first + 1; i < argc; ++i) effects.push_back(argv[i]);
-  if (check_detectable) return CheckDetectable(seeds, effects);
+  if (check_detectable) return CheckDetectable(seeds, scale, effects);
   if (effects.empty()) {
     effects.push_back("none");
     for (const EffectInfo& e : EffectCatalogue()) effects.push_back(e.name);
