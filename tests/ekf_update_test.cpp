@@ -23,6 +23,23 @@ StateMatrix RandomCovariance(int seed) {
   return a * a.transpose() + 0.1 * StateMatrix::Identity();
 }
 
+// The rows stacked: H, diagonal R, nu, and S = H P H' + R.
+struct Stacked {
+  Dyn H, R, S;
+  Eigen::VectorXd nu;
+};
+Stacked Stack(const MeasurementRows& rows, const StateMatrix& P) {
+  const int m = rows.size();
+  Stacked out{Dyn(m, kStateSize), Dyn::Zero(m, m), Dyn(), Eigen::VectorXd(m)};
+  for (int i = 0; i < m; ++i) {
+    out.H.row(i) = rows.jacobian(i);
+    out.R(i, i) = rows.variance(i);
+    out.nu(i) = rows.innovation(i);
+  }
+  out.S = out.H * P * out.H.transpose() + out.R;
+  return out;
+}
+
 MeasurementRows ThreeRows() {
   MeasurementRows rows;
   ekf::StateRow h;
@@ -41,15 +58,10 @@ TEST(EkfUpdate, SequentialRowsEqualTheStackedUpdate) {
 
   // The stacked update: K = P H' S^-1, x + K nu, P - K S K'; log N(nu; 0, S).
   const int m = rows.size();
-  Dyn H(m, kStateSize), R = Dyn::Zero(m, m);
-  Eigen::VectorXd nu(m);
-  for (int i = 0; i < m; ++i) {
-    H.row(i) = rows.jacobian(i);
-    R(i, i) = rows.variance(i);
-    nu(i) = rows.innovation(i);
-  }
-  const Dyn S = H * P0 * H.transpose() + R;
-  const Dyn K = P0 * H.transpose() * S.inverse();
+  const Stacked stacked = Stack(rows, P0);
+  const Dyn& S = stacked.S;
+  const Eigen::VectorXd& nu = stacked.nu;
+  const Dyn K = P0 * stacked.H.transpose() * S.inverse();
   const StateVector x_stacked = x0 + K * nu;
   const StateMatrix P_stacked = P0 - K * S * K.transpose();
   const double log_likelihood_stacked =
@@ -80,14 +92,9 @@ TEST(EkfUpdate, DistanceClosedFormsEqualTheFactorization) {
     for (int i = 0; i < m; ++i) {
       rows.Add(three.innovation(i), three.jacobian(i), three.variance(i));
     }
-    Dyn H(m, kStateSize), R = Dyn::Zero(m, m);
-    Eigen::VectorXd nu(m);
-    for (int i = 0; i < m; ++i) {
-      H.row(i) = rows.jacobian(i);
-      R(i, i) = rows.variance(i);
-      nu(i) = rows.innovation(i);
-    }
-    const Dyn S = H * P * H.transpose() + R;
+    const Stacked stacked = Stack(rows, P);
+    const Dyn& S = stacked.S;
+    const Eigen::VectorXd& nu = stacked.nu;
     const ekf::InnovationDistance d = ekf::DistanceOf(rows, P);
     EXPECT_NEAR(d.mahalanobis, nu.dot(S.inverse() * nu), 1e-10) << m << " rows";
     EXPECT_NEAR(d.det_s, S.determinant(), 1e-10 * std::abs(S.determinant())) << m << " rows";

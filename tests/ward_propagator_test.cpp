@@ -17,11 +17,7 @@ using namespace ward;  // NOLINT: state indices
 
 const Params kParams = testing::LagrParams();
 
-ekf::StateVector Moving() {
-  ekf::StateVector x;
-  x << 0.8, 0.02, -0.1, 3.4, 3.5, 0.04, 0.001;
-  return x;
-}
+ekf::StateVector Moving() { return testing::MovingWardState(); }
 
 // The prediction's transition matrix by central differences of the state it predicts.
 ekf::StateMatrix NumericTransition(const PropagationInput& input, const AttitudeLoads<double>& l,

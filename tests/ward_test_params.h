@@ -1,6 +1,8 @@
 // The LAGR robot of Ward & Iagnemma as physics parameters, shared by the Ward model tests.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "factors/ward_state.h"
 
 namespace slipgraph {
@@ -19,6 +21,13 @@ inline ward::Params LagrParams(VehicleType type = VehicleType::kDiffDriveCastor)
   p.tire = {0.8, 20.0, 0.05};
   p.rolling = {0.03, 20.0, 0.01};
   return p;
+}
+
+// A state of the LAGR robot driving at 0.8 m/s with a little slip, a turn and small biases.
+inline Eigen::Matrix<double, ward::kStateSize, 1> MovingWardState() {
+  Eigen::Matrix<double, ward::kStateSize, 1> x;
+  x << 0.8, 0.02, -0.1, 3.4, 3.5, 0.04, 0.001;
+  return x;
 }
 
 }  // namespace testing

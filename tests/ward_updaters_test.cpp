@@ -17,11 +17,7 @@ using namespace ward;  // NOLINT: state indices
 
 const Params kParams = testing::LagrParams();
 
-ekf::StateVector Moving() {
-  ekf::StateVector x;
-  x << 0.8, 0.02, -0.1, 3.4, 3.5, 0.04, 0.001;
-  return x;
-}
+ekf::StateVector Moving() { return testing::MovingWardState(); }
 
 TEST(WardUpdaters, ImuRowsAreEquationElevenWithItsJacobian) {
   const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.02, -0.05}, kParams);
