@@ -153,8 +153,8 @@ DriveLog Import(const std::string& source, const std::string& mapping_path, cons
     const auto at = [&](size_t i, size_t axis) {
       return by_rows ? enu.At(i, axis) : enu.At(axis, i);
     };
-    const double sd_xy = Number(gps, "sd_xy", kMissing);
-    const double sd_v = Number(gps, "sd_v", kMissing);
+    const double sd_xy = MappingSd(gps, "gps", "sd_xy", mapping_path);
+    const double sd_v = MappingSd(gps, "gps", "sd_v", mapping_path);
     for (size_t i = 0; i < t.size(); ++i) {
       const size_t a = i > 0 ? i - 1 : i, b = i + 1 < t.size() ? i + 1 : i;
       const double dt = t[b] - t[a];

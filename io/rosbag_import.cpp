@@ -253,7 +253,7 @@ DriveLog Import(const std::string& bag_path, const std::string& mapping_path,
   // REP-145), velocity by central difference.
   if (!fix_t.empty()) {
     const GeographicLib::LocalCartesian local(fix_lat[0], fix_lon[0], fix_alt[0]);
-    const double sd_v = gps_map["sd_v"] ? gps_map["sd_v"].as<double>() : kMissing;
+    const double sd_v = MappingSd(gps_map, "gps", "sd_v", mapping_path);
     const size_t n = fix_t.size();
     std::vector<Eigen::Vector3d> enu(n);
     for (size_t i = 0; i < n; ++i) {

@@ -1,9 +1,11 @@
 // The importers' mapping files: a parse error names the file and line, an unknown key (a typo)
-// is an error naming it with its section, a missing file is an error naming it.
+// is an error naming it with its section, a missing file is an error naming it, a stated sd must
+// be a positive number.
 #include "io/mapping_file.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -46,6 +48,21 @@ TEST(MappingFile, ADuplicateKeyIsNamed) {
   EXPECT_NE(e.find("mapping_duplicate.yaml:4"), std::string::npos) << e;
   EXPECT_NE(e.find("imu.frame"), std::string::npos) << e;
   EXPECT_NE(e.find("duplicate key"), std::string::npos) << e;
+}
+
+TEST(MappingFile, AStatedSdIsAPositiveNumberOrAnErrorNamingIt) {
+  const std::string ok = Write("mapping_sd.yaml", "gps: {topic: /fix, sd_v: 0.3}\n");
+  EXPECT_EQ(MappingSd(LoadYamlFile(ok)["gps"], "gps", "sd_v", ok), 0.3);
+  EXPECT_TRUE(std::isnan(MappingSd(LoadYamlFile(ok)["gps"], "gps", "sd_xy", ok)));  // kMissing
+  // Found by the import fuzzer: a negative sd was written into gps.csv, which the reader refuses.
+  for (const char* value : {"-.3", "0", "nan", "fast"}) {
+    const std::string path =
+        Write("mapping_bad_sd.yaml", std::string("gps:\n  topic: /fix\n  sd_v: ") + value + "\n");
+    const std::string e =
+        ErrorOf([&] { MappingSd(LoadYamlFile(path)["gps"], "gps", "sd_v", path); });
+    EXPECT_NE(e.find("mapping_bad_sd.yaml:3"), std::string::npos) << value << ": " << e;
+    EXPECT_NE(e.find("gps.sd_v"), std::string::npos) << value << ": " << e;
+  }
 }
 
 TEST(MappingFile, ParseErrorsAndMissingFilesAreNamed) {
