@@ -53,7 +53,7 @@ TEST(Diagnosis, NothingHiddenNothingSignificant) {
     if (c.dof == 0) continue;
     ASSERT_TRUE(std::isfinite(c.detectable)) << c.effect;
     EXPECT_GT(c.detectable, c.negligible) << c.effect;
-    const double sd = c.fitted ? c.magnitude_sd * std::sqrt(c.dispersion) : c.magnitude_sd;
+    const double sd = c.test_sd();
     const double critical = c.detectable - c.negligible - 0.8416 * sd;
     if (!c.fitted) {
       EXPECT_LT(std::abs(c.magnitude) - c.negligible, critical) << c.effect;

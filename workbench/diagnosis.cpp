@@ -219,14 +219,13 @@ void SetDetectable(double alpha, size_t candidate_count, CandidateScore* c) {
   const double tests = c->searched * static_cast<double>(candidate_count);
   const double critical = NormalTwoSidedQuantile(std::min(1.0, alpha / tests));
   constexpr double kPower80 = 0.8416212335729143;  // the standard normal's 80 % quantile
-  c->detectable = c->fitted ? (critical + kPower80) * c->magnitude_sd * std::sqrt(c->dispersion)
-                            : c->negligible + (critical + kPower80) * c->magnitude_sd;
+  c->detectable = (c->fitted ? 0.0 : c->negligible) + (critical + kPower80) * c->test_sd();
 }
 
 // CandidateScore::implausible: empty unless the fit's +-2 sd interval misses the range (a
 // fitted magnitude's sd widened by the dispersion, as its test is).
 std::string ImplausibleBy(const PlausibleRange& range, const CandidateScore& c) {
-  const double sd = c.fitted ? c.magnitude_sd * std::sqrt(c.dispersion) : c.magnitude_sd;
+  const double sd = c.test_sd();
   if (c.magnitude + 2.0 * sd >= range.low && c.magnitude - 2.0 * sd <= range.high) return "";
   std::ostringstream out;
   out << std::setprecision(3) << "outside the plausible " << range.low << " to " << range.high

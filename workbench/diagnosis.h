@@ -5,6 +5,7 @@
 // when none is significant.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -125,6 +126,9 @@ struct CandidateScore {
   // NaN when the candidate was not tested.
   double detectable = std::numeric_limits<double>::quiet_NaN();
   double negligible = 0.0;  // the test's null |theta| <= negligible (effect_signatures.h)
+  // The sd the candidate's test divides by: magnitude_sd, widened by the dispersion once fitted
+  // (its statistic is the likelihood ratio over the dispersion).
+  double test_sd() const { return fitted ? magnitude_sd * std::sqrt(dispersion) : magnitude_sd; }
   // Why the magnitude is physically implausible for this vehicle on this log (empty: plausible;
   // EffectSignature::implausible). An implausible candidate is not offered as the fix.
   std::string implausible;
