@@ -10,6 +10,7 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
     bool no_gps = false;
     bool single_law = false;
     bool gnss_fading = false;
+    bool disturbance_modes = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
@@ -23,11 +24,17 @@ void RegisterFilterCommand(CLI::App* app, int* status) {
                 "Fading memory on GNSS: widen the filter's covariance when its GNSS innovations "
                 "keep one sign, so that GNSS pulls a drifting velocity back (EkfOptions::"
                 "gnss_fading_*; docs/mismatch.md)");
+  cmd->add_flag("--disturbance-modes", options->disturbance_modes,
+                "The single filter as three disturbance modes (none, changing, held) mixed as an "
+                "interacting multiple model: fewer false alarms where the model's tire law or "
+                "attitude is off, some slow hold-backs missed (solvers/disturbance_imm.h; "
+                "docs/mismatch.md)");
   cmd->callback([options, status]() {
     FilterRunOptions run_options;
     if (options->gnss_fading) run_options.ekf.gnss_fading_fixes = kGnssFadingFixes;
     run_options.use_gps = !options->no_gps;
     run_options.multiple_model = !options->single_law;
+    run_options.disturbance_modes = options->disturbance_modes;
     *status = RunEstimatorOverLogs(
         options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
           const FilterResult result = RunEkf(log, model, run_options);

@@ -14,7 +14,13 @@
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
 //     vibration, gnss, radius, relaxation): an ablation;
 //   --fading-fixes N, --fading-threshold T: the front end's GNSS fading memory (EkfOptions;
-//     N = 0: off), for choosing them on seeds the figures are not reported on.
+//     N = 0: off), for choosing them on seeds the figures are not reported on;
+//   --disturbance-modes: the single filter as disturbance modes (solvers/disturbance_imm.h);
+//     --imm-options TAU,SD,HELD,TQ,TC,TH[,MIX] sets its options (DisturbanceImmOptions, in that
+//     order), for choosing them on seeds the figures are not reported on;
+//   --single-law: one filter also where vehicle.yaml lists law samples;
+//   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
+//     trying a setting on seeds the figures are not reported on.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +30,8 @@
 #include <vector>
 
 #include "evaluation/evaluation.h"
+#include "io/text_file.h"
+#include "io/yaml_config.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
@@ -57,6 +65,13 @@ struct SuiteResult {
 std::vector<std::string> g_without;
 // --fading-fixes, --fading-threshold: the front end's GNSS fading memory (EkfOptions).
 EkfOptions g_ekf;
+// --disturbance-modes, --imm-options: the single filter as disturbance modes.
+bool g_imm = false;
+DisturbanceImmOptions g_imm_options;
+// --single-law: one filter also where vehicle.yaml lists law samples (`filter --single-law`).
+bool g_single_law = false;
+// --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
+std::string g_model_path, g_model_text;
 
 bool Without(const std::string& ingredient) {
   return std::find(g_without.begin(), g_without.end(), ingredient) != g_without.end();
@@ -101,12 +116,17 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     const sim::Scenario scenario =
         matched.empty() ? run.scenario : Ablate(run.scenario, matched[r].scenario);
     const DriveLog log = sim::Simulate(scenario, run.seed).log;
-    const ModelConfig model = DefaultModelConfig(log.vehicle);
+    const ModelConfig model = g_model_path.empty()
+                                  ? DefaultModelConfig(log.vehicle)
+                                  : ParseModelYaml(g_model_path, g_model_text, log.vehicle);
     FilterResult with_gnss;
     for (int e = kEkfGnss; e <= kEkfNoGnss; ++e) {
       FilterRunOptions options;
       options.ekf = g_ekf;
       options.use_gps = e == kEkfGnss;
+      options.disturbance_modes = g_imm;
+      options.multiple_model = !g_single_law;
+      options.disturbance_modes_options = g_imm_options;
       FilterResult result = RunEkf(log, model, options);
       score(e, log, result.estimates);
       if (e == kEkfGnss) with_gnss = std::move(result);
@@ -180,6 +200,19 @@ int main(int argc, char** argv) {
       g_ekf.gnss_fading_fixes = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--fading-threshold") == 0 && has_value) {
       g_ekf.gnss_fading_threshold = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--single-law") == 0) {
+      g_single_law = true;
+    } else if (std::strcmp(argv[i], "--disturbance-modes") == 0) {
+      g_imm = true;
+    } else if (std::strcmp(argv[i], "--imm-options") == 0 && has_value) {
+      g_imm = std::sscanf(argv[++i], "%lf,%lf,%lf,%lf,%lf,%lf,%lf",
+                          &g_imm_options.quiet_a_dist_tau_s, &g_imm_options.quiet_a_dist_sd_mps2,
+                          &g_imm_options.held_a_dist_mps3_per_sqrt_hz, &g_imm_options.quiet_mean_s,
+                          &g_imm_options.change_mean_s, &g_imm_options.held_mean_s,
+                          &g_imm_options.mix_interval_s) >= 6;
+    } else if (std::strcmp(argv[i], "--model") == 0 && has_value) {
+      g_model_path = argv[++i];
+      g_model_text = ReadTextFile(g_model_path);
     } else if (std::strcmp(argv[i], "--window") == 0) {
       window = true;
     } else if (std::strcmp(argv[i], "--smoother") == 0) {

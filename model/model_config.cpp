@@ -77,6 +77,10 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "calibration.track_width must be non-negative (0: vehicle.yaml's)";
     return false;
   }
+  if (!(process.a_dist_decay_tau_s >= 0.0)) {
+    *error = "process.a_dist_decay_tau must be non-negative (0: a random walk)";
+    return false;
+  }
   if (tire_uncertainty.slip_relative_sd < 0.0 || tire_uncertainty.slip_floor_mps < 0.0) {
     *error = "tire_uncertainty.slip_relative_sd and slip_floor must be non-negative";
     return false;

@@ -27,6 +27,11 @@ struct ProcessNoiseConfig {
   double accel_bias_tau_s = 300.0;           // tau_ax: correlation time of b_ax
   double gyro_bias_sd_radps = 0.002;         // sigma_gbz: stationary sd of the walking bias b_gz
   double gyro_bias_tau_s = 300.0;            // tau_gz: correlation time of b_gz
+  // 0: a_dist is a random walk (the paper). Positive: a Gauss-Markov process decaying toward
+  // zero with this correlation time (s), of stationary sd w3 sqrt(tau / 2) (the same density
+  // over times short against tau): a disturbance that does not persist (the quiet mode of
+  // solvers/disturbance_imm.h).
+  double a_dist_decay_tau_s = 0.0;
 };
 
 // Ward & Iagnemma Table I. In the EKF these are pseudo-measurements applied under their

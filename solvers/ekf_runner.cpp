@@ -10,7 +10,8 @@
 namespace slipgraph {
 
 bool FilterRunOptions::IsValid(std::string* error) const {
-  return ekf.IsValid(error) && (!multiple_model || multiple_model_options.IsValid(error));
+  return ekf.IsValid(error) && (!multiple_model || multiple_model_options.IsValid(error)) &&
+         (!disturbance_modes || disturbance_modes_options.IsValid(error));
 }
 
 namespace {
@@ -91,6 +92,12 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
         "a bank of " + std::to_string(bank.size()) + " filters: the user's tire law and the " +
         std::to_string(model.law_samples.size()) +
         " it was fitted over, weighed by their GNSS likelihood (--single-law: one filter)");
+  } else if (options.disturbance_modes) {
+    DisturbanceImm imm(log.vehicle, model, options.ekf, options.disturbance_modes_options);
+    Feed(log, selection, &imm, &result);
+    result.notes.push_back(
+        "three filters as disturbance modes (none, changing, held), mixed as an interacting "
+        "multiple model (--disturbance-modes)");
   } else {
     WardEkf ekf(log.vehicle, model, options.ekf);
     Feed(log, selection, &ekf, &result);

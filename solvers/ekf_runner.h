@@ -9,6 +9,7 @@
 #include "io/drive_log.h"
 #include "io/estimate_file.h"
 #include "model/model_config.h"
+#include "solvers/disturbance_imm.h"
 #include "solvers/multiple_model_ekf.h"
 #include "solvers/ward_ekf.h"
 
@@ -23,6 +24,10 @@ struct FilterRunOptions {
   // false, or no law samples: the paper's single filter.
   bool multiple_model = true;
   MultipleModelOptions multiple_model_options;
+  // The single filter as disturbance modes: none, changing, held (solvers/disturbance_imm.h).
+  // Where the law samples make a bank, the bank runs.
+  bool disturbance_modes = false;
+  DisturbanceImmOptions disturbance_modes_options;
   // The EKF's options valid, and the bank's when it runs.
   bool IsValid(std::string* error) const;
 };

@@ -287,9 +287,9 @@ void WardEkf::AddGps(const GpsSample& gps) {
   }
   const ekf::MeasurementRows rows =
       GnssRows(x_, gps, {have_attitude_, pitch_rad_, yaw_rad_}, model_.measurement.gps_sd_v_mps);
-  // Fading memory (EkfOptions::gnss_fading_*): not in a bank of filters, whose weights are each
-  // fix's likelihood under the filter's own covariance.
-  if (options_.gnss_fading_fixes > 0.0 && !scoring_ && !options_.track_log_likelihood) {
+  // Fading memory (EkfOptions::gnss_fading_*): not in a bank of laws, whose weights are each
+  // fix's likelihood under the filter's own covariance (AddGpsScored).
+  if (options_.gnss_fading_fixes > 0.0 && !scoring_) {
     const double scale =
         gnss_fading_.ScaleFor(rows.innovation(0), P_(kVbx, kVbx) + rows.variance(0));
     if (scale != 1.0) {

@@ -70,8 +70,9 @@ struct EkfOptions {
   // drifting off (a tire law or an AHRS the model does not have) leaves a run of one sign. When
   // the average passes gnss_fading_threshold and a fix with |z| > 1 agrees with it (z times the
   // average above 1) and passes the gate, P is scaled by z^2 (at most gnss_fading_max) before
-  // the update, so that the fix can pull the velocity back. Single filters only (a bank weighs
-  // its filters by each fix's likelihood under their own covariance). Off by default (0 fixes);
+  // the update, so that the fix can pull the velocity back. Not in a bank of laws (which weighs
+  // its filters by each fix's likelihood under their own covariance: AddGpsScored); in the
+  // disturbance modes (solvers/disturbance_imm.h) each mode fades. Off by default (0 fixes);
   // `filter --gnss-fading` sets kGnssFadingFixes, chosen on held-out suites and not the default
   // yet because the smoother and the workbench start from this filter (docs/mismatch.md).
   double gnss_fading_fixes = 0.0;
@@ -144,6 +145,15 @@ class WardEkf {
   double AddGpsScored(const GpsSample& gps);
   const EkfStats& stats() const { return stats_; }
   bool started() const { return started_; }
+  // The state and covariance, and their replacement by a mixture of several filters' (an
+  // interacting multiple model, solvers/disturbance_imm.h); the offsets, gates, detector and
+  // timers stay this filter's.
+  const ekf::StateVector& state() const { return x_; }
+  const ekf::StateMatrix& covariance() const { return P_; }
+  void ReplaceState(const ekf::StateVector& x, const ekf::StateMatrix& P) {
+    x_ = x;
+    P_ = P;
+  }
 
  private:
   using StateVector = ekf::StateVector;

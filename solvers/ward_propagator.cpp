@@ -73,6 +73,14 @@ void WardPropagator::Predict(double dt, const PropagationInput& input,
       A.row(r) = next[r].v.transpose();
     }
   }
+  // A decaying disturbance (ProcessNoiseConfig::a_dist_decay_tau_s): its row of the transition
+  // scaled by exp(-dt / tau), its noise the Gauss-Markov step's.
+  const double a_dist_decay =
+      q_.a_dist_decay_tau_s > 0.0 ? std::exp(-dt / q_.a_dist_decay_tau_s) : 1.0;
+  if (a_dist_decay != 1.0) {
+    (*x)(kAdist) *= a_dist_decay;
+    A.row(kAdist) *= a_dist_decay;
+  }
   ekf::StateVector q_diag;
   // Accelerometer-driven: the input's white noise (accelerometer and pitch through gravity).
   const double accel_density_sq = AccelInputDensitySq(imu_sd_accel_mps2_, input.pitch_sd_rad,
@@ -91,7 +99,10 @@ void WardPropagator::Predict(double dt, const PropagationInput& input,
   const double q_adist =
       std::min(q_.a_dist_max_mps3_per_sqrt_hz,
                q_.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
-  q_diag(kAdist) = q_adist * q_adist * dt;
+  q_diag(kAdist) = a_dist_decay != 1.0
+                       ? GaussMarkovStepVariance(q_adist * std::sqrt(0.5 * q_.a_dist_decay_tau_s),
+                                                 q_.a_dist_decay_tau_s, dt)
+                       : q_adist * q_adist * dt;
   q_diag(kOmegaLeft) = q_diag(kOmegaRight) =
       q_.omega_radps2_per_sqrt_hz * q_.omega_radps2_per_sqrt_hz * dt;
   q_diag(kYawRate) = q_.yaw_rate_radps2_per_sqrt_hz * q_.yaw_rate_radps2_per_sqrt_hz * dt;

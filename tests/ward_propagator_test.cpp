@@ -92,5 +92,34 @@ TEST(WardPropagator, DisturbanceNoiseGrowsWithTheAccelerometerNis) {
   EXPECT_DOUBLE_EQ(q_adist(), consistent);
 }
 
+TEST(WardPropagator, ADecayingDisturbanceIsAGaussMarkovProcess) {
+  // a_dist' = -a_dist / tau + w: over dt its mean decays by exp(-dt / tau) and its variance
+  // tends to the stationary w^2 tau / 2.
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.0, 0.0}, kParams);
+  ProcessNoiseConfig q;
+  q.a_dist_mps3_per_sqrt_hz = q.a_dist_max_mps3_per_sqrt_hz = 0.6;
+  q.a_dist_decay_tau_s = 0.5;
+  const double dt = 0.01, decay = std::exp(-dt / 0.5), stationary_sd = 0.6 * std::sqrt(0.25);
+  WardPropagator propagator(q, 0.05);
+  ekf::StateVector x = Moving();
+  x(kAdist) = -2.0;
+  ekf::StateMatrix P = 0.01 * ekf::StateMatrix::Identity();
+  propagator.Predict(dt, {}, loads, kParams, &x, &P);
+  EXPECT_NEAR(x(kAdist), -2.0 * decay, 1e-12);
+  EXPECT_NEAR(P(kAdist, kAdist),
+              0.01 * decay * decay + GaussMarkovStepVariance(stationary_sd, 0.5, dt), 1e-12);
+  for (int i = 0; i < 2000; ++i) propagator.Predict(dt, {}, loads, kParams, &x, &P);
+  EXPECT_NEAR(x(kAdist), 0.0, 1e-6);
+  EXPECT_NEAR(std::sqrt(P(kAdist, kAdist)), stationary_sd, 1e-3);
+  // Without a correlation time it is the paper's random walk: the mean stays.
+  q.a_dist_decay_tau_s = 0.0;
+  ekf::StateVector walk = Moving();
+  walk(kAdist) = -2.0;
+  ekf::StateMatrix P_walk = ekf::StateMatrix::Zero();
+  WardPropagator(q, 0.05).Predict(dt, {}, loads, kParams, &walk, &P_walk);
+  EXPECT_DOUBLE_EQ(walk(kAdist), -2.0);
+  EXPECT_DOUBLE_EQ(P_walk(kAdist, kAdist), 0.36 * dt);
+}
+
 }  // namespace
 }  // namespace slipgraph
