@@ -137,6 +137,25 @@ void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver) {
       ->default_str(*solver == WindowSolver::kCeres ? "ceres" : "chain");
 }
 
+void AddFrontEndOptions(CLI::App* cmd, FilterRunOptions* filter) {
+  cmd->add_flag_callback(
+      "--single-law", [filter] { filter->multiple_model = false; },
+      "One filter on the user's tire law (the paper's), also when vehicle.yaml lists the soils "
+      "it was fitted over (law_samples: by default a bank of filters, one per law, weighed by "
+      "their GNSS likelihood)");
+  cmd->add_flag_callback(
+      "--gnss-fading", [filter] { filter->ekf.gnss_fading_fixes = kGnssFadingFixes; },
+      "Fading memory on GNSS: widen the filter's covariance when its GNSS innovations keep one "
+      "sign, so that GNSS pulls a drifting velocity back (EkfOptions::gnss_fading_*; "
+      "docs/mismatch.md)");
+  cmd->add_flag_callback(
+      "--disturbance-modes", [filter] { filter->disturbance_modes = true; },
+      "The single filter as three disturbance modes (quiet, changing, held) mixed as an "
+      "interacting multiple model: fewer false alarms where the model's tire law or attitude is "
+      "off, some slow hold-backs missed (solvers/disturbance_imm.h; docs/mismatch.md). Where "
+      "vehicle.yaml lists law_samples the bank runs instead: add --single-law");
+}
+
 void AddStiffnessOption(CLI::App* cmd, double* prior_sd) {
   cmd->add_option("--stiffness-sd", *prior_sd,
                   "Batch smoother: estimate the tire law's slip stiffness (the terrain is not the "

@@ -73,6 +73,9 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
 // --solver chain|ceres: how the sliding window solves (online, compare).
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver);
 
+// The front end's variants (filter, online): --single-law, --gnss-fading, --disturbance-modes.
+void AddFrontEndOptions(CLI::App* cmd, FilterRunOptions* filter);
+
 // For a LOG argument: an empty path given (LOG "", a script's unset variable) is an error, not
 // the bundled sample that no argument means.
 CLI::Validator NonEmptyPath();

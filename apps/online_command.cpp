@@ -35,6 +35,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddWindowSolverOption(cmd, &options->window.solver);
+  AddFrontEndOptions(cmd, &options->window.filter);
   cmd->add_option("--stiffness-sd", options->window.stiffness_prior_sd,
                   "Estimate the tire law's slip stiffness in the window, with a prior of this "
                   "relative sd around the front end's law, when vehicle.yaml lists its soils "

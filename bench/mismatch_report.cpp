@@ -134,6 +134,8 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     if (window) {
       WindowSmootherOptions options;
       options.filter.ekf = g_ekf;
+      options.filter.disturbance_modes = g_imm;
+      options.filter.disturbance_modes_options = g_imm_options;
       const WindowSmootherResult result = SmoothWindowed(log, model, with_gnss, options);
       out.window_failed_updates += result.failed_updates;
       score(kWindowGnss, log, result.estimates);
@@ -151,6 +153,8 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     if (smoother) {
       BatchSmootherOptions options;
       options.filter.ekf = g_ekf;
+      options.filter.disturbance_modes = g_imm;
+      options.filter.disturbance_modes_options = g_imm_options;
       options.problem.stiffness_prior_sd = 0.15;  // as `smooth` and `compare` run it
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;

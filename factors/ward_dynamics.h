@@ -182,6 +182,12 @@ inline double GaussMarkovStepVariance(double sd, double tau_s, double dt_s) {
   return sd * sd * -std::expm1(-2.0 * dt_s / tau_s);
 }
 
+// The stationary sd of that process when its driving white noise has density `density`
+// (unit / sqrt(s)): density sqrt(tau / 2), the same density over times short against tau.
+inline double GaussMarkovStationarySd(double density, double tau_s) {
+  return density * std::sqrt(0.5 * tau_s);
+}
+
 // Eq. (10) propagated over dt. The tire law is stiff (d v' / d v ~ -g C1 At, about -150 1/s for
 // the LAGR values), so forward Euler at 50 Hz diverges; RK4 is stable for |lambda h| < 2.78.
 // The EKF and the dynamics factor both call this, so filter and smoother share one

@@ -30,7 +30,7 @@ struct ProcessNoiseConfig {
   // 0: a_dist is a random walk (the paper). Positive: a Gauss-Markov process decaying toward
   // zero with this correlation time (s), of stationary sd w3 sqrt(tau / 2) (the same density
   // over times short against tau): a disturbance that does not persist (the quiet mode of
-  // solvers/disturbance_imm.h).
+  // solvers/disturbance_imm.h). The EKF's only: the smoothers' disturbance walk does not read it.
   double a_dist_decay_tau_s = 0.0;
 };
 

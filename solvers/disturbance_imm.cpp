@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
+#include "factors/ward_dynamics.h"
 #include "model/option_check.h"
 
 namespace slipgraph {
@@ -19,20 +21,74 @@ bool DisturbanceImmOptions::IsValid(std::string* error) const {
       .NonNegative("mix_interval_s", mix_interval_s);
 }
 
+namespace imm {
+
+Eigen::MatrixXd Transition(const Eigen::MatrixXd& rate_per_s, double dt_s) {
+  const int n = rate_per_s.rows();
+  Eigen::MatrixXd transition = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    double total_rate = 0.0;
+    for (int j = 0; j < n; ++j) total_rate += j == i ? 0.0 : rate_per_s(i, j);
+    const double leave = -std::expm1(-dt_s * total_rate);
+    for (int j = 0; j < n; ++j) {
+      if (j != i && total_rate > 0.0) transition(i, j) = leave * rate_per_s(i, j) / total_rate;
+    }
+    transition(i, i) = 1.0 - leave;
+  }
+  return transition;
+}
+
+Eigen::VectorXd Posterior(const Eigen::VectorXd& predicted, const Eigen::VectorXd& log_likelihood) {
+  // The largest log posterior weight, so that the exponentials cannot all underflow.
+  double best = -std::numeric_limits<double>::infinity();
+  for (int j = 0; j < predicted.size(); ++j) {
+    if (predicted(j) > 0.0 && std::isfinite(log_likelihood(j))) {
+      best = std::max(best, log_likelihood(j) + std::log(predicted(j)));
+    }
+  }
+  if (!std::isfinite(best)) return predicted;
+  Eigen::VectorXd posterior = Eigen::VectorXd::Zero(predicted.size());
+  for (int j = 0; j < predicted.size(); ++j) {
+    if (predicted(j) > 0.0 && std::isfinite(log_likelihood(j))) {
+      posterior(j) = std::exp(log_likelihood(j) + std::log(predicted(j)) - best);
+    }
+  }
+  return posterior / posterior.sum();  // the best term is 1: the sum is at least 1
+}
+
+void MixtureMoments(const std::vector<double>& weights,
+                    const std::vector<const ekf::StateVector*>& means,
+                    const std::vector<const ekf::StateMatrix*>& covariances, ekf::StateVector* mean,
+                    ekf::StateMatrix* covariance) {
+  mean->setZero();
+  for (size_t i = 0; i < weights.size(); ++i) *mean += weights[i] * *means[i];
+  covariance->setZero();
+  for (size_t i = 0; i < weights.size(); ++i) {
+    if (weights[i] == 0.0) continue;
+    const ekf::StateVector d = *means[i] - *mean;
+    *covariance += weights[i] * (*covariances[i] + d * d.transpose());
+  }
+}
+
+}  // namespace imm
+
 DisturbanceImm::DisturbanceImm(const Vehicle& vehicle, const ModelConfig& model,
                                const EkfOptions& ekf, const DisturbanceImmOptions& options)
     : options_(options),
+      rate_per_s_(Eigen::MatrixXd::Zero(kModeCount, kModeCount)),
+      log_likelihood_(Eigen::VectorXd::Zero(kModeCount)),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
       encoder_timeout_s_(ekf.encoder_timeout_s) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   EkfOptions scored = ekf;
   scored.track_log_likelihood = true;
-  // The density w3 of the quiet process: sd = w3 sqrt(tau / 2).
-  const double w3 = options.quiet_a_dist_sd_mps2 * std::sqrt(2.0 / options.quiet_a_dist_tau_s);
+  // The quiet process's density: its stationary sd is GaussMarkovStationarySd(density, tau).
+  const double quiet_density =
+      options.quiet_a_dist_sd_mps2 / ward::GaussMarkovStationarySd(1.0, options.quiet_a_dist_tau_s);
   ModelConfig quiet = model;
-  quiet.process.a_dist_mps3_per_sqrt_hz = w3;
-  quiet.process.a_dist_max_mps3_per_sqrt_hz = w3;
+  quiet.process.a_dist_mps3_per_sqrt_hz = quiet_density;
+  quiet.process.a_dist_max_mps3_per_sqrt_hz = quiet_density;
   quiet.process.a_dist_decay_tau_s = options.quiet_a_dist_tau_s;
   ModelConfig held = model;
   held.process.a_dist_mps3_per_sqrt_hz = options.held_a_dist_mps3_per_sqrt_hz;
@@ -40,11 +96,12 @@ DisturbanceImm::DisturbanceImm(const Vehicle& vehicle, const ModelConfig& model,
   filters_[kQuiet] = std::make_unique<WardEkf>(vehicle, quiet, scored);
   filters_[kChanging] = std::make_unique<WardEkf>(vehicle, model, scored);
   filters_[kHeld] = std::make_unique<WardEkf>(vehicle, held, scored);
-  rate_[kQuiet][kChanging] = 1.0 / options.quiet_mean_s;
-  rate_[kChanging][kQuiet] = rate_[kChanging][kHeld] = 0.5 / options.change_mean_s;
-  rate_[kHeld][kChanging] = 1.0 / options.held_mean_s;
-  probability_ = {{1.0, 0.0, 0.0}};  // a drive starts without a disturbance
-  predicted_ = probability_;
+  rate_per_s_(kQuiet, kChanging) = 1.0 / options.quiet_mean_s;
+  rate_per_s_(kChanging, kQuiet) = rate_per_s_(kChanging, kHeld) = 0.5 / options.change_mean_s;
+  rate_per_s_(kHeld, kChanging) = 1.0 / options.held_mean_s;
+  probability_ = Eigen::VectorXd::Unit(kModeCount, kQuiet);  // a drive starts undisturbed
+  predicted_probability_ = probability_;
+  estimate_ = filters_[kChanging]->Estimate();
 }
 
 void DisturbanceImm::AddImu(const ImuSample& imu) {
@@ -61,90 +118,63 @@ void DisturbanceImm::AddGps(const GpsSample& gps) {
 
 void DisturbanceImm::AddWheels(double t, double omega_left, double omega_right) {
   for (auto& f : filters_) f->AddWheels(t, omega_left, omega_right);
-  // The mode probabilities by the likelihood of everything measured since the last mixing.
-  for (int j = 0; j < kModeCount; ++j) log_likelihood_[j] += filters_[j]->TakeLogLikelihood();
-  const double best = *std::max_element(log_likelihood_.begin(), log_likelihood_.end());
-  probability_ = predicted_;
-  if (std::isfinite(best)) {
-    double sum = 0.0;
-    for (int j = 0; j < kModeCount; ++j) {
-      const double l = std::isnan(log_likelihood_[j]) ? 0.0 : std::exp(log_likelihood_[j] - best);
-      probability_[j] = l * predicted_[j];
-      sum += probability_[j];
-    }
-    if (sum > 0.0) {
-      for (double& p : probability_) p /= sum;
-    } else {
-      probability_ = predicted_;
-    }
-  }
+  for (int j = 0; j < kModeCount; ++j) log_likelihood_(j) += filters_[j]->TakeLogLikelihood();
+  probability_ = imm::Posterior(predicted_probability_, log_likelihood_);
   if (std::isfinite(omega_left) && std::isfinite(omega_right)) last_wheels_t_ = t;
-  const WardEstimate e = Estimate();
-  slip_ = detector_.Update(e.x[ward::kVbx], e.x[ward::kYawRate], e.x[ward::kOmegaLeft],
-                           e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_);
-  if (last_mix_t_ < 0.0) last_mix_t_ = t;
-  // Interaction: over intervals of mix_interval_s the filters run apart, so that modes whose
-  // predictions part slowly (a decaying disturbance against a held one) can be told apart.
-  if (t - last_mix_t_ >= options_.mix_interval_s) {
-    Mix(t - last_mix_t_);
+  Combine(t);
+  if (!last_mix_t_) last_mix_t_ = t;
+  if (t - *last_mix_t_ >= options_.mix_interval_s) {
+    Mix(t - *last_mix_t_);
     last_mix_t_ = t;
-    log_likelihood_.fill(0.0);
+    log_likelihood_.setZero();
   }
 }
 
-void DisturbanceImm::Mix(double dt) {
-  // transition[i][j]: from mode i to mode j over dt. Mode i is left with probability
-  // 1 - exp(-dt sum_j rate_ij), for the modes in proportion to their rates (at most one switch
-  // per interval).
-  double transition[kModeCount][kModeCount];
-  for (int i = 0; i < kModeCount; ++i) {
-    double total_rate = 0.0;
-    for (int j = 0; j < kModeCount; ++j) total_rate += rate_[i][j];
-    const double leave = -std::expm1(-dt * total_rate);
-    for (int j = 0; j < kModeCount; ++j) {
-      transition[i][j] = i == j ? 1.0 - leave : leave * rate_[i][j] / total_rate;
-    }
+void DisturbanceImm::Combine(double t) {
+  std::vector<double> weights(probability_.data(), probability_.data() + kModeCount);
+  std::vector<const ekf::StateVector*> means;
+  std::vector<const ekf::StateMatrix*> covariances;
+  for (const auto& f : filters_) {
+    means.push_back(&f->state());
+    covariances.push_back(&f->covariance());
   }
-  for (int j = 0; j < kModeCount; ++j) {
-    predicted_[j] = 0.0;
-    for (int i = 0; i < kModeCount; ++i) predicted_[j] += transition[i][j] * probability_[i];
+  ekf::StateVector mean;
+  ekf::StateMatrix covariance;
+  imm::MixtureMoments(weights, means, covariances, &mean, &covariance);
+  estimate_ = filters_[kChanging]->Estimate();  // time, offsets
+  for (int k = 0; k < ward::kStateSize; ++k) {
+    estimate_.x[k] = mean(k);
+    estimate_.sd[k] = std::sqrt(std::max(0.0, covariance(k, k)));
+  }
+  const bool fresh = t - last_wheels_t_ <= encoder_timeout_s_;
+  estimate_.slip = detector_.Update(mean(ward::kVbx), mean(ward::kYawRate), mean(ward::kOmegaLeft),
+                                    mean(ward::kOmegaRight), fresh);
+  // Missing encoder data is never reported as immobilization.
+  if (!fresh) estimate_.slip.immobilized = false;
+}
+
+void DisturbanceImm::Mix(double dt) {
+  const Eigen::MatrixXd transition = imm::Transition(rate_per_s_, dt);
+  predicted_probability_ = transition.transpose() * probability_;
+  std::vector<const ekf::StateVector*> means;
+  std::vector<const ekf::StateMatrix*> covariances;
+  for (const auto& f : filters_) {
+    means.push_back(&f->state());
+    covariances.push_back(&f->covariance());
   }
   std::array<ekf::StateVector, kModeCount> x;
   std::array<ekf::StateMatrix, kModeCount> P;
   for (int j = 0; j < kModeCount; ++j) {
-    double weight[kModeCount];
-    x[j].setZero();
+    // The probability that the system was in mode i, given that it is in mode j now.
+    std::vector<double> weights(kModeCount, 0.0);
     for (int i = 0; i < kModeCount; ++i) {
-      weight[i] = predicted_[j] > 0.0 ? transition[i][j] * probability_[i] / predicted_[j]
-                                      : (i == j ? 1.0 : 0.0);
-      x[j] += weight[i] * filters_[i]->state();
+      weights[i] = predicted_probability_(j) > 0.0
+                       ? transition(i, j) * probability_(i) / predicted_probability_(j)
+                       : (i == j ? 1.0 : 0.0);
     }
-    P[j].setZero();
-    for (int i = 0; i < kModeCount; ++i) {
-      if (weight[i] == 0.0) continue;
-      const ekf::StateVector d = filters_[i]->state() - x[j];
-      P[j] += weight[i] * (filters_[i]->covariance() + d * d.transpose());
-    }
+    imm::MixtureMoments(weights, means, covariances, &x[j], &P[j]);
   }
   for (int j = 0; j < kModeCount; ++j) filters_[j]->ReplaceState(x[j], P[j]);
-}
-
-WardEstimate DisturbanceImm::Estimate() const {
-  WardEstimate out = filters_[kChanging]->Estimate();
-  for (int k = 0; k < ward::kStateSize; ++k) {
-    double mean = 0.0, second_moment = 0.0;
-    for (int j = 0; j < kModeCount; ++j) {
-      const double value = filters_[j]->state()(k);
-      mean += probability_[j] * value;
-      second_moment += probability_[j] * (filters_[j]->covariance()(k, k) + value * value);
-    }
-    out.x[k] = mean;
-    out.sd[k] = std::sqrt(std::max(0.0, second_moment - mean * mean));
-  }
-  out.slip = slip_;
-  // Missing encoder data is never reported as immobilization.
-  if (out.t - last_wheels_t_ > encoder_timeout_s_) out.slip.immobilized = false;
-  return out;
 }
 
 }  // namespace slipgraph

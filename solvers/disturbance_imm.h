@@ -27,9 +27,12 @@
 // until GNSS or the next change removes it.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "solvers/immobilization_detector.h"
 #include "solvers/ward_ekf.h"
@@ -57,6 +60,28 @@ struct DisturbanceImmOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The IMM's arithmetic, for any number of modes (Bar-Shalom et al., Sec. 11.6.6).
+namespace imm {
+
+// Mode i's transition probabilities over dt from its switching rates (1/s, rate_per_s(i, j) from
+// i to j, the diagonal unused): i is left with probability 1 - exp(-dt sum_j rate_ij), toward
+// the modes in proportion to their rates (at most one switch per interval). Rows sum to 1.
+Eigen::MatrixXd Transition(const Eigen::MatrixXd& rate_per_s, double dt_s);
+
+// The posterior mode probabilities from the predicted ones and each mode's log-likelihood:
+// p_j proportional to predicted_j exp(log_likelihood_j), computed without underflow. A NaN
+// log-likelihood counts as impossible; with no finite evidence the predicted ones stand.
+Eigen::VectorXd Posterior(const Eigen::VectorXd& predicted, const Eigen::VectorXd& log_likelihood);
+
+// The mean and covariance of a Gaussian mixture with these weights (summing to 1): the weighted
+// means, and the weighted covariances plus the spread of the means.
+void MixtureMoments(const std::vector<double>& weights,
+                    const std::vector<const ekf::StateVector*>& means,
+                    const std::vector<const ekf::StateMatrix*>& covariances, ekf::StateVector* mean,
+                    ekf::StateMatrix* covariance);
+
+}  // namespace imm
+
 class DisturbanceImm {
  public:
   enum Mode { kQuiet = 0, kChanging, kHeld, kModeCount };
@@ -69,28 +94,31 @@ class DisturbanceImm {
   void AddGps(const GpsSample& gps);
   void AddAttitude(const AttitudeSample& attitude);
 
-  // The modes' mixture: mean, and sd from the weighted variances plus the spread of the means.
-  WardEstimate Estimate() const;
+  // The modes' mixture after the latest wheel cycle (before the filters were mixed for the
+  // next interval): the estimate the immobilization detector ran on.
+  WardEstimate Estimate() const { return estimate_; }
   // The changing mode's filter's counters (all are fed the same measurements).
   const EkfStats& stats() const { return filters_[kChanging]->stats(); }
   // The mode probabilities after the latest wheel cycle.
-  const std::array<double, kModeCount>& probabilities() const { return probability_; }
+  const Eigen::VectorXd& probabilities() const { return probability_; }
 
  private:
+  // The modes' mixture with the current probabilities, and the detector run on it.
+  void Combine(double t);
   // Each filter restarts from the mixture its mode's predecessors imply over dt.
   void Mix(double dt);
 
   DisturbanceImmOptions options_;
   std::array<std::unique_ptr<WardEkf>, kModeCount> filters_;
-  double rate_[kModeCount][kModeCount] = {};  // rate_[i][j]: from mode i to mode j, 1/s
-  std::array<double, kModeCount> probability_{};
-  std::array<double, kModeCount> predicted_{};       // at the last mixing, after the transition
-  std::array<double, kModeCount> log_likelihood_{};  // each mode's since the last mixing
+  Eigen::MatrixXd rate_per_s_;             // (i, j): from mode i to mode j
+  Eigen::VectorXd probability_;            // after the latest cycle's measurements
+  Eigen::VectorXd predicted_probability_;  // at the last mixing, after the transition
+  Eigen::VectorXd log_likelihood_;         // each mode's since the last mixing
   ImmobilizationDetector detector_;
   double encoder_timeout_s_;
   double last_wheels_t_ = -1e300;  // the last cycle with both wheel speeds
-  double last_mix_t_ = -1.0;
-  SlipEstimate slip_;
+  std::optional<double> last_mix_t_;
+  WardEstimate estimate_;
 };
 
 }  // namespace slipgraph

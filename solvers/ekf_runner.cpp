@@ -92,11 +92,15 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
         "a bank of " + std::to_string(bank.size()) + " filters: the user's tire law and the " +
         std::to_string(model.law_samples.size()) +
         " it was fitted over, weighed by their GNSS likelihood (--single-law: one filter)");
+    if (options.disturbance_modes) {
+      result.notes.push_back(
+          "the disturbance modes apply to the single filter: the bank ran (--single-law for them)");
+    }
   } else if (options.disturbance_modes) {
     DisturbanceImm imm(log.vehicle, model, options.ekf, options.disturbance_modes_options);
     Feed(log, selection, &imm, &result);
     result.notes.push_back(
-        "three filters as disturbance modes (none, changing, held), mixed as an interacting "
+        "three filters as disturbance modes (quiet, changing, held), mixed as an interacting "
         "multiple model (--disturbance-modes)");
   } else {
     WardEkf ekf(log.vehicle, model, options.ekf);

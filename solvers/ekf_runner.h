@@ -24,8 +24,8 @@ struct FilterRunOptions {
   // false, or no law samples: the paper's single filter.
   bool multiple_model = true;
   MultipleModelOptions multiple_model_options;
-  // The single filter as disturbance modes: none, changing, held (solvers/disturbance_imm.h).
-  // Where the law samples make a bank, the bank runs.
+  // The single filter as disturbance modes: quiet, changing, held (solvers/disturbance_imm.h),
+  // with their options. Where the law samples make a bank, the bank runs.
   bool disturbance_modes = false;
   DisturbanceImmOptions disturbance_modes_options;
   // The EKF's options valid, and the bank's when it runs.

@@ -150,9 +150,14 @@ class WardEkf {
   // timers stay this filter's.
   const ekf::StateVector& state() const { return x_; }
   const ekf::StateMatrix& covariance() const { return P_; }
+  // The previous cycle's state (for the rate bound) moves with it, so that the replacement is
+  // not read as motion; the divergence guard's last sane state becomes this one.
   void ReplaceState(const ekf::StateVector& x, const ekf::StateMatrix& P) {
+    x_previous_cycle_ += x - x_;
     x_ = x;
     P_ = P;
+    last_good_x_ = x_;
+    last_good_P_ = P_;
   }
 
  private:

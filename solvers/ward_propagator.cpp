@@ -13,8 +13,9 @@ namespace {
 using namespace ward;  // NOLINT: state indices
 
 // A P A' for a transition matrix with few non-zeros per row: a_dist and the wheel speeds are
-// random walks (identity rows) and the biases decay on their own, so in the accelerometer-driven
-// form 12 of the 49 entries are non-zero. Symmetric by construction (the lower half is mirrored).
+// random walks (identity rows; a_dist's scaled when it decays) and the biases decay on their
+// own, so in the accelerometer-driven form 12 of the 49 entries are non-zero. Symmetric by
+// construction (the lower half is mirrored).
 template <int N>
 Eigen::Matrix<double, N, N> Sandwich(const Eigen::Matrix<double, N, N>& A,
                                      const Eigen::Matrix<double, N, N>& P) {
@@ -99,10 +100,11 @@ void WardPropagator::Predict(double dt, const PropagationInput& input,
   const double q_adist =
       std::min(q_.a_dist_max_mps3_per_sqrt_hz,
                q_.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
-  q_diag(kAdist) = a_dist_decay != 1.0
-                       ? GaussMarkovStepVariance(q_adist * std::sqrt(0.5 * q_.a_dist_decay_tau_s),
-                                                 q_.a_dist_decay_tau_s, dt)
-                       : q_adist * q_adist * dt;
+  q_diag(kAdist) =
+      a_dist_decay != 1.0
+          ? GaussMarkovStepVariance(GaussMarkovStationarySd(q_adist, q_.a_dist_decay_tau_s),
+                                    q_.a_dist_decay_tau_s, dt)
+          : q_adist * q_adist * dt;
   q_diag(kOmegaLeft) = q_diag(kOmegaRight) =
       q_.omega_radps2_per_sqrt_hz * q_.omega_radps2_per_sqrt_hz * dt;
   q_diag(kYawRate) = q_.yaw_rate_radps2_per_sqrt_hz * q_.yaw_rate_radps2_per_sqrt_hz * dt;

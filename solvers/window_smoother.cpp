@@ -442,6 +442,7 @@ std::string DescribeWindowRun(const WindowSmootherResult& result) {
     out << "  lag of the refined estimate: median " << Percentile(result.lag_s, 0.5) << " s\n";
   }
   for (const std::string& note : result.notes) out << "  " << note << "\n";
+  for (const std::string& note : result.ekf.notes) out << "  front end: " << note << "\n";
   return out.str();
 }
 

@@ -21,8 +21,7 @@ ekf::StateVector Moving() { return testing::MovingWardState(); }
 
 // The prediction's transition matrix by central differences of the state it predicts.
 ekf::StateMatrix NumericTransition(const PropagationInput& input, const AttitudeLoads<double>& l,
-                                   double dt) {
-  const ProcessNoiseConfig q;
+                                   double dt, const ProcessNoiseConfig& q = {}) {
   ekf::StateMatrix A;
   for (int c = 0; c < kStateSize; ++c) {
     const double h = 1e-6 * std::max(1.0, std::abs(Moving()(c)));
@@ -111,6 +110,22 @@ TEST(WardPropagator, ADecayingDisturbanceIsAGaussMarkovProcess) {
   for (int i = 0; i < 2000; ++i) propagator.Predict(dt, {}, loads, kParams, &x, &P);
   EXPECT_NEAR(x(kAdist), 0.0, 1e-6);
   EXPECT_NEAR(std::sqrt(P(kAdist, kAdist)), stationary_sd, 1e-3);
+  // The transition's a_dist row is scaled too: with a correlation between v_bx and a_dist the
+  // covariance is the numeric transition's sandwich plus Q, in either velocity model.
+  for (const bool driven : {true, false}) {
+    PropagationInput input;
+    input.accelerometer_driven = driven;
+    input.accel_input_mps2 = 0.3;
+    ekf::StateMatrix P0 = 0.01 * ekf::StateMatrix::Identity();
+    P0(kVbx, kAdist) = P0(kAdist, kVbx) = 0.004;
+    ekf::StateMatrix P_zero = ekf::StateMatrix::Zero(), P_step = P0;
+    ekf::StateVector x_zero = Moving(), x_step = Moving();
+    WardPropagator(q, 0.05).Predict(dt, input, loads, kParams, &x_zero, &P_zero);
+    WardPropagator(q, 0.05).Predict(dt, input, loads, kParams, &x_step, &P_step);
+    const ekf::StateMatrix A = NumericTransition(input, loads, dt, q);
+    EXPECT_NEAR(A(kAdist, kAdist), decay, 1e-6);
+    EXPECT_LT((P_step - (A * P0 * A.transpose() + P_zero)).cwiseAbs().maxCoeff(), 1e-8);
+  }
   // Without a correlation time it is the paper's random walk: the mean stays.
   q.a_dist_decay_tau_s = 0.0;
   ekf::StateVector walk = Moving();
