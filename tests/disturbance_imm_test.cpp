@@ -14,22 +14,17 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ekf_runner.h"
+#include "tests/front_end_runs.h"
 #include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
 
 Evaluation Suite(const std::vector<const char*>& names, uint64_t seed, bool modes) {
-  std::vector<Evaluation> runs;
-  for (const char* name : names) {
-    const DriveLog log = testing::SimulatedScenario(name, seed);
-    FilterRunOptions options;
-    options.multiple_model = false;
-    options.disturbance_modes = modes;
-    const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle), options);
-    runs.push_back(Evaluate(log, EstimateTable(result.estimates)));
-  }
-  return Combine(runs, "runs");
+  FilterRunOptions options;
+  options.multiple_model = false;
+  options.disturbance_modes = modes;
+  return testing::EvaluateFrontEnd(names, seed, options);
 }
 
 TEST(DisturbanceImm, QuietWhileDrivingChangingAtAHoldBacksStart) {

@@ -14,6 +14,7 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ekf_runner.h"
+#include "tests/front_end_runs.h"
 #include "tests/sim_test_util.h"
 
 namespace slipgraph {
@@ -371,16 +372,10 @@ TEST(WardEkf, OptionsAreValidated) {
 // detections nor, beyond 5 %, the velocity error.
 TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlone) {
   const auto suite = [](const std::vector<const char*>& names, uint64_t seed, bool fading) {
-    std::vector<Evaluation> runs;
-    for (const char* name : names) {
-      const DriveLog log = testing::SimulatedScenario(name, seed);
-      FilterRunOptions options;
-      options.multiple_model = false;
-      if (fading) options.ekf.gnss_fading_fixes = kGnssFadingFixes;
-      const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle), options);
-      runs.push_back(Evaluate(log, EstimateTable(result.estimates)));
-    }
-    return Combine(runs, "runs");
+    FilterRunOptions options;
+    options.multiple_model = false;
+    if (fading) options.ekf.gnss_fading_fixes = kGnssFadingFixes;
+    return testing::EvaluateFrontEnd(names, seed, options);
   };
   const std::vector<const char*> drifting = {"ward21m/06", "ward21m/10", "ward21m/21"};
   const Evaluation without = suite(drifting, 2, false), with = suite(drifting, 2, true);
