@@ -62,7 +62,7 @@ struct WeakConstraintConfig {
 struct ImmobilizationConfig {
   // The paper chose its threshold empirically. These were chosen on simulated ward21 suites 9-16
   // (the most detections with no false alarm there; ties to the higher threshold) and checked
-  // on suites 17-40 (docs/ekf.md; session 13's 0.7 and 0.2: 790/806 against 803/806 over 1-40).
+  // on suites 17-40 (docs/ekf.md; the former 0.7 and 0.2: 790/806 against 803/806 over 1-40).
   double ema_samples = 20.0;              // p of eq. (12)
   double slip_threshold = 0.6;            // EMA slip above which the robot is immobilized
   double low_speed_threshold_add = 0.05;  // added to the threshold at zero wheel speed

@@ -45,8 +45,8 @@ TEST(MultipleModelEkf, WithoutLawSamplesItIsThePapersFilter) {
 TEST(MultipleModelEkf, FindsTheSlowHoldBackOnMudThatOneFilterMisses) {
   // ward21 seed 1, run 13: 0.2 m/s over mulch then mud, where the user's mean law puts v_bx
   // 4-5 cm/s high and the single filter's slip EMA stays below the threshold (docs/ekf.md). The
-  // stricter detector the bank was built against (0.7, 0.2 more at low speed; the default since
-  // session 14, 0.6 + 0.05, lets the single filter catch this run too).
+  // stricter detector the bank was built against (0.7, 0.2 more at low speed; the default,
+  // 0.6 + 0.05, lets the single filter catch this run too).
   const DriveLog log = testing::SimulatedScenario("ward21/13");
   ASSERT_EQ(log.vehicle.law_samples.size(), 4u);
   ImmobilizationConfig strict;

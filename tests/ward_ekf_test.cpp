@@ -49,7 +49,7 @@ TEST(WardEkf, Fig5HoldBackIsDetectedAndTheDisturbanceSettlesNearTheTetherForce) 
 TEST(WardEkf, Ward21RunsMeetThePapersBoundsWithAndWithoutGnss) {
   // A small default version of the ward21 figure (the full suite and 100 independent ones are in
   // docs/ekf.md): seven runs of seed 1, fast and slow, with run 13's slow hold-back on mud that the
-  // front end missed before the bank and the session-14 threshold. The paper's bounds: every
+  // front end missed before the bank and the present threshold. The paper's bounds: every
   // hold-back detected, mean delay <= 0.4 s, false immobilized < 0.2 % of samples with GNSS and
   // < 0.35 % without. Measured: 7/7 both ways, delay 0.08 / 0.11 s, no false sample (at the old
   // threshold, 0.7 + 0.2, run 13 is missed without GNSS).
