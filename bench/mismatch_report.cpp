@@ -63,13 +63,10 @@ struct SuiteResult {
 // --without: the mismatch ingredients taken back out of a mismatch suite's scenarios, each
 // restored to the matched suite's (an ablation: which ingredient costs what).
 std::vector<std::string> g_without;
-// --fading-fixes, --fading-threshold: the front end's GNSS fading memory (EkfOptions).
-EkfOptions g_ekf;
-// --disturbance-modes, --imm-options: the single filter as disturbance modes.
-bool g_imm = false;
-DisturbanceImmOptions g_imm_options;
-// --single-law: one filter also where vehicle.yaml lists law samples (`filter --single-law`).
-bool g_single_law = false;
+// The front end as the flags set it, for the EKF runs and behind the window and the smoother:
+// --fading-fixes, --fading-threshold (EkfOptions' GNSS fading memory), --single-law,
+// --disturbance-modes and --imm-options.
+FilterRunOptions g_front;
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -121,21 +118,15 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
                                   : ParseModelYaml(g_model_path, g_model_text, log.vehicle);
     FilterResult with_gnss;
     for (int e = kEkfGnss; e <= kEkfNoGnss; ++e) {
-      FilterRunOptions options;
-      options.ekf = g_ekf;
+      FilterRunOptions options = g_front;
       options.use_gps = e == kEkfGnss;
-      options.disturbance_modes = g_imm;
-      options.multiple_model = !g_single_law;
-      options.disturbance_modes_options = g_imm_options;
       FilterResult result = RunEkf(log, model, options);
       score(e, log, result.estimates);
       if (e == kEkfGnss) with_gnss = std::move(result);
     }
     if (window) {
       WindowSmootherOptions options;
-      options.filter.ekf = g_ekf;
-      options.filter.disturbance_modes = g_imm;
-      options.filter.disturbance_modes_options = g_imm_options;
+      options.filter = g_front;
       const WindowSmootherResult result = SmoothWindowed(log, model, with_gnss, options);
       out.window_failed_updates += result.failed_updates;
       score(kWindowGnss, log, result.estimates);
@@ -152,9 +143,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     }
     if (smoother) {
       BatchSmootherOptions options;
-      options.filter.ekf = g_ekf;
-      options.filter.disturbance_modes = g_imm;
-      options.filter.disturbance_modes_options = g_imm_options;
+      options.filter = g_front;
       options.problem.stiffness_prior_sd = 0.15;  // as `smooth` and `compare` run it
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
@@ -201,19 +190,19 @@ int main(int argc, char** argv) {
         start = comma + 1;
       }
     } else if (std::strcmp(argv[i], "--fading-fixes") == 0 && has_value) {
-      g_ekf.gnss_fading_fixes = std::atof(argv[++i]);
+      g_front.ekf.gnss_fading_fixes = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--fading-threshold") == 0 && has_value) {
-      g_ekf.gnss_fading_threshold = std::atof(argv[++i]);
+      g_front.ekf.gnss_fading_threshold = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--single-law") == 0) {
-      g_single_law = true;
+      g_front.multiple_model = false;
     } else if (std::strcmp(argv[i], "--disturbance-modes") == 0) {
-      g_imm = true;
+      g_front.disturbance_modes = true;
     } else if (std::strcmp(argv[i], "--imm-options") == 0 && has_value) {
-      g_imm = std::sscanf(argv[++i], "%lf,%lf,%lf,%lf,%lf,%lf,%lf",
-                          &g_imm_options.quiet_a_dist_tau_s, &g_imm_options.quiet_a_dist_sd_mps2,
-                          &g_imm_options.held_a_dist_mps3_per_sqrt_hz, &g_imm_options.quiet_mean_s,
-                          &g_imm_options.change_mean_s, &g_imm_options.held_mean_s,
-                          &g_imm_options.mix_interval_s) >= 6;
+      DisturbanceImmOptions& o = g_front.disturbance_modes_options;
+      g_front.disturbance_modes =
+          std::sscanf(argv[++i], "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &o.quiet_a_dist_tau_s,
+                      &o.quiet_a_dist_sd_mps2, &o.held_a_dist_mps3_per_sqrt_hz, &o.quiet_mean_s,
+                      &o.change_mean_s, &o.held_mean_s, &o.mix_interval_s) >= 6;
     } else if (std::strcmp(argv[i], "--model") == 0 && has_value) {
       g_model_path = argv[++i];
       g_model_text = ReadTextFile(g_model_path);

@@ -130,17 +130,22 @@ void DisturbanceImm::AddWheels(double t, double omega_left, double omega_right) 
   }
 }
 
-void DisturbanceImm::Combine(double t) {
-  std::vector<double> weights(probability_.data(), probability_.data() + kModeCount);
+void DisturbanceImm::MixFilters(const std::vector<double>& weights, ekf::StateVector* mean,
+                                ekf::StateMatrix* covariance) const {
   std::vector<const ekf::StateVector*> means;
   std::vector<const ekf::StateMatrix*> covariances;
   for (const auto& f : filters_) {
     means.push_back(&f->state());
     covariances.push_back(&f->covariance());
   }
+  imm::MixtureMoments(weights, means, covariances, mean, covariance);
+}
+
+void DisturbanceImm::Combine(double t) {
   ekf::StateVector mean;
   ekf::StateMatrix covariance;
-  imm::MixtureMoments(weights, means, covariances, &mean, &covariance);
+  MixFilters(std::vector<double>(probability_.data(), probability_.data() + kModeCount), &mean,
+             &covariance);
   estimate_ = filters_[kChanging]->Estimate();  // time, offsets
   for (int k = 0; k < ward::kStateSize; ++k) {
     estimate_.x[k] = mean(k);
@@ -156,12 +161,6 @@ void DisturbanceImm::Combine(double t) {
 void DisturbanceImm::Mix(double dt) {
   const Eigen::MatrixXd transition = imm::Transition(rate_per_s_, dt);
   predicted_probability_ = transition.transpose() * probability_;
-  std::vector<const ekf::StateVector*> means;
-  std::vector<const ekf::StateMatrix*> covariances;
-  for (const auto& f : filters_) {
-    means.push_back(&f->state());
-    covariances.push_back(&f->covariance());
-  }
   std::array<ekf::StateVector, kModeCount> x;
   std::array<ekf::StateMatrix, kModeCount> P;
   for (int j = 0; j < kModeCount; ++j) {
@@ -172,7 +171,7 @@ void DisturbanceImm::Mix(double dt) {
                        ? transition(i, j) * probability_(i) / predicted_probability_(j)
                        : (i == j ? 1.0 : 0.0);
     }
-    imm::MixtureMoments(weights, means, covariances, &x[j], &P[j]);
+    MixFilters(weights, &x[j], &P[j]);
   }
   for (int j = 0; j < kModeCount; ++j) filters_[j]->ReplaceState(x[j], P[j]);
 }

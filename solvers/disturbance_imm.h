@@ -103,6 +103,9 @@ class DisturbanceImm {
   const Eigen::VectorXd& probabilities() const { return probability_; }
 
  private:
+  // The filters' states mixed with these weights (imm::MixtureMoments).
+  void MixFilters(const std::vector<double>& weights, ekf::StateVector* mean,
+                  ekf::StateMatrix* covariance) const;
   // The modes' mixture with the current probabilities, and the detector run on it.
   void Combine(double t);
   // Each filter restarts from the mixture its mode's predecessors imply over dt.
