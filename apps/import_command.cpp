@@ -1,6 +1,7 @@
-// `slipgraph import`: convert a recording (a ROS 1 bag, recognised by its header, or a MATLAB
-// v7.3 file) into the drive-log format with a mapping file, then
-// run the plausibility checks on the result (a wrong mapping shows as a physical impossibility).
+// `slipgraph import`: convert a recording (a ROS 1 bag, recognised by its header; a ROS 2 bag,
+// a directory or a .db3 / .mcap file; or a MATLAB v7.3 file) into the drive-log format with a
+// mapping file, then run the plausibility checks on the result (a wrong mapping shows as a
+// physical impossibility).
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include "io/log_summary.h"
 #include "io/log_writer.h"
 #include "io/matlab_import.h"
+#include "io/rosbag2_import.h"
 #include "io/rosbag_import.h"
 #include "io/yaml_config.h"
 
@@ -21,8 +23,13 @@ void RegisterImportCommand(CLI::App* app, int* status) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
-      "import", "Convert a recording (a ROS 1 bag, or MATLAB v7.3 / HDF5) into a drive log");
-  cmd->add_option("SOURCE", options->source, "The recording")->required()->check(CLI::ExistingFile);
+      "import",
+      "Convert a recording (a ROS 1 or ROS 2 bag, or MATLAB v7.3 / HDF5) into a drive log");
+  cmd->add_option("SOURCE", options->source,
+                  "The recording: a ROS 1 .bag; a ROS 2 bag directory, .db3 or .mcap file; a "
+                  "MATLAB v7.3 .mat")
+      ->required()
+      ->check(CLI::ExistingPath);
   cmd->add_flag("--list", options->list,
                 "List the recording's topics (type, count, rate) or variables (dimensions) and "
                 "stop: what a mapping file can name");
@@ -35,11 +42,16 @@ void RegisterImportCommand(CLI::App* app, int* status) {
       ->check(CLI::ExistingFile);
   cmd->callback([options, status]() {
     if (options->list) {
+      std::vector<std::string> notes;
+      const bool bag = IsRosBag(options->source) || IsRos2Bag(options->source);
       const std::vector<SourceEntry> entries =
-          IsRosBag(options->source) ? ListRosBag(options->source) : ListMatlab(options->source);
+          IsRosBag(options->source)    ? ListRosBag(options->source)
+          : IsRos2Bag(options->source) ? ListRos2Bag(options->source, &notes)
+                                       : ListMatlab(options->source);
+      for (const std::string& note : notes) std::cerr << "warning: " << note << "\n";
       for (const SourceEntry& e : entries) {
-        std::cout << e.name << "  " << e.type << "  " << e.count
-                  << (e.rate_hz > 0.0 ? " messages, " : " values");
+        std::cout << e.name << "  " << e.type << "  " << e.count << (bag ? " messages" : " values")
+                  << (e.rate_hz > 0.0 ? ", " : "");
         if (e.rate_hz > 0.0) std::cout << std::setprecision(3) << e.rate_hz << " Hz";
         std::cout << "\n";
       }
@@ -55,9 +67,10 @@ void RegisterImportCommand(CLI::App* app, int* status) {
     const Vehicle vehicle = ReadVehicleYaml(options->vehicle, &warnings);
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
     ImportReport report;
-    DriveLog log = IsRosBag(options->source)
-                       ? ImportRosBag(options->source, options->mapping, vehicle, &report)
-                       : ImportMatlab(options->source, options->mapping, vehicle, &report);
+    const std::string& source = options->source;
+    DriveLog log = IsRosBag(source)    ? ImportRosBag(source, options->mapping, vehicle, &report)
+                   : IsRos2Bag(source) ? ImportRos2Bag(source, options->mapping, vehicle, &report)
+                                       : ImportMatlab(source, options->mapping, vehicle, &report);
     WriteDriveLog(log, options->out);
     std::cout << "import: " << options->source << " -> " << options->out << "\n";
     for (const std::string& line : report.lines) std::cout << "  " << line << "\n";

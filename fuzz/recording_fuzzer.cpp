@@ -1,7 +1,10 @@
-// Fuzzes the importers on recordings. The first byte picks:
-// - odd: a ROS 1 bag, the rest its bytes. CheckRosBagRecords and the rosbag library parse them;
+// Fuzzes the importers on recordings. The first byte modulo 4 picks:
+// - 1: a ROS 1 bag, the rest its bytes. CheckRosBagRecords and the rosbag library parse them;
 //   what passes is decoded message by message.
-// - even: a MATLAB v7.3 file whose content the rest chooses (FuzzedDataProvider): for each
+// - 2: an MCAP file (a ROS 2 bag), the rest its bytes, imported with the tiny recording's
+//   mapping: records, chunks (zstd, lz4) and CDR messages as the bytes say.
+// - 3: one CDR message, the next byte picking its type: decoded, or a CdrError.
+// - 0: a MATLAB v7.3 file whose content the rest chooses (FuzzedDataProvider): for each
 //   variable the tiny recording's mapping names, present or not, a dataset or a group, its number
 //   type, rank, dimensions and values (NaN, infinities and extremes among them), written with
 //   the HDF5 library. The HDF5 format's own bytes are not fuzzed here: Debian's HDF5 allocates
@@ -17,8 +20,11 @@
 #include <vector>
 
 #include "fuzz/fuzz_util.h"
+#include "io/cdr_reader.h"
 #include "io/input_error.h"
 #include "io/matlab_import.h"
+#include "io/ros2_messages.h"
+#include "io/rosbag2_import.h"
 #include "io/rosbag_import.h"
 #include "tests/tiny_recordings.h"
 
@@ -84,29 +90,48 @@ void WriteMatlab(FuzzedDataProvider& input, const std::string& path) {
 
 }  // namespace
 
+std::string RosBagMapping() {
+  std::string text = slipgraph::testing::kBagMapping;
+  text.replace(text.find("ros1_bag"), 8, "ros_bag");
+  return text;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const std::string& dir = slipgraph::fuzz::ScratchDirectory();
   static const std::string mat_mapping =
       slipgraph::testing::WriteText(dir, "mat_mapping.yaml", slipgraph::testing::kMatMapping);
   static const std::string bag_mapping =
-      slipgraph::testing::WriteText(dir, "bag_mapping.yaml", slipgraph::testing::kBagMapping);
-  const bool bag = (data[0] & 1) != 0;
-  const std::string recording = dir + (bag ? "/recording.bag" : "/recording.mat");
-  if (bag) {
-    slipgraph::fuzz::WriteFile(recording, data + 1, size - 1);
-  } else {
+      slipgraph::testing::WriteText(dir, "bag_mapping.yaml", RosBagMapping());
+  const int kind = data[0] % 4;
+  if (kind == 3) {
+    if (size < 2) return 0;
+    const char* types[] = {"sensor_msgs/msg/Imu", "nav_msgs/msg/Odometry",
+                           "sensor_msgs/msg/NavSatFix", "sensor_msgs/msg/JointState",
+                           "tf2_msgs/msg/TFMessage"};
+    try {
+      slipgraph::DecodeRos2Message(types[data[1] % 5], data + 2, size - 2);
+    } catch (const slipgraph::CdrError&) {
+    }
+    return 0;
+  }
+  const std::string recording = dir + (kind == 1   ? "/recording.bag"
+                                       : kind == 2 ? "/recording.mcap"
+                                                   : "/recording.mat");
+  if (kind == 0) {
     FuzzedDataProvider input(data + 1, size - 1);
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     WriteMatlab(input, recording);
+  } else {
+    slipgraph::fuzz::WriteFile(recording, data + 1, size - 1);
   }
   slipgraph::ImportReport report;
   slipgraph::DriveLog log;
+  const slipgraph::Vehicle vehicle = slipgraph::testing::TinyVehicle();
   try {
-    log = bag ? slipgraph::ImportRosBag(recording, bag_mapping, slipgraph::testing::TinyVehicle(),
-                                        &report)
-              : slipgraph::ImportMatlab(recording, mat_mapping, slipgraph::testing::TinyVehicle(),
-                                        &report);
+    log = kind == 1   ? slipgraph::ImportRosBag(recording, bag_mapping, vehicle, &report)
+          : kind == 2 ? slipgraph::ImportRos2Bag(recording, bag_mapping, vehicle, &report)
+                      : slipgraph::ImportMatlab(recording, mat_mapping, vehicle, &report);
   } catch (const slipgraph::InputError&) {
     return 0;
   }

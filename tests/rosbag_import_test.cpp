@@ -2,7 +2,8 @@
 // skipped when ../shared is not beside the checkout): every message becomes a row, the shipped
 // mapping passes the plausibility checks, deliberately wrong mappings are named, and the EKF, the
 // batch smoother and diagnose run through with an estimate per wheel sample and no NaN, their
-// consistency figures within the bounds docs/real_logs.md states.
+// consistency figures within the bounds docs/real_logs.md states. Converted to ROS 2 bags (sqlite3
+// and MCAP, tests/ros2_bag_writer.h) it imports to the same drive log, file for file.
 #include "io/rosbag_import.h"
 
 #include <gtest/gtest.h>
@@ -11,13 +12,17 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "io/input_error.h"
+#include "io/log_writer.h"
 #include "io/plausibility.h"
+#include "io/rosbag2_import.h"
 #include "io/yaml_config.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 #include "tests/import_test_util.h"
+#include "tests/ros2_bag_writer.h"
 #include "workbench/diagnosis.h"
 
 namespace slipgraph {
@@ -106,6 +111,40 @@ TEST_F(HuskyBag, ListsItsTopicsAndAMappedTopicWithNoMessagesIsAnError) {
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("gps.topic"), std::string::npos) << e.what();
+  }
+}
+
+std::string FileText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST_F(HuskyBag, AsRos2BagsImportsToTheSameLog) {
+  std::vector<testing::StoredMessage> messages;
+  ForEachRosBagMessage(kBag, {"/imu/data", "/husky_velocity_controller/odom", "/fix"},
+                       [&](const std::string& topic, double t, const RosMessage& m) {
+                         messages.push_back(testing::Store(topic, t, m));
+                       });
+  ASSERT_EQ(messages.size(), 11865u + 3952u + 989u);
+  const std::string dir = ::testing::TempDir();
+  testing::WriteSqliteBag(dir + "/husky.db3", messages);
+  testing::WriteMcap(dir + "/husky.mcap", messages, "zstd", 500);
+  const std::string mapping = MappingWith("format: ros1_bag", "format: ros_bag");
+  ImportReport report;
+  WriteDriveLog(ImportRosBag(kBag, mapping, Husky(), &report), dir + "/husky_ros1");
+  for (const std::string name : {"husky.db3", "husky.mcap"}) {
+    SCOPED_TRACE(name);
+    ImportReport ros2_report;
+    const std::string out = dir + "/husky_from_" + name;
+    WriteDriveLog(ImportRos2Bag(dir + "/" + name, mapping, Husky(), &ros2_report), out);
+    EXPECT_EQ(ros2_report.lines, report.lines);
+    int files = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir + "/husky_ros1")) {
+      ++files;
+      EXPECT_TRUE(FileText(e.path()) == FileText(fs::path(out) / e.path().filename()))
+          << e.path().filename();
+    }
+    EXPECT_GE(files, 4);
   }
 }
 
