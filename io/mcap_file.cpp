@@ -17,9 +17,9 @@ namespace {
 constexpr uint8_t kMagic[8] = {0x89, 'M', 'C', 'A', 'P', '0', '\r', '\n'};
 constexpr uint8_t kSchema = 0x03, kChannel = 0x04, kMessage = 0x05, kChunk = 0x06, kFooter = 0x02,
                   kDataEnd = 0x0F;
-// A chunk that claims to decompress to more than this is taken as corrupt (writers make chunks
-// of about 1 MB; rosbag2's default is 768 kB).
-constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 30;
+// A chunk that claims to decompress to more than this (64 MiB) is taken as corrupt (writers make
+// chunks of about 1 MB; rosbag2's default is 768 kB).
+constexpr uint64_t kMaxChunkBytes = uint64_t{1} << 26;
 
 // A record's content, read field by field; `offset` is its place in the file, for errors.
 class Fields {
@@ -82,6 +82,10 @@ std::vector<uint8_t> Decompress(const std::string& path, uint64_t offset,
     if (size != n) fail("its size is not its records'");
     return std::vector<uint8_t>(in, in + n);
   }
+  if (compression == "zstd" && ZSTD_getFrameContentSize(in, n) != size) {
+    fail("its frame does not state the chunk's size");
+  }
+  if (compression == "lz4" && size / 255 > n) fail("it claims more than lz4 can expand to");
   std::vector<uint8_t> out(size);
   if (compression == "zstd") {
     const size_t got = ZSTD_decompress(out.data(), out.size(), in, n);
@@ -202,7 +206,16 @@ void ScanFile(const std::string& path, Scan* scan, std::string* cut_short) {
   std::vector<uint8_t> record;
   while (at < file_size) {
     uint8_t header[9];
-    if (file_size - at == 8) break;  // the closing magic
+    if (file_size - at == 8) {  // the closing magic, or a record cut 8 bytes in
+      uint8_t tail[8];
+      in.read(reinterpret_cast<char*>(tail), 8);
+      if (in && std::memcmp(tail, kMagic, 8) == 0) break;
+      if (cut_short) {
+        *cut_short = "the file ends inside a record at byte " + std::to_string(at) +
+                     " (its header): read up to it";
+      }
+      return;
+    }
     const auto stop = [&](const std::string& why) {
       if (cut_short)
         *cut_short = "the file ends inside a record at byte " + std::to_string(at) + " (" + why +

@@ -67,7 +67,7 @@ RosMapping Read(const std::string& path, RosBagKind kind, const Vehicle& vehicle
                         (m.format == "ros1_bag" && kind == RosBagKind::kRos1) ||
                         (m.format == "ros2_bag" && kind == RosBagKind::kRos2);
   if (!accepted) {
-    throw InputError(path, Line(root["format"]), "format", m.format,
+    throw InputError(path, root["format"] ? Line(root["format"]) : 0, "format", m.format,
                      std::string("expected 'ros_bag' or '") +
                          (kind == RosBagKind::kRos1 ? "ros1_bag" : "ros2_bag") +
                          "' for this recording (a " +
@@ -341,6 +341,14 @@ DriveLog RosLogBuilder::Finish(ImportReport* report) {
       continue;
     }
     fixes.push_back(&fix);
+  }
+  // Storage order need not be time order: the origin and the central differences need it.
+  std::stable_sort(fixes.begin(), fixes.end(), [](const RosNavSatFix* a, const RosNavSatFix* b) {
+    return a->stamp_s < b->stamp_s;
+  });
+  if (!m.gps_topic.empty() && fixes.empty()) {
+    throw InputError(m.path, 0, "gps.topic", m.gps_topic,
+                     "no message on this topic in " + source_path_ + " has a fix");
   }
   if (!log.imu.empty()) log.present_files.push_back("imu.csv");
   if (!log.attitude.empty()) log.present_files.push_back("attitude.csv");
