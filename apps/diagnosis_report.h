@@ -1,13 +1,13 @@
-// What `diagnose` prints, writes as JSON and renders as an HTML page (evaluation/html_report's
+// What `diagnose` prints and renders as an HTML page (evaluation/html_report's
 // builder, as `compare` uses it): presentation of a workbench Diagnosis, kept out of the
 // workbench.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "evaluation/html_report.h"
 #include "workbench/diagnosis.h"
+#include "workbench/diagnosis_json.h"
 
 namespace slipgraph {
 
@@ -15,7 +15,6 @@ namespace slipgraph {
 void PrintDiagnosis(const Diagnosis& diagnosis, std::ostream& out);
 // Before/after lines for `--with`: truth errors and stream statistics side by side.
 void PrintComparison(const Diagnosis& before, const Diagnosis& after, std::ostream& out);
-nlohmann::json ToJson(const Diagnosis& diagnosis);
 // The page, per diagnosis: the verdict, the estimates (the front end's and the smoother's velocity
 // against the wheels' rim speed, disturbance, slip and immobilized flags), the streams' table,
 // residual plots per stream with the failure segments shaded, the force balance and the

@@ -14,6 +14,7 @@
 #include "apps/estimator_runs.h"
 #include "io/text_file.h"
 #include "io/yaml_config.h"
+#include "solvers/identification_json.h"
 #include "solvers/model_identification.h"
 
 namespace slipgraph {
@@ -24,55 +25,6 @@ std::string Figure(double value, int precision = 3) {
   std::ostringstream out;
   out << std::setprecision(precision) << value;
   return out.str();
-}
-
-// JSON numbers: NaN (not measured) as null.
-nlohmann::json Number(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nullptr;
-}
-
-nlohmann::json ToJson(const ModelScore& s) {
-  return {{"gnss_fixes", s.gnss_fixes},
-          {"gnss_nis_mean", Number(s.gnss_nis_mean)},
-          {"flagged_fraction", s.flagged_fraction},
-          {"velocity_rmse_mps", Number(s.velocity_rmse)},
-          {"false_immobilized_fraction", Number(s.false_immobilized_fraction)}};
-}
-
-nlohmann::json ToJson(const IdentificationResult& r) {
-  nlohmann::json j;
-  for (const IdentifiedParameter& p : r.parameters) {
-    j["parameters"].push_back({{"name", p.name},
-                               {"nominal", p.nominal},
-                               {"value", p.value},
-                               {"sd", Number(p.sd)},
-                               {"prior_sd", p.prior_sd},
-                               {"identified", std::isfinite(p.sd) && p.identified()},
-                               {"at_bound", p.at_bound}});
-  }
-  for (int i = 0; i < r.correlation.rows(); ++i) {
-    std::vector<nlohmann::json> row;
-    for (int k = 0; k < r.correlation.cols(); ++k) row.push_back(Number(r.correlation(i, k)));
-    j["correlation"].push_back(row);
-  }
-  for (const NoiseEstimate& e : r.noise) {
-    j["noise"].push_back({{"name", e.name},
-                          {"nominal", e.nominal},
-                          {"value", e.value},
-                          {"samples", e.samples},
-                          {"method", e.method}});
-  }
-  j["effective_track_m"] = Number(r.effective_track_m);
-  j["gnss_radius_error"] = {{"value", Number(r.gnss_radius_error)},
-                            {"sd", Number(r.gnss_radius_error_sd)},
-                            {"fixes", r.gnss_radius_fixes}};
-  for (const auto& offsets : r.offsets) {
-    j["imu_offsets"].push_back({{"accel_x_mps2", offsets[0]}, {"gyro_z_radps", offsets[1]}});
-  }
-  j["converged"] = r.converged;
-  j["iterations"] = r.summary.iterations.size();
-  j["notes"] = r.notes;
-  return j;
 }
 
 void PrintScores(const std::string& name, const ModelScore& nominal, const ModelScore& fitted,

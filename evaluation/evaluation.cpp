@@ -6,6 +6,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "evaluation/json_number.h"
 #include "io/csv_writer.h"
 #include "io/input_error.h"
 #include "model/option_check.h"
@@ -189,27 +190,24 @@ void PrintEvaluation(const Evaluation& ev, std::ostream& out) {
 }
 
 nlohmann::json ToJson(const Evaluation& ev) {
-  const auto number = [](double value) -> nlohmann::json {
-    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-  };
   nlohmann::json events = nlohmann::json::array();
   for (const EventScore& e : ev.events) {
     events.push_back({{"t_start", e.t_start},
                       {"t_end", e.t_end},
                       {"detected", e.detected},
-                      {"delay_s", e.detected ? number(e.delay_s) : nlohmann::json(nullptr)}});
+                      {"delay_s", e.detected ? JsonNumber(e.delay_s) : nlohmann::json(nullptr)}});
   }
   return {{"name", ev.name},
           {"samples", ev.samples},
-          {"velocity_rmse", number(ev.velocity_rmse)},
-          {"disturbance_rmse", number(ev.disturbance_rmse)},
+          {"velocity_rmse", JsonNumber(ev.velocity_rmse)},
+          {"disturbance_rmse", JsonNumber(ev.disturbance_rmse)},
           {"events", ev.events.size()},
           {"detected", ev.detected()},
-          {"mean_detection_delay_s", number(ev.mean_detection_delay_s())},
+          {"mean_detection_delay_s", JsonNumber(ev.mean_detection_delay_s())},
           {"false_immobilized_samples", ev.false_immobilized_samples},
           {"false_immobilized_fraction", ev.false_immobilized_fraction()},
-          {"velocity_mean_nees", number(ev.velocity_mean_nees)},
-          {"velocity_nees_within_95", number(ev.nees_within_95_fraction())},
+          {"velocity_mean_nees", JsonNumber(ev.velocity_mean_nees)},
+          {"velocity_nees_within_95", JsonNumber(ev.nees_within_95_fraction())},
           {"event_details", events}};
 }
 

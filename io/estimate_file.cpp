@@ -4,34 +4,9 @@
 #include <string>
 
 #include "io/csv_reader.h"
+#include "io/csv_writer.h"
 
 namespace slipgraph {
-namespace {
-
-std::vector<std::string> EstimateHeader(const std::vector<EstimateColumn>& columns) {
-  std::vector<std::string> header = {"t"};
-  for (const EstimateColumn& column : columns) {
-    header.push_back(column.name);
-    if (column.with_sd) header.push_back("sd_" + column.name);
-  }
-  return header;
-}
-
-}  // namespace
-
-EstimateWriter::EstimateWriter(const std::string& path, std::vector<EstimateColumn> columns)
-    : columns_(std::move(columns)), writer_(path, EstimateHeader(columns_)) {}
-
-void EstimateWriter::Write(double t, const std::vector<double>& values,
-                           const std::vector<double>& sds) {
-  writer_ << t;
-  for (size_t i = 0; i < columns_.size(); ++i) {
-    writer_ << values[i];
-    if (columns_[i].with_sd) writer_ << sds[i];
-  }
-  writer_.EndRow();
-}
-
 NumericTable ReadNumericTable(const std::string& path) {
   // First pass learns the header; the second reads every column as optional numbers.
   const std::vector<std::string> names = CsvReader(path, {}).header();
@@ -50,37 +25,67 @@ NumericTable ReadNumericTable(const std::string& path) {
   return table;
 }
 
-void WriteEstimates(const std::vector<WardEstimate>& estimates, const std::string& path,
-                    const std::vector<ExtraColumn>& extra) {
-  std::vector<EstimateColumn> columns = {
-      {"v_bx", true},        {"b_ax", true},      {"a_dist", true},       {"omega_left", true},
-      {"omega_right", true}, {"yaw_rate", true},  {"b_gz", true},         {"slip_left", false},
-      {"slip_right", false}, {"slip_ema", false}, {"immobilized", false}, {"accel_offset", false},
-      {"gyro_offset", false}};
-  const size_t standard = columns.size();
+void WriteNumericTable(const NumericTable& table, const std::string& path) {
+  std::vector<const std::vector<double>*> columns;
+  for (const std::string& name : table.names) {
+    columns.push_back(&table.columns.at(name));
+    if (columns.back()->size() != columns.front()->size()) {
+      throw std::logic_error("column '" + name + "' of the table for " + path + " has " +
+                             std::to_string(columns.back()->size()) + " values, not " +
+                             std::to_string(columns.front()->size()));
+    }
+  }
+  CsvWriter writer(path, table.names);
+  for (size_t row = 0; row < table.rows(); ++row) {
+    for (const std::vector<double>* column : columns) writer << (*column)[row];
+    writer.EndRow();
+  }
+  writer.Close();
+}
+
+NumericTable EstimateColumns(const std::vector<WardEstimate>& estimates,
+                             const std::vector<ExtraColumn>& extra) {
+  static constexpr const char* kStateNames[ward::kStateSize] = {
+      "v_bx", "b_ax", "a_dist", "omega_left", "omega_right", "yaw_rate", "b_gz"};
+  NumericTable table;
+  const auto add = [&](const std::string& name) -> std::vector<double>& {
+    table.names.push_back(name);
+    std::vector<double>& column = table.columns[name];
+    column.reserve(estimates.size());
+    return column;
+  };
+  std::vector<double>& t = add("t");
+  for (const WardEstimate& e : estimates) t.push_back(e.t);
+  for (int i = 0; i < ward::kStateSize; ++i) {
+    std::vector<double>& value = add(kStateNames[i]);
+    for (const WardEstimate& e : estimates) value.push_back(e.x[i]);
+    std::vector<double>& sd = add(std::string("sd_") + kStateNames[i]);
+    for (const WardEstimate& e : estimates) sd.push_back(e.sd[i]);
+  }
+  const auto add_each = [&](const std::string& name, auto value_of) {
+    std::vector<double>& column = add(name);
+    for (const WardEstimate& e : estimates) column.push_back(value_of(e));
+  };
+  add_each("slip_left", [](const WardEstimate& e) { return e.slip.slip_left; });
+  add_each("slip_right", [](const WardEstimate& e) { return e.slip.slip_right; });
+  add_each("slip_ema", [](const WardEstimate& e) { return e.slip.slip_ema; });
+  add_each("immobilized", [](const WardEstimate& e) { return e.slip.immobilized ? 1.0 : 0.0; });
+  add_each("accel_offset", [](const WardEstimate& e) { return e.accel_offset_mps2; });
+  add_each("gyro_offset", [](const WardEstimate& e) { return e.gyro_offset_radps; });
   for (const ExtraColumn& column : extra) {
     if (column.values.size() != estimates.size()) {
       throw std::logic_error("extra column '" + column.name + "' has " +
                              std::to_string(column.values.size()) + " values for " +
                              std::to_string(estimates.size()) + " estimates");
     }
-    columns.push_back({column.name, false});
+    add(column.name) = column.values;
   }
-  EstimateWriter writer(path, columns);
-  std::vector<double> values(columns.size()), sds(columns.size(), 0.0);
-  for (size_t row = 0; row < estimates.size(); ++row) {
-    const WardEstimate& e = estimates[row];
-    for (int i = 0; i < ward::kStateSize; ++i) values[i] = e.x[i], sds[i] = e.sd[i];
-    values[7] = e.slip.slip_left;
-    values[8] = e.slip.slip_right;
-    values[9] = e.slip.slip_ema;
-    values[10] = e.slip.immobilized ? 1.0 : 0.0;
-    values[11] = e.accel_offset_mps2;
-    values[12] = e.gyro_offset_radps;
-    for (size_t j = 0; j < extra.size(); ++j) values[standard + j] = extra[j].values[row];
-    writer.Write(e.t, values, sds);
-  }
-  writer.Close();
+  return table;
+}
+
+void WriteEstimates(const std::vector<WardEstimate>& estimates, const std::string& path,
+                    const std::vector<ExtraColumn>& extra) {
+  WriteNumericTable(EstimateColumns(estimates, extra), path);
 }
 
 NumericTable EstimateTable(const std::vector<WardEstimate>& estimates) {

@@ -6,28 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "io/csv_writer.h"
 #include "io/state_estimate.h"
 
 namespace slipgraph {
-
-struct EstimateColumn {
-  std::string name;     // e.g. "v_bx"; SI units implied by the name's documentation
-  bool with_sd = true;  // writes sd_<name> right after it
-};
-
-class EstimateWriter {
- public:
-  EstimateWriter(const std::string& path, std::vector<EstimateColumn> columns);
-  // values and sds are indexed like the columns; sds of columns without sd are ignored.
-  void Write(double t, const std::vector<double>& values, const std::vector<double>& sds);
-  // Flushes and closes the file (CsvWriter::Close: throws when the write failed).
-  void Close() { writer_.Close(); }
-
- private:
-  std::vector<EstimateColumn> columns_;
-  CsvWriter writer_;
-};
 
 // Every column of a numeric CSV by name ("t" included). Throws InputError naming file, line,
 // column and value on a bad cell (missing values are NaN).
@@ -38,6 +19,9 @@ struct NumericTable {
   size_t rows() const { return columns.empty() ? 0 : columns.begin()->second.size(); }
 };
 NumericTable ReadNumericTable(const std::string& path);
+// Writes the table's columns in `names` order with a header (CsvWriter's numbers). Throws
+// InputError when the file cannot be written, std::logic_error when a column is short.
+void WriteNumericTable(const NumericTable& table, const std::string& path);
 
 // A column an estimator adds after the standard ones (one value per estimate).
 struct ExtraColumn {
@@ -45,8 +29,13 @@ struct ExtraColumn {
   std::vector<double> values;
 };
 
-// Estimate file: t, v_bx, b_ax, a_dist, omega_left, omega_right, yaw_rate, b_gz (each with
-// sd_), slip_left, slip_right, slip_ema, immobilized, accel_offset, gyro_offset, then `extra`.
+// Every column of the estimate file (docs/estimate-file.md): t, v_bx, b_ax, a_dist, omega_left,
+// omega_right, yaw_rate, b_gz (each followed by its sd_), slip_left, slip_right, slip_ema,
+// immobilized, accel_offset, gyro_offset, then `extra`. Throws std::logic_error when an extra
+// column's length is not the estimates'.
+NumericTable EstimateColumns(const std::vector<WardEstimate>& estimates,
+                             const std::vector<ExtraColumn>& extra = {});
+// EstimateColumns written as a CSV file.
 void WriteEstimates(const std::vector<WardEstimate>& estimates, const std::string& path,
                     const std::vector<ExtraColumn>& extra = {});
 // The estimates as the table `evaluate` reads (t, v_bx, sd_v_bx, a_dist, immobilized), without

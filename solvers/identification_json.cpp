@@ -1,0 +1,54 @@
+#include "solvers/identification_json.h"
+
+#include <cmath>
+#include <vector>
+
+#include "evaluation/json_number.h"
+
+namespace slipgraph {
+
+nlohmann::json ToJson(const ModelScore& s) {
+  return {{"gnss_fixes", s.gnss_fixes},
+          {"gnss_nis_mean", JsonNumber(s.gnss_nis_mean)},
+          {"flagged_fraction", s.flagged_fraction},
+          {"velocity_rmse_mps", JsonNumber(s.velocity_rmse)},
+          {"false_immobilized_fraction", JsonNumber(s.false_immobilized_fraction)}};
+}
+
+nlohmann::json ToJson(const IdentificationResult& r) {
+  nlohmann::json j;
+  for (const IdentifiedParameter& p : r.parameters) {
+    j["parameters"].push_back({{"name", p.name},
+                               {"nominal", p.nominal},
+                               {"value", p.value},
+                               {"sd", JsonNumber(p.sd)},
+                               {"prior_sd", p.prior_sd},
+                               {"identified", std::isfinite(p.sd) && p.identified()},
+                               {"at_bound", p.at_bound}});
+  }
+  for (int i = 0; i < r.correlation.rows(); ++i) {
+    std::vector<nlohmann::json> row;
+    for (int k = 0; k < r.correlation.cols(); ++k) row.push_back(JsonNumber(r.correlation(i, k)));
+    j["correlation"].push_back(row);
+  }
+  for (const NoiseEstimate& e : r.noise) {
+    j["noise"].push_back({{"name", e.name},
+                          {"nominal", e.nominal},
+                          {"value", e.value},
+                          {"samples", e.samples},
+                          {"method", e.method}});
+  }
+  j["effective_track_m"] = JsonNumber(r.effective_track_m);
+  j["gnss_radius_error"] = {{"value", JsonNumber(r.gnss_radius_error)},
+                            {"sd", JsonNumber(r.gnss_radius_error_sd)},
+                            {"fixes", r.gnss_radius_fixes}};
+  for (const auto& offsets : r.offsets) {
+    j["imu_offsets"].push_back({{"accel_x_mps2", offsets[0]}, {"gyro_z_radps", offsets[1]}});
+  }
+  j["converged"] = r.converged;
+  j["iterations"] = r.summary.iterations.size();
+  j["notes"] = r.notes;
+  return j;
+}
+
+}  // namespace slipgraph
