@@ -18,12 +18,6 @@
 
 namespace slipgraph {
 
-// The slip-stiffness prior `smooth` and `compare` use unless told otherwise: a user's tire law is
-// a fit that no terrain matches exactly. Chosen on ward21 seeds 1/2; on seeds 3/4, not used to
-// choose it, the batch's velocity error fell 0.0172/0.0166 -> 0.0115/0.0114 m/s with the
-// disturbance unchanged; where the law is exact (fig5) it costs 0.0031 -> 0.0048 m/s.
-constexpr double kPostProcessingStiffnessPriorSd = 0.15;
-
 struct EstimatorRunOptions {
   std::string log;    // empty: the bundled sample
   std::string model;  // empty: the vehicle's nominal model
