@@ -192,21 +192,26 @@ std::string ScoreModelJson(const LogPtr& log, const std::string& model, bool use
   return ToJson(ScoreModel(run.log, run.model, use_gps)).dump();
 }
 
-// The estimates' columns (a dict of arrays: t, v_bx, sd_v_bx, immobilized, a_dist at least)
-// scored against the log's truth, as `evaluate` scores an estimate file.
-std::string EvaluateJson(const LogPtr& log, const py::dict& columns) {
+// A dict of 1-D arrays as a table, in the dict's order.
+NumericTable ToTable(const py::dict& columns, const std::string& what) {
   NumericTable table;
   for (const auto& item : columns) {
     const std::string name = py::cast<std::string>(item.first);
     const py::array_t<double, py::array::c_style | py::array::forcecast> values =
         py::cast<py::array>(item.second);
     if (values.ndim() != 1) {
-      throw std::invalid_argument("evaluate: column '" + name + "' is not one-dimensional");
+      throw std::invalid_argument(what + ": column '" + name + "' is not one-dimensional");
     }
     table.names.push_back(name);
     table.columns[name].assign(values.data(), values.data() + values.size());
   }
-  return ToJson(Evaluate(*log, table)).dump();
+  return table;
+}
+
+// The estimates' columns (a dict of arrays: t, v_bx, sd_v_bx, immobilized, a_dist at least)
+// scored against the log's truth, as `evaluate` scores an estimate file.
+std::string EvaluateJson(const LogPtr& log, const py::dict& columns) {
+  return ToJson(Evaluate(*log, ToTable(columns, "evaluate"))).dump();
 }
 
 }  // namespace
@@ -265,6 +270,13 @@ PYBIND11_MODULE(_core, m) {
   m.def("score_model", &ScoreModelJson, py::arg("log"), py::arg("model") = "",
         py::arg("use_gps") = true);
   m.def("evaluate", &EvaluateJson, py::arg("log"), py::arg("columns"));
+  m.def(
+      "write_table",
+      [](const py::dict& columns, const std::string& path) {
+        WriteNumericTable(ToTable(columns, path), path);
+      },
+      py::arg("columns"), py::arg("path"),
+      "Columns (a dict of 1-D arrays) as a CSV file in the log format's dialect");
   m.def(
       "effects",
       [] {

@@ -35,6 +35,7 @@ __all__ = [
     "identify",
     "score_model",
     "evaluate",
+    "write_estimates",
     "effects",
 ]
 
@@ -130,6 +131,14 @@ def evaluate(log, estimates) -> dict:
     columns = estimates.columns if isinstance(estimates, Run) else estimates
     arrays = {str(k): _np.asarray(columns[k], dtype=float) for k in columns.keys()}
     return _json.loads(_core.evaluate(_log(log), arrays))
+
+
+def write_estimates(estimates, path) -> None:
+    """Estimates (a Run, or a dict or DataFrame of columns) as the CLI writes an estimate file:
+    the same header and the same numbers, byte for byte."""
+    columns = estimates.columns if isinstance(estimates, Run) else estimates
+    _core.write_table({str(k): _np.asarray(columns[k], dtype=float) for k in columns.keys()},
+                      str(path))
 
 
 def effects() -> List[dict]:

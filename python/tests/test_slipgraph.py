@@ -86,6 +86,8 @@ def test_filter_gives_the_estimate_file_the_cli_writes(sample, tmp_path):
     for key in written:
         assert same(ekf[key], written[key]), key
     assert ekf.trusted and "streams used" in ekf.report
+    slipgraph.write_estimates(ekf, tmp_path / "again.csv")
+    assert (tmp_path / "again.csv").read_bytes() == (tmp_path / "ekf.csv").read_bytes()
 
 
 def test_smoother_beats_the_filter_against_truth_and_scores_as_the_cli(sample, tmp_path):
