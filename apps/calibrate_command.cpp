@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
+#include "apps/json_output.h"
 #include "evaluation/html_report.h"
 #include "io/csv_writer.h"
 #include "io/log_reader.h"
@@ -80,7 +81,7 @@ Plot Scatter(const std::string& title, const std::vector<PredictionError>& error
 void RegisterCalibrateCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, out, method = "ekf";
-    bool json = false;
+    JsonOutput json;
     ReadOptions read;  // --skip-bad, --max-bad
     IpdOptions ipd;
     IpdGraphOptions graph;
@@ -109,7 +110,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
       ->capture_default_str();
   cmd->add_option("--window", options->graph.window_s, "window: seconds of alpha blocks kept")
       ->capture_default_str();
-  cmd->add_flag("--json", options->json, "Print one JSON object instead of the table");
+  options->json.Add(cmd);
   AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
@@ -179,30 +180,34 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
     }
     html.Figure(alpha_plot);
     html.Write((fs::path(out) / "report.html").string());
-    if (options->json) {
+    if (options->json.enabled()) {
       nlohmann::json j = {{"method", options->method},
                           {"no_slip", StatsJson(no_slip)},
                           {"calibrated", StatsJson(calibrated)},
                           {"final_alpha", result.final_alpha},
                           {"final_alpha_sd", result.final_alpha_sd},
                           {"final_q", {result.final_q[0], result.final_q[1], result.final_q[2]}},
-                          {"notes", result.notes}};
-      std::cout << j.dump(2) << "\n";
-    } else {
-      std::printf(
+                          {"notes", result.notes},
+                          {"report", (fs::path(out) / "report.html").string()}};
+      options->json.Write(j);
+    }
+    {
+      std::FILE* text = options->json.to_stdout() ? stderr : stdout;
+      std::fprintf(
+          text,
           "| model | mean position error m | sd along m | sd cross m | mean |heading| rad |\n");
-      std::printf("|---|---|---|---|---|\n");
+      std::fprintf(text, "|---|---|---|---|---|\n");
       const std::string calibrated_name = "calibrated (" + options->method + ")";
       for (const auto& [name, s] : {std::pair<std::string, PredictionStats>{"no slip", no_slip},
                                     {calibrated_name, calibrated}}) {
-        std::printf("| %s | %.4f | %.4f | %.4f | %.4f |\n", name.c_str(), s.mean_position_error_m,
-                    s.sd_along_m, s.sd_cross_m, s.mean_heading_error_rad);
+        std::fprintf(text, "| %s | %.4f | %.4f | %.4f | %.4f |\n", name.c_str(),
+                     s.mean_position_error_m, s.sd_along_m, s.sd_cross_m, s.mean_heading_error_rad);
       }
-      std::printf("predicted / sample variance (along, cross, heading): %.2f %.2f %.2f\n",
-                  calibrated.predicted_over_sample[0], calibrated.predicted_over_sample[1],
-                  calibrated.predicted_over_sample[2]);
-      for (const std::string& note : result.notes) std::printf("note: %s\n", note.c_str());
-      std::printf("report: %s\n", (fs::path(out) / "report.html").string().c_str());
+      std::fprintf(text, "predicted / sample variance (along, cross, heading): %.2f %.2f %.2f\n",
+                   calibrated.predicted_over_sample[0], calibrated.predicted_over_sample[1],
+                   calibrated.predicted_over_sample[2]);
+      for (const std::string& note : result.notes) std::fprintf(text, "note: %s\n", note.c_str());
+      std::fprintf(text, "report: %s\n", (fs::path(out) / "report.html").string().c_str());
     }
     *status = 0;
   });

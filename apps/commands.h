@@ -24,5 +24,6 @@ void RegisterSinkageCommand(CLI::App* app, int* status);
 void RegisterImportCommand(CLI::App* app, int* status);
 void RegisterDiagnoseCommand(CLI::App* app, int* status);
 void RegisterIdentifyCommand(CLI::App* app, int* status);
+void RegisterEffectsCommand(CLI::App* app, int* status);
 
 }  // namespace slipgraph

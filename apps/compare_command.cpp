@@ -11,6 +11,7 @@
 #include "apps/commands.h"
 #include "apps/estimate_plots.h"
 #include "apps/estimator_runs.h"
+#include "apps/json_output.h"
 #include "evaluation/evaluation.h"
 #include "evaluation/html_report.h"
 #include "io/log_reader.h"
@@ -82,6 +83,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     ReadOptions read;  // --skip-bad, --max-bad
     WindowSmootherOptions window;
     double stiffness_sd = kPostProcessingStiffnessPriorSd;
+    JsonOutput json;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -97,6 +99,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                   "Report page (default ./<log>_compare.html); plots of every log in it");
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
   AddStiffnessOption(cmd, &options->stiffness_sd);
+  options->json.Add(cmd);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     const std::string path = options->log.empty() ? DefaultLogPath() : options->log;
@@ -107,6 +110,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::map<std::string, double> seconds;
     std::map<std::string, int> untrusted;  // logs the trust check failed, per estimator
     const std::vector<std::string> names = {"EKF", "window", "batch"};
+    nlohmann::json logs_json = nlohmann::json::array();
     for (const std::string& log_dir : ListLogs(path)) {
       DriveLog log = ReadLogWithWarnings(log_dir, options->read);
       const ModelConfig model = ModelForLog(&log, options->model);
@@ -135,15 +139,26 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                  DescribeSmootherRun(smoothed)};
       std::cerr << "compare: " << log_dir << "\n";
       html.Heading(log_dir, 2);
+      nlohmann::json log_json = {{"log", log_dir},
+                                 {"model", ModelRecord(options->model, model)},
+                                 {"runs", nlohmann::json::array()}};
+      for (const EstimatorRun& run : runs) {
+        log_json["runs"].push_back({{"estimator", run.name},
+                                    {"seconds", run.seconds},
+                                    {"trusted", CheckTrust(log, run.estimates).trusted},
+                                    {"evaluation", nullptr}});
+      }
       if (!log.truth.empty()) {
         std::vector<std::vector<std::string>> rows;
-        for (const EstimatorRun& run : runs) {
+        for (size_t r = 0; r < runs.size(); ++r) {
+          const EstimatorRun& run = runs[r];
           const Evaluation ev = Evaluate(log, EstimateTable(run.estimates));
           by_estimator[run.name].push_back(ev);
           seconds[run.name] += run.seconds;
-          const int bad = CheckTrust(log, run.estimates).trusted ? 0 : 1;
-          untrusted[run.name] += bad;
-          rows.push_back(Row(run.name, ev, run.seconds, bad, 1));
+          const bool trusted = log_json["runs"][r]["trusted"].get<bool>();
+          untrusted[run.name] += trusted ? 0 : 1;
+          rows.push_back(Row(run.name, ev, run.seconds, trusted ? 0 : 1, 1));
+          log_json["runs"][r]["evaluation"] = ToJson(ev);
         }
         html.Table(kHeader, rows);
       } else {
@@ -157,12 +172,21 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
         }
         AddEstimatePlots(log, plotted, &html);
       }
+      logs_json.push_back(log_json);
     }
+    std::ostream& text = options->json.text();
+    nlohmann::json out = {{"logs", logs_json}, {"report", html_path}};
     if (!by_estimator.empty()) {
       std::vector<std::vector<std::string>> rows;
+      out["total"] = nlohmann::json::array();
       for (const std::string& estimator : names) {
-        rows.push_back(Row(estimator, Combine(by_estimator[estimator], name), seconds[estimator],
-                           untrusted[estimator], static_cast<int>(by_estimator[estimator].size())));
+        const Evaluation total = Combine(by_estimator[estimator], name);
+        rows.push_back(Row(estimator, total, seconds[estimator], untrusted[estimator],
+                           static_cast<int>(by_estimator[estimator].size())));
+        out["total"].push_back({{"estimator", estimator},
+                                {"seconds", seconds[estimator]},
+                                {"untrusted_logs", untrusted[estimator]},
+                                {"evaluation", ToJson(total)}});
       }
       char prior[32];
       std::snprintf(prior, sizeof(prior), "%g", options->stiffness_sd);
@@ -171,11 +195,11 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
               ? std::string("the batch estimates the tire law's slip stiffness (prior sd ") +
                     prior + "; --stiffness-sd 0: the law as given)"
               : "the batch keeps the tire law as given";
-      std::cout << name << " (" << by_estimator["EKF"].size()
-                << " log(s)) against truth; window and batch times include the EKF run they start "
-                   "from; trusted: the estimates hold against the log's own wheels and GNSS; "
-                << batch_law << "\n";
-      PrintTable(rows, std::cout);
+      text << name << " (" << by_estimator["EKF"].size()
+           << " log(s)) against truth; window and batch times include the EKF run they start "
+              "from; trusted: the estimates hold against the log's own wheels and GNSS; "
+           << batch_law << "\n";
+      PrintTable(rows, text);
       HtmlReport summary = html;  // the summary goes first on the page
       HtmlReport page("slipgraph compare: " + name);
       page.Heading("All logs", 2);
@@ -190,10 +214,11 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       page.Append(summary);
       page.Write(html_path);
     } else {
-      std::cout << name << ": no truth in the log(s); see the plots\n";
+      text << name << ": no truth in the log(s); see the plots\n";
       html.Write(html_path);
     }
-    std::cout << "report: " << html_path << "\n";
+    text << "report: " << html_path << "\n";
+    if (options->json.enabled()) options->json.Write(out);
     *status = 0;
   });
 }

@@ -12,10 +12,12 @@
 #include "apps/commands.h"
 #include "apps/diagnosis_report.h"
 #include "apps/estimator_runs.h"
+#include "apps/json_output.h"
 #include "io/log_reader.h"
 #include "io/text_file.h"
 #include "model/effect_catalogue.h"
 #include "workbench/diagnosis.h"
+#include "workbench/diagnosis_series.h"
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
@@ -35,7 +37,8 @@ std::string EffectNames() {
 
 void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   struct Options {
-    std::string log, model, report, json;
+    std::string log, model, report, series;
+    JsonOutput json;
     std::vector<std::string> with;
     bool no_gps = false, add_best = false;
     ReadOptions read;  // --skip-bad, --max-bad
@@ -59,7 +62,12 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
                 "The whole loop: add the top-ranked significant candidate (if the smoother has a "
                 "term or a correction for it) and report before and after");
   cmd->add_option("--report", options->report, "Write a self-contained HTML report");
-  cmd->add_option("--json", options->json, "Write one JSON object to this file ('-': stdout)");
+  cmd->add_option("--series", options->series,
+                  "Write the series behind the statistics to this directory (a suite: one "
+                  "folder per log): per stream the smoother's normalized residuals "
+                  "(residual_<stream>.csv: t, normalized, sd) and the front end's normalized "
+                  "innovations (innovation_<stream>.csv: t, normalized)");
+  options->json.Add(cmd);
   cmd->add_option("--alpha", options->diagnosis.alpha,
                   "Family-wise significance level of the tests")
       ->capture_default_str();
@@ -79,8 +87,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     DiagnosisOptions diagnosis = options->diagnosis;
     diagnosis.smoother.filter.use_gps = !options->no_gps;
     const std::string path = options->log.empty() ? DefaultHiddenEffectLogPath() : options->log;
-    const bool to_stdout = options->json == "-";
-    std::ostream& text = to_stdout ? std::cerr : std::cout;
+    std::ostream& text = options->json.text();
     nlohmann::json all = nlohmann::json::array();
     // Suite totals: how often each effect was the significant top candidate, and how many logs
     // nothing explained.
@@ -93,6 +100,15 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       const Diagnosis before = Diagnose(log, model, diagnosis);
       PrintDiagnosis(before, text);
       nlohmann::json j = ToJson(before);
+      if (!options->series.empty()) {
+        const std::string directory = IsLogDirectory(path)
+                                          ? options->series
+                                          : (std::filesystem::path(options->series) /
+                                             std::filesystem::path(log_dir).filename())
+                                                .string();
+        j["series"] = WriteSeries(DiagnosisSeries(before), directory);
+        text << "series: " << directory << " (" << j["series"].size() << " files)\n";
+      }
       std::vector<std::string> with = options->with;
       if (options->add_best && with.empty()) {
         const CandidateScore* best = BestExplanation(before.candidates);
@@ -135,17 +151,13 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       report->Write(options->report);
       text << "report: " << options->report << "\n";
     }
-    if (!options->json.empty()) {
+    if (options->json.enabled()) {
       nlohmann::json out = all.size() == 1 ? all[0] : nlohmann::json{{"logs", all}};
       if (all.size() > 1) {
         out["total"] = {
             {"logs", all.size()}, {"top_candidates", top_counts}, {"unexplained", unexplained}};
       }
-      if (to_stdout) {
-        std::cout << out.dump(2) << "\n";
-      } else {
-        WriteTextFile(options->json, out.dump(2) + "\n");
-      }
+      options->json.Write(out);
     }
     *status = 0;
   });

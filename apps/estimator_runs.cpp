@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "apps/commands.h"
 #include "evaluation/evaluation.h"
@@ -57,6 +58,7 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
   cmd->add_option("--out", run->out,
                   "Estimate CSV (a suite: a directory, one CSV per log); default ./<log>_" + name +
                       ".csv or ./<suite>_" + name + "/");
+  run->json.Add(cmd);
   return cmd;
 }
 
@@ -88,12 +90,15 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
   }
   if (suite) fs::create_directories(out);
   int untrusted = 0;
+  nlohmann::json records = nlohmann::json::array();
   for (const std::string& log_dir : logs) {
     DriveLog log = ReadLogWithWarnings(log_dir, options.read);
     const ModelConfig model = ModelForLog(&log, options.model);
     const std::string file = output_of(log_dir);
     std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";
-    EstimatorOutput output = estimate(log, model, std::cerr);
+    std::ostringstream report;
+    EstimatorOutput output = estimate(log, model, report);
+    std::cerr << report.str();
     // Whether the estimates hold against the log's own wheels and GNSS (solvers/trust_check.h).
     const TrustReport trust = CheckTrust(log, output.estimates);
     std::cerr << DescribeTrust(trust)
@@ -102,11 +107,23 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
     output.extra.push_back({"suspect", trust.suspect});
     untrusted += trust.trusted ? 0 : 1;
     WriteEstimates(output.estimates, file, output.extra);
+    nlohmann::json record = {{"log", log_dir},
+                             {"estimates", file},
+                             {"model", ModelRecord(options.model, model)},
+                             {"trusted", trust.trusted},
+                             {"trust_warnings", trust.warnings},
+                             {"report", report.str()},
+                             {"evaluation", nullptr}};
     if (!log.truth.empty()) {
       Evaluation ev = Evaluate(log, ReadNumericTable(file));
       ev.name = log_dir + " against truth";
-      PrintEvaluation(ev, std::cout);
+      PrintEvaluation(ev, options.json.text());
+      record["evaluation"] = ToJson(ev);
     }
+    records.push_back(record);
+  }
+  if (options.json.enabled()) {
+    options.json.Write({{"logs", records}, {"untrusted", untrusted}});
   }
   if (options.strict && untrusted > 0) {
     std::cerr << options.name << ": --strict: " << untrusted << " of " << logs.size()

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/json_output.h"
 #include "io/drive_log.h"
 #include "io/log_reader.h"
 #include "model/model_config.h"
@@ -27,6 +28,9 @@ struct EstimatorRunOptions {
   // A log whose estimates fail the trust check (solvers/trust_check.h) is an error, not only a
   // warning: RunEstimatorOverLogs then returns kUntrustedExit.
   bool strict = false;
+  // --json: per log, the estimate file, the model, the trust check, the run's report and the
+  // evaluation against truth.
+  JsonOutput json;
 };
 
 // The exit status of an estimator subcommand run with --strict when a log's estimates are not
@@ -55,7 +59,7 @@ DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read);
 ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
-// --skip-bad, --strict, --out); the caller adds its own and sets the callback.
+// --skip-bad, --strict, --out, --json); the caller adds its own and sets the callback.
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               const std::string& description, EstimatorRunOptions* run,
                               bool* no_gps);

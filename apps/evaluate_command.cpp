@@ -3,6 +3,7 @@
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
+#include "apps/json_output.h"
 #include "evaluation/evaluation.h"
 #include "io/input_error.h"
 #include "io/log_reader.h"
@@ -12,7 +13,7 @@ void RegisterEvaluateCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log;
     std::string estimates;
-    bool json = false;
+    JsonOutput json;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd =
@@ -21,7 +22,7 @@ void RegisterEvaluateCommand(CLI::App* app, int* status) {
   cmd->add_option("ESTIMATES", options->estimates,
                   "Estimate CSV (a suite: the directory of <log>.csv files)")
       ->required();
-  cmd->add_flag("--json", options->json, "Print one JSON object instead of text");
+  options->json.Add(cmd);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     const std::vector<std::string> logs = ListLogs(options->log);
@@ -36,20 +37,20 @@ void RegisterEvaluateCommand(CLI::App* app, int* status) {
       runs.back().name = log_dir;
     }
     const Evaluation total = suite ? Combine(runs, options->log) : runs.front();
-    if (options->json) {
+    if (options->json.enabled()) {
       nlohmann::json out = ToJson(total);
       if (suite) {
         out["runs"] = nlohmann::json::array();
         for (const Evaluation& run : runs) out["runs"].push_back(ToJson(run));
       }
-      std::cout << out.dump(2) << "\n";
-    } else {
-      if (suite) {
-        for (const Evaluation& run : runs) PrintEvaluation(run, std::cout);
-        std::cout << "total ";
-      }
-      PrintEvaluation(total, std::cout);
+      options->json.Write(out);
     }
+    std::ostream& text = options->json.text();
+    if (suite) {
+      for (const Evaluation& run : runs) PrintEvaluation(run, text);
+      text << "total ";
+    }
+    PrintEvaluation(total, text);
     *status = 0;
   });
 }

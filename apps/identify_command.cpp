@@ -12,6 +12,7 @@
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
+#include "apps/json_output.h"
 #include "io/text_file.h"
 #include "io/yaml_config.h"
 #include "solvers/identification_json.h"
@@ -47,7 +48,8 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
 void RegisterIdentifyCommand(CLI::App* app, int* status) {
   struct Options {
     std::vector<std::string> logs;
-    std::string model, out, json;
+    std::string model, out;
+    JsonOutput json;
     double train = 0.5;
     std::string part = "first";
     bool no_gps = false;
@@ -82,7 +84,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddReadOptions(cmd, &options->read);
-  cmd->add_option("--json", options->json, "Write one JSON object to this file ('-': stdout)");
+  options->json.Add(cmd);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     std::vector<DriveLog> train, held_out;
@@ -117,7 +119,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
                                        : "")
               << "\n";
     const IdentificationResult result = IdentifyModel(train, model, options->identify);
-    std::ostream& text = options->json == "-" ? std::cerr : std::cout;
+    std::ostream& text = options->json.text();
     text << DescribeIdentification(result);
     nlohmann::json json = ToJson(result);
     if (!held_out.empty()) {
@@ -139,11 +141,8 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     WriteTextFile(out, model_text.str());
     text << "model: " << out << " (use it with --model)\n";
     json["model_file"] = out;
-    if (options->json == "-") {
-      std::cout << json.dump(2) << "\n";
-    } else if (!options->json.empty()) {
-      WriteTextFile(options->json, json.dump(2) + "\n");
-    }
+    json["model"] = ModelRecord(options->model, model);
+    if (options->json.enabled()) options->json.Write(json);
     *status = 0;
   });
 }

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/json_output.h"
 #include "io/log_summary.h"
 #include "io/log_writer.h"
 #include "io/matlab_import.h"
@@ -20,6 +21,7 @@ void RegisterImportCommand(CLI::App* app, int* status) {
   struct Options {
     std::string source, out, mapping, vehicle;
     bool list = false;
+    JsonOutput json;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -40,6 +42,7 @@ void RegisterImportCommand(CLI::App* app, int* status) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--vehicle", options->vehicle, "vehicle.yaml for the log")
       ->check(CLI::ExistingFile);
+  options->json.Add(cmd);
   cmd->callback([options, status]() {
     if (options->list) {
       std::vector<std::string> notes;
@@ -49,11 +52,20 @@ void RegisterImportCommand(CLI::App* app, int* status) {
           : IsRos2Bag(options->source) ? ListRos2Bag(options->source, &notes)
                                        : ListMatlab(options->source);
       for (const std::string& note : notes) std::cerr << "warning: " << note << "\n";
+      std::ostream& text = options->json.text();
+      nlohmann::json listed = nlohmann::json::array();
       for (const SourceEntry& e : entries) {
-        std::cout << e.name << "  " << e.type << "  " << e.count << (bag ? " messages" : " values")
-                  << (e.rate_hz > 0.0 ? ", " : "");
-        if (e.rate_hz > 0.0) std::cout << std::setprecision(3) << e.rate_hz << " Hz";
-        std::cout << "\n";
+        text << e.name << "  " << e.type << "  " << e.count << (bag ? " messages" : " values")
+             << (e.rate_hz > 0.0 ? ", " : "");
+        if (e.rate_hz > 0.0) text << std::setprecision(3) << e.rate_hz << " Hz";
+        text << "\n";
+        listed.push_back({{"name", e.name},
+                          {"type", e.type},
+                          {bag ? "messages" : "values", e.count},
+                          {"rate_hz", e.rate_hz > 0.0 ? nlohmann::json(e.rate_hz) : nullptr}});
+      }
+      if (options->json.enabled()) {
+        options->json.Write({{"source", options->source}, {"entries", listed}, {"notes", notes}});
       }
       *status = 0;
       return;
@@ -72,15 +84,24 @@ void RegisterImportCommand(CLI::App* app, int* status) {
                    : IsRos2Bag(source) ? ImportRos2Bag(source, options->mapping, vehicle, &report)
                                        : ImportMatlab(source, options->mapping, vehicle, &report);
     WriteDriveLog(log, options->out);
-    std::cout << "import: " << options->source << " -> " << options->out << "\n";
-    for (const std::string& line : report.lines) std::cout << "  " << line << "\n";
+    std::ostream& text = options->json.text();
+    text << "import: " << options->source << " -> " << options->out << "\n";
+    for (const std::string& line : report.lines) text << "  " << line << "\n";
     log.directory = options->out;
     const LogSummary summary = SummarizeLog(log);
     if (summary.problems.empty()) {
-      std::cout << "plausibility: no problems found\n";
+      text << "plausibility: no problems found\n";
     } else {
-      std::cout << "plausibility: " << summary.problems.size() << " problem(s)\n";
-      for (const std::string& p : summary.problems) std::cout << "  - " << p << "\n";
+      text << "plausibility: " << summary.problems.size() << " problem(s)\n";
+      for (const std::string& p : summary.problems) text << "  - " << p << "\n";
+    }
+    if (options->json.enabled()) {
+      options->json.Write({{"source", options->source},
+                           {"log", options->out},
+                           {"files", log.present_files},
+                           {"report", report.lines},
+                           {"warnings", warnings},
+                           {"problems", summary.problems}});
     }
     *status = 0;
   });

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/json_output.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 
@@ -13,6 +14,7 @@ void RegisterSimulateCommand(CLI::App* app, int* status) {
     uint64_t seed = 1;
     std::string out;
     std::vector<std::string> effects;
+    JsonOutput json;
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -23,6 +25,7 @@ void RegisterSimulateCommand(CLI::App* app, int* status) {
       ->required();
   cmd->add_option("--effect", options->effects,
                   "Switch a physical effect on, NAME or NAME=VALUE (repeatable)");
+  options->json.Add(cmd);
   cmd->callback([options, status]() {
     sim::EffectSet extra;
     for (const std::string& text : options->effects) {
@@ -31,6 +34,7 @@ void RegisterSimulateCommand(CLI::App* app, int* status) {
     }
     const std::vector<sim::ScenarioRun> runs =
         sim::ExpandScenario(options->scenario, options->seed);
+    nlohmann::json logs = nlohmann::json::array();
     for (const sim::ScenarioRun& run : runs) {
       sim::Scenario scenario = run.scenario;
       for (const auto& [name, value] : extra) scenario.effects[name] = value;
@@ -40,7 +44,14 @@ void RegisterSimulateCommand(CLI::App* app, int* status) {
       sim::WriteSimulation(scenario, run.seed, result, dir);
       std::cerr << "simulate: " << scenario.name << " -> " << dir << " (" << result.log.imu.size()
                 << " IMU samples, " << result.log.events.size() << " immobilized events)\n";
+      logs.push_back({{"scenario", scenario.name},
+                      {"seed", run.seed},
+                      {"log", dir},
+                      {"imu_samples", result.log.imu.size()},
+                      {"events", result.log.events.size()},
+                      {"effects", scenario.effects}});
     }
+    if (options->json.enabled()) options->json.Write({{"logs", logs}});
     *status = 0;
   });
 }

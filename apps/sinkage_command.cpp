@@ -8,6 +8,7 @@
 
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
+#include "apps/json_output.h"
 #include "io/csv_writer.h"
 #include "io/log_reader.h"
 #include "solvers/wilcox_baseline.h"
@@ -18,7 +19,7 @@ namespace slipgraph {
 void RegisterSinkageCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, out, method = "baseline";
-    bool json = false;
+    JsonOutput json;
     ReadOptions read;  // --skip-bad, --max-bad
     WilcoxOptions wilcox;
     WilcoxGraphOptions graph;
@@ -62,7 +63,7 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
       "--no-learn-slip", [options] { options->wilcox.learn_slip = false; },
       "Keep the prior's slip and slip per slope fixed (the paper: slip 0)");
   cmd->add_option("--bin", options->wilcox.bin_m, "Histogram bin, m")->capture_default_str();
-  cmd->add_flag("--json", options->json, "Print one JSON object");
+  options->json.Add(cmd);
   AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
@@ -112,25 +113,29 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
       j["max_position_error_m"] = score.max_position_error_m;
       j["sinkage_rmse_m"] = score.sinkage_rmse_m;
     }
-    if (options->json) {
-      std::cout << j.dump(2) << "\n";
-    } else {
+    j["cycles"] = (fs::path(out) / "cycles.csv").string();
+    if (options->json.enabled()) {
+      options->json.Write(j);
+    }
+    {
+      std::FILE* text = options->json.to_stdout() ? stderr : stdout;
       for (const WilcoxSide& side : result.sides) {
-        std::printf(
-            "%s: advance %.4f m over rim %.4f m (slip %.1f %%), mean front sinkage %.1f mm\n",
+        std::fprintf(
+            text, "%s: advance %.4f m over rim %.4f m (slip %.1f %%), mean front sinkage %.1f mm\n",
             side.side.c_str(), side.total_advance_m, side.total_rim_m,
             side.total_rim_m > 0.0 ? 100.0 * (1.0 - side.total_advance_m / side.total_rim_m) : 0.0,
             1000.0 * side.mean_sinkage_m);
       }
-      std::printf("left/right: %s\n", result.agreement.c_str());
+      std::fprintf(text, "left/right: %s\n", result.agreement.c_str());
       if (truth) {
-        std::printf(
+        std::fprintf(
+            text,
             "against truth: odometry error %.2f %% (rim motion alone %.1f %%), at worst along "
             "the way %.1f mm, front sinkage RMSE %.2f mm\n",
             100.0 * score.odometry_error_fraction, 100.0 * score.rim_odometry_error_fraction,
             1000.0 * score.max_position_error_m, 1000.0 * score.sinkage_rmse_m);
       }
-      std::printf("per cycle: %s\n", (fs::path(out) / "cycles.csv").string().c_str());
+      std::fprintf(text, "per cycle: %s\n", (fs::path(out) / "cycles.csv").string().c_str());
     }
     *status = 0;
   });

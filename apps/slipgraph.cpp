@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   slipgraph::RegisterDiagnoseCommand(&app, &status);
   slipgraph::RegisterIdentifyCommand(&app, &status);
   slipgraph::RegisterEvaluateCommand(&app, &status);
+  slipgraph::RegisterEffectsCommand(&app, &status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

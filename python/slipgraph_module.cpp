@@ -28,6 +28,7 @@
 #include "solvers/trust_check.h"
 #include "workbench/diagnosis.h"
 #include "workbench/diagnosis_json.h"
+#include "workbench/diagnosis_series.h"
 
 namespace py = pybind11;
 
@@ -105,8 +106,7 @@ py::dict RunDict(const DriveLog& log, const std::vector<WardEstimate>& estimates
   return run;
 }
 
-FilterRunOptions FrontEnd(bool use_gps, bool single_law, bool gnss_fading,
-                          bool disturbance_modes) {
+FilterRunOptions FrontEnd(bool use_gps, bool single_law, bool gnss_fading, bool disturbance_modes) {
   FilterRunOptions options;
   options.use_gps = use_gps;
   options.multiple_model = !single_law;
@@ -116,19 +116,19 @@ FilterRunOptions FrontEnd(bool use_gps, bool single_law, bool gnss_fading,
 }
 
 py::dict FilterRun(const LogPtr& log, const std::string& model, bool use_gps, bool single_law,
-                bool gnss_fading, bool disturbance_modes) {
+                   bool gnss_fading, bool disturbance_modes) {
   const CalibratedLog run = Calibrate(*log, model);
   FilterResult result;
   {
     py::gil_scoped_release release;
-    result = RunEkf(run.log, run.model,
-                    FrontEnd(use_gps, single_law, gnss_fading, disturbance_modes));
+    result =
+        RunEkf(run.log, run.model, FrontEnd(use_gps, single_law, gnss_fading, disturbance_modes));
   }
   return RunDict(run.log, result.estimates, DescribeFilterRun(result), false);
 }
 
 py::dict SmoothRun(const LogPtr& log, const std::string& model, bool use_gps, double stiffness_sd,
-                int threads) {
+                   int threads) {
   const CalibratedLog run = Calibrate(*log, model);
   BatchSmootherOptions options;
   options.problem.stiffness_prior_sd = stiffness_sd;
@@ -147,26 +147,36 @@ py::dict SmoothRun(const LogPtr& log, const std::string& model, bool use_gps, do
   return out;
 }
 
-std::string DiagnoseJson(const LogPtr& log, const std::string& model, bool use_gps,
-                     const std::vector<std::string>& with, int threads) {
+// The diagnosis as the CLI's JSON text, and its series (workbench/diagnosis_series.h) by file
+// name as dicts of arrays.
+py::tuple DiagnoseRun(const LogPtr& log, const std::string& model, bool use_gps,
+                      const std::vector<std::string>& with, int threads) {
   const CalibratedLog run = Calibrate(*log, model);
   DiagnosisOptions options;
   options.smoother.filter.use_gps = use_gps;
   options.threads = threads;
-  py::gil_scoped_release release;
-  const Diagnosis before = Diagnose(run.log, run.model, options);
-  nlohmann::json json = ToJson(before);
-  if (!with.empty()) {
-    const ExtendedModel extended = AddEffects(run.log, run.model, before, with);
-    DiagnosisOptions after_options = options;
-    after_options.corrected = extended.corrected;
-    json["after"] = ToJson(Diagnose(extended.log, extended.model, after_options));
+  std::string json_text;
+  std::vector<NamedTable> series;
+  {
+    py::gil_scoped_release release;
+    const Diagnosis before = Diagnose(run.log, run.model, options);
+    nlohmann::json json = ToJson(before);
+    if (!with.empty()) {
+      const ExtendedModel extended = AddEffects(run.log, run.model, before, with);
+      DiagnosisOptions after_options = options;
+      after_options.corrected = extended.corrected;
+      json["after"] = ToJson(Diagnose(extended.log, extended.model, after_options));
+    }
+    json_text = json.dump();
+    series = DiagnosisSeries(before);
   }
-  return json.dump();
+  py::dict tables;
+  for (const NamedTable& named : series) tables[py::str(named.file)] = TableColumns(named.table);
+  return py::make_tuple(json_text, tables);
 }
 
 std::string IdentifyJson(const std::vector<LogPtr>& logs, const std::string& model, bool use_gps,
-                     bool fit_radius, int threads) {
+                         bool fit_radius, int threads) {
   if (logs.empty()) throw std::invalid_argument("identify: no logs");
   std::vector<DriveLog> copies;
   for (const LogPtr& log : logs) copies.push_back(*log);
@@ -223,10 +233,10 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = SLIPGRAPH_VERSION;
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
 
-  py::class_<DriveLog, std::shared_ptr<DriveLog>>(m, "Log",
-                                                  "A drive log (shared/log-format.md)")
+  py::class_<DriveLog, std::shared_ptr<DriveLog>>(m, "Log", "A drive log (shared/log-format.md)")
       .def_property_readonly("path", [](const DriveLog& log) { return log.directory; })
-      .def_property_readonly("vehicle", [](const DriveLog& log) { return VehicleDict(log.vehicle); })
+      .def_property_readonly("vehicle",
+                             [](const DriveLog& log) { return VehicleDict(log.vehicle); })
       .def_property_readonly("files", &LogTableFiles, "The log's CSV files, in the format's order")
       .def_property_readonly("warnings", [](const DriveLog& log) { return log.warnings; })
       .def_property_readonly("problems", &CheckLogForEstimation,
@@ -263,10 +273,10 @@ PYBIND11_MODULE(_core, m) {
         py::arg("disturbance_modes") = false);
   m.def("smooth", &SmoothRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("stiffness_sd") = kPostProcessingStiffnessPriorSd, py::arg("threads") = 1);
-  m.def("diagnose", &DiagnoseJson, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
+  m.def("diagnose", &DiagnoseRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("with_effects") = std::vector<std::string>{}, py::arg("threads") = 2);
-  m.def("identify", &IdentifyJson, py::arg("logs"), py::arg("model") = "", py::arg("use_gps") = true,
-        py::arg("fit_radius") = false, py::arg("threads") = 1);
+  m.def("identify", &IdentifyJson, py::arg("logs"), py::arg("model") = "",
+        py::arg("use_gps") = true, py::arg("fit_radius") = false, py::arg("threads") = 1);
   m.def("score_model", &ScoreModelJson, py::arg("log"), py::arg("model") = "",
         py::arg("use_gps") = true);
   m.def("evaluate", &EvaluateJson, py::arg("log"), py::arg("columns"));

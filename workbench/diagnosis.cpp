@@ -275,7 +275,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
     f.white = f.whiteness.p_value >= options.alpha;
     d.filter.push_back(f);
   }
-  d.solution.ekf.stats.innovations.clear();  // not kept: the report has what it needs
+  // The innovation series stay in d.solution.ekf.stats for diagnose --series.
   d.used_fallback = d.solution.used_fallback;
   d.trust = CheckTrust(log, d.solution.estimates);
   d.notes = d.solution.notes;

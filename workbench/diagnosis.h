@@ -168,7 +168,7 @@ struct Diagnosis {
   TrustReport trust;
   std::vector<std::string> notes;
   ModelResiduals residuals;  // for plots
-  SmootherResult solution;   // for plots
+  SmootherResult solution;   // for plots; its EKF run keeps the innovation series
 };
 
 Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model,

@@ -104,9 +104,14 @@ def smooth(log, model=None, use_gps: bool = True, stiffness_sd: Optional[float] 
 def diagnose(log, model=None, use_gps: bool = True,
              with_effects: Sequence[str] = (), threads: int = 2) -> dict:
     """The model workbench, as ``slipgraph diagnose --json``: streams, failures, candidates;
-    with_effects adds those effects and diagnoses again (the result's "after")."""
-    return _json.loads(
-        _core.diagnose(_log(log), _model(model), use_gps, list(with_effects), threads))
+    with_effects adds those effects and diagnoses again (the result's "after"). "series" holds
+    the series behind the statistics, as ``diagnose --series`` writes them: per stream the
+    smoother's normalized residuals ("residual_gnss.csv": t, normalized, sd) and the front
+    end's normalized innovations ("innovation_gnss.csv": t, normalized), as arrays."""
+    text, series = _core.diagnose(_log(log), _model(model), use_gps, list(with_effects), threads)
+    result = _json.loads(text)
+    result["series"] = series
+    return result
 
 
 def identify(logs: Sequence, model=None, use_gps: bool = True, fit_radius: bool = False,

@@ -115,6 +115,11 @@ def test_diagnose_names_the_hidden_clock_offset():
     assert best["effect"] == "clock_offset"
     truth = yaml.safe_load((HIDDEN / "sim.yaml").read_text())["effects"]["clock_offset"]
     assert best["magnitude"] == pytest.approx(truth, abs=5 * best["magnitude_sd"] + 0.005)
+    gnss = diagnosis["series"]["residual_gnss.csv"]
+    assert len(gnss["t"]) == diagnosis["streams"]["gnss"]["samples"]
+    rms = float(np.sqrt(np.mean(gnss["normalized"] ** 2)))
+    assert rms == pytest.approx(diagnosis["streams"]["gnss"]["rms"], rel=1e-9)
+    assert "innovation_gnss.csv" in diagnosis["series"]
 
 
 def test_identify_writes_a_model_the_estimators_take(sample, tmp_path):

@@ -1,0 +1,61 @@
+#include "apps/json_output.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "io/text_file.h"
+#include "io/yaml_config.h"
+
+namespace slipgraph {
+
+void JsonOutput::Add(CLI::App* cmd) {
+  cmd_ = cmd;
+  cmd->add_option("--json", path_,
+                  "Write the results as one JSON object to FILE, or to stdout with no FILE or "
+                  "'-' (the text then goes to stderr); put it last or write --json=FILE")
+      ->expected(0, 1)
+      ->default_str("-")
+      ->type_name("[FILE]");
+}
+
+std::ostream& JsonOutput::text() const { return path_ == "-" ? std::cerr : std::cout; }
+
+void JsonOutput::Write(nlohmann::json result) const {
+  nlohmann::json options = nlohmann::json::object();
+  if (cmd_ != nullptr) {
+    for (const CLI::Option* option : cmd_->get_options()) {
+      if (option->count() == 0 || option->get_name() == "--json") continue;
+      const std::vector<std::string>& values = option->results();
+      const std::string name = option->get_name(false, true);
+      if (values.size() == 1) {
+        options[name] = values.front();
+      } else {
+        options[name] = values;
+      }
+    }
+  }
+  result["slipgraph"] = {{"version", SLIPGRAPH_VERSION},
+                         {"command", cmd_ != nullptr ? cmd_->get_name() : ""},
+                         {"options", options}};
+  const std::string text = result.dump(2) + "\n";
+  if (path_ == "-") {
+    std::cout << text << std::flush;
+  } else {
+    WriteTextFile(path_, text);
+  }
+}
+
+nlohmann::json ModelRecord(const std::string& model_path, const ModelConfig& model) {
+  std::ostringstream yaml;
+  WriteModelYaml(model, yaml);
+  uint64_t hash = 1469598103934665603ull;  // FNV-1a 64: offset basis, then xor and multiply
+  for (const unsigned char c : yaml.str()) hash = (hash ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
+  return {{"file", model_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(model_path)},
+          {"fingerprint", hex}};
+}
+
+}  // namespace slipgraph

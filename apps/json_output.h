@@ -1,0 +1,38 @@
+// --json [FILE] on every subcommand, with one meaning: the subcommand's results as one JSON
+// object, written to FILE, or to stdout when FILE is '-' or left out (the text the subcommand
+// prints then goes to stderr, so that stdout is one JSON document). Every object carries
+// "slipgraph": the program's version, the subcommand and the options it was given.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <string>
+
+#include "model/model_config.h"
+
+namespace slipgraph {
+
+class JsonOutput {
+ public:
+  // Registers --json on `cmd` (the object must outlive the parse: hold it in the subcommand's
+  // options).
+  void Add(CLI::App* cmd);
+  bool enabled() const { return !path_.empty(); }
+  bool to_stdout() const { return path_ == "-"; }
+  // Where the subcommand's text goes: stderr when the JSON takes stdout, else stdout.
+  std::ostream& text() const;
+  // Adds the "slipgraph" record to `result` and writes it (a file write is checked).
+  void Write(nlohmann::json result) const;
+
+ private:
+  std::string path_;
+  CLI::App* cmd_ = nullptr;
+};
+
+// The model a run used, for its record: the file given (null: the vehicle's nominal model) and
+// a fingerprint of the effective model (FNV-1a 64 of its model-file text, hex): two runs with
+// the same fingerprint ran the same model.
+nlohmann::json ModelRecord(const std::string& model_path, const ModelConfig& model);
+
+}  // namespace slipgraph
