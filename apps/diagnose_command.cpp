@@ -13,6 +13,7 @@
 #include "apps/diagnosis_report.h"
 #include "apps/estimator_runs.h"
 #include "apps/json_output.h"
+#include "apps/suite_runs.h"
 #include "io/log_reader.h"
 #include "io/text_file.h"
 #include "model/effect_catalogue.h"
@@ -43,6 +44,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     bool no_gps = false, add_best = false;
     ReadOptions read;  // --skip-bad, --max-bad
     DiagnosisOptions diagnosis;
+    SuiteOptions suite;  // --jobs, --keep-going
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app->add_subcommand(
@@ -68,6 +70,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
                   "(residual_<stream>.csv: t, normalized, sd) and the front end's normalized "
                   "innovations (innovation_<stream>.csv: t, normalized)");
   options->json.Add(cmd);
+  AddSuiteOptions(cmd, &options->suite);
   cmd->add_option("--alpha", options->diagnosis.alpha,
                   "Family-wise significance level of the tests")
       ->capture_default_str();
@@ -88,58 +91,81 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     diagnosis.smoother.filter.use_gps = !options->no_gps;
     const std::string path = options->log.empty() ? DefaultHiddenEffectLogPath() : options->log;
     std::ostream& text = options->json.text();
-    nlohmann::json all = nlohmann::json::array();
+    const std::vector<std::string> logs = ListLogs(path);
+    // Per log: its JSON, its significant top candidate ("" for none) and whether its failures
+    // were explained; the page is the first log's.
+    std::vector<nlohmann::json> per_log(logs.size());
+    std::vector<std::string> top(logs.size());
+    std::vector<char> explained(logs.size(), 1);
+    std::optional<HtmlReport> report;
+    const std::vector<LogFailure> failures = RunOverLogs(
+        logs, options->suite,
+        [&](size_t i, std::ostream& out, std::ostream& err) {
+          const std::string& log_dir = logs[i];
+          per_log[i] = {{"log", log_dir}, {"error", "did not finish"}};
+          DriveLog log = ReadLogWithWarnings(log_dir, options->read, err);
+          const ModelConfig model = ModelForLog(&log, options->model);
+          const Diagnosis before = Diagnose(log, model, diagnosis);
+          PrintDiagnosis(before, out);
+          nlohmann::json j = ToJson(before);
+          if (!options->series.empty()) {
+            const std::string directory = IsLogDirectory(path)
+                                              ? options->series
+                                              : (std::filesystem::path(options->series) /
+                                                 std::filesystem::path(log_dir).filename())
+                                                    .string();
+            j["series"] = WriteSeries(DiagnosisSeries(before), directory);
+            out << "series: " << directory << " (" << j["series"].size() << " files)\n";
+          }
+          std::vector<std::string> with = options->with;
+          if (options->add_best && with.empty()) {
+            const CandidateScore* best = BestExplanation(before.candidates);
+            if (best == nullptr) {
+              out << "--add-best: no significant, plausible candidate to add\n";
+            } else if (!CanAddEffect(best->effect)) {
+              out << "--add-best: " << best->effect
+                  << " has no smoother term or measurement correction yet\n";
+            } else {
+              out << "\n--add-best: adding " << best->effect << "\n";
+              with.push_back(best->effect);
+            }
+          }
+          const bool page = i == 0 && !options->report.empty();
+          if (!with.empty()) {
+            const ExtendedModel extended = AddEffects(log, model, before, with);
+            DiagnosisOptions after_options = diagnosis;
+            after_options.corrected = extended.corrected;
+            const Diagnosis after = Diagnose(extended.log, extended.model, after_options);
+            out << "\nwith " << with.size() << " effect(s) added:\n";
+            PrintDiagnosis(after, out);
+            PrintComparison(before, after, out);
+            j["after"] = ToJson(after);
+            if (page) report = DiagnosisReport(log, before, &extended.log, &after);
+          } else if (page) {
+            report = DiagnosisReport(log, before);
+          }
+          per_log[i] = j;
+          if (const CandidateScore* best = BestExplanation(before.candidates)) {
+            top[i] = best->effect;
+          }
+          explained[i] = before.explained;
+        },
+        text, std::cerr);
     // Suite totals: how often each effect was the significant top candidate, and how many logs
     // nothing explained.
     std::map<std::string, int> top_counts;
     int unexplained = 0;
-    std::optional<HtmlReport> report;
-    for (const std::string& log_dir : ListLogs(path)) {
-      DriveLog log = ReadLogWithWarnings(log_dir, options->read);
-      const ModelConfig model = ModelForLog(&log, options->model);
-      const Diagnosis before = Diagnose(log, model, diagnosis);
-      PrintDiagnosis(before, text);
-      nlohmann::json j = ToJson(before);
-      if (!options->series.empty()) {
-        const std::string directory = IsLogDirectory(path)
-                                          ? options->series
-                                          : (std::filesystem::path(options->series) /
-                                             std::filesystem::path(log_dir).filename())
-                                                .string();
-        j["series"] = WriteSeries(DiagnosisSeries(before), directory);
-        text << "series: " << directory << " (" << j["series"].size() << " files)\n";
-      }
-      std::vector<std::string> with = options->with;
-      if (options->add_best && with.empty()) {
-        const CandidateScore* best = BestExplanation(before.candidates);
-        if (best == nullptr) {
-          text << "--add-best: no significant, plausible candidate to add\n";
-        } else if (!CanAddEffect(best->effect)) {
-          text << "--add-best: " << best->effect
-               << " has no smoother term or measurement correction yet\n";
-        } else {
-          text << "\n--add-best: adding " << best->effect << "\n";
-          with.push_back(best->effect);
+    nlohmann::json all = nlohmann::json::array();
+    for (size_t i = 0; i < logs.size(); ++i) {
+      if (per_log[i].contains("error")) {
+        for (const LogFailure& failure : failures) {
+          if (failure.log == logs[i]) per_log[i]["error"] = failure.error;
         }
+      } else {
+        if (!top[i].empty()) ++top_counts[top[i]];
+        unexplained += explained[i] ? 0 : 1;
       }
-      if (!with.empty()) {
-        const ExtendedModel extended = AddEffects(log, model, before, with);
-        DiagnosisOptions after_options = diagnosis;
-        after_options.corrected = extended.corrected;
-        const Diagnosis after = Diagnose(extended.log, extended.model, after_options);
-        text << "\nwith " << with.size() << " effect(s) added:\n";
-        PrintDiagnosis(after, text);
-        PrintComparison(before, after, text);
-        j["after"] = ToJson(after);
-        if (!report) report = DiagnosisReport(log, before, &extended.log, &after);
-      } else if (!report) {
-        report = DiagnosisReport(log, before);
-      }
-      all.push_back(j);
-      if (const CandidateScore* best = BestExplanation(before.candidates)) {
-        ++top_counts[best->effect];
-      }
-      unexplained += !before.explained;
+      all.push_back(per_log[i]);
     }
     if (all.size() > 1) {
       text << "\nsuite " << path << ": " << all.size() << " logs; significant top candidate:";
@@ -150,16 +176,21 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     if (!options->report.empty() && report) {
       report->Write(options->report);
       text << "report: " << options->report << "\n";
+    } else if (!options->report.empty()) {
+      std::cerr << "diagnose: no report: the first log failed\n";
     }
     if (options->json.enabled()) {
       nlohmann::json out = all.size() == 1 ? all[0] : nlohmann::json{{"logs", all}};
       if (all.size() > 1) {
-        out["total"] = {
-            {"logs", all.size()}, {"top_candidates", top_counts}, {"unexplained", unexplained}};
+        out["total"] = {{"logs", all.size()},
+                        {"failed", failures.size()},
+                        {"top_candidates", top_counts},
+                        {"unexplained", unexplained}};
       }
       options->json.Write(out);
     }
-    *status = 0;
+    PrintFailures("diagnose", failures, logs.size(), std::cerr);
+    *status = failures.empty() ? 0 : kFailedLogsExit;
   });
 }
 

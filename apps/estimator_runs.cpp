@@ -26,11 +26,12 @@ void AddReadOptions(CLI::App* cmd, ReadOptions* read) {
       ->capture_default_str();
 }
 
-DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read) {
+DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read,
+                             std::ostream& warnings) {
   DriveLog log = ReadDriveLog(path, read);
-  for (const std::string& warning : log.warnings) std::cerr << "warning: " << warning << "\n";
+  for (const std::string& warning : log.warnings) warnings << "warning: " << warning << "\n";
   for (const std::string& problem : CheckLogForEstimation(log)) {
-    std::cerr << "warning: " << path << ": " << problem << "\n";
+    warnings << "warning: " << path << ": " << problem << "\n";
   }
   return log;
 }
@@ -59,6 +60,7 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                   "Estimate CSV (a suite: a directory, one CSV per log); default ./<log>_" + name +
                       ".csv or ./<suite>_" + name + "/");
   run->json.Add(cmd);
+  AddSuiteOptions(cmd, &run->suite);
   return cmd;
 }
 
@@ -89,42 +91,58 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
     }
   }
   if (suite) fs::create_directories(out);
+  std::vector<nlohmann::json> records(logs.size());
+  const std::vector<LogFailure> failures = RunOverLogs(
+      logs, options.suite,
+      [&](size_t i, std::ostream& out, std::ostream& err) {
+        const std::string& log_dir = logs[i];
+        records[i] = {{"log", log_dir}, {"error", "did not finish"}};
+        DriveLog log = ReadLogWithWarnings(log_dir, options.read, err);
+        const ModelConfig model = ModelForLog(&log, options.model);
+        const std::string file = output_of(log_dir);
+        err << options.name << ": " << log_dir << " -> " << file << "\n";
+        std::ostringstream report;
+        EstimatorOutput output = estimate(log, model, report);
+        err << report.str();
+        // Whether the estimates hold against the log's own wheels and GNSS
+        // (solvers/trust_check.h).
+        const TrustReport trust = CheckTrust(log, output.estimates);
+        err << DescribeTrust(trust)
+            << (trust.trusted ? "" : "  the estimate file's column `suspect` marks the samples\n");
+        output.extra.push_back({"suspect", trust.suspect});
+        WriteEstimates(output.estimates, file, output.extra);
+        nlohmann::json record = {{"log", log_dir},
+                                 {"estimates", file},
+                                 {"model", ModelRecord(options.model, model)},
+                                 {"trusted", trust.trusted},
+                                 {"trust_warnings", trust.warnings},
+                                 {"report", report.str()},
+                                 {"evaluation", nullptr}};
+        if (!log.truth.empty()) {
+          Evaluation ev = Evaluate(log, ReadNumericTable(file));
+          ev.name = log_dir + " against truth";
+          PrintEvaluation(ev, out);
+          record["evaluation"] = ToJson(ev);
+        }
+        records[i] = record;
+      },
+      options.json.text(), std::cerr);
   int untrusted = 0;
-  nlohmann::json records = nlohmann::json::array();
-  for (const std::string& log_dir : logs) {
-    DriveLog log = ReadLogWithWarnings(log_dir, options.read);
-    const ModelConfig model = ModelForLog(&log, options.model);
-    const std::string file = output_of(log_dir);
-    std::cerr << options.name << ": " << log_dir << " -> " << file << "\n";
-    std::ostringstream report;
-    EstimatorOutput output = estimate(log, model, report);
-    std::cerr << report.str();
-    // Whether the estimates hold against the log's own wheels and GNSS (solvers/trust_check.h).
-    const TrustReport trust = CheckTrust(log, output.estimates);
-    std::cerr << DescribeTrust(trust)
-              << (trust.trusted ? ""
-                                : "  the estimate file's column `suspect` marks the samples\n");
-    output.extra.push_back({"suspect", trust.suspect});
-    untrusted += trust.trusted ? 0 : 1;
-    WriteEstimates(output.estimates, file, output.extra);
-    nlohmann::json record = {{"log", log_dir},
-                             {"estimates", file},
-                             {"model", ModelRecord(options.model, model)},
-                             {"trusted", trust.trusted},
-                             {"trust_warnings", trust.warnings},
-                             {"report", report.str()},
-                             {"evaluation", nullptr}};
-    if (!log.truth.empty()) {
-      Evaluation ev = Evaluate(log, ReadNumericTable(file));
-      ev.name = log_dir + " against truth";
-      PrintEvaluation(ev, options.json.text());
-      record["evaluation"] = ToJson(ev);
+  for (size_t i = 0; i < logs.size(); ++i) {
+    untrusted += records[i].contains("trusted") && !records[i]["trusted"].get<bool>() ? 1 : 0;
+  }
+  for (const LogFailure& failure : failures) {
+    for (nlohmann::json& record : records) {
+      if (record["log"] == failure.log) record["error"] = failure.error;
     }
-    records.push_back(record);
   }
   if (options.json.enabled()) {
-    options.json.Write({{"logs", records}, {"untrusted", untrusted}});
+    options.json.Write({{"logs", records},
+                        {"untrusted", untrusted},
+                        {"failed", static_cast<int>(failures.size())}});
   }
+  PrintFailures(options.name, failures, logs.size(), std::cerr);
+  if (!failures.empty()) return kFailedLogsExit;
   if (options.strict && untrusted > 0) {
     std::cerr << options.name << ": --strict: " << untrusted << " of " << logs.size()
               << " log(s) not trusted\n";

@@ -6,11 +6,13 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <iostream>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "apps/json_output.h"
+#include "apps/suite_runs.h"
 #include "io/drive_log.h"
 #include "io/log_reader.h"
 #include "model/model_config.h"
@@ -31,6 +33,7 @@ struct EstimatorRunOptions {
   // --json: per log, the estimate file, the model, the trust check, the run's report and the
   // evaluation against truth.
   JsonOutput json;
+  SuiteOptions suite;  // --jobs, --keep-going
 };
 
 // The exit status of an estimator subcommand run with --strict when a log's estimates are not
@@ -52,20 +55,23 @@ void AddReadOptions(CLI::App* cmd, ReadOptions* read);
 
 // Reads a log for a subcommand, printing the reader's warnings (rows skipped, keys defaulted) and
 // what CheckLogForEstimation finds (gaps, time coverage, frozen or stuck sensors, implausible
-// values) to stderr; throws InputError where estimates would mean nothing.
-DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read);
+// values) to `warnings`; throws InputError where estimates would mean nothing.
+DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read,
+                             std::ostream& warnings = std::cerr);
 // The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it, with its
 // calibration (wheel radii, effective track) applied to the log.
 ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
-// --skip-bad, --strict, --out, --json); the caller adds its own and sets the callback.
+// --skip-bad, --strict, --out, --json, --jobs, --keep-going); the caller adds its own and sets the
+// callback.
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               const std::string& description, EstimatorRunOptions* run,
                               bool* no_gps);
 
-// Returns the subcommand's exit status: 0, or kUntrustedExit with options.strict when any log's
-// estimates were not trusted.
+// Returns the subcommand's exit status: 0; kFailedLogsExit when --keep-going ran past failed
+// logs; else kUntrustedExit with options.strict when any log's estimates were not trusted. The
+// estimator runs on --jobs logs at once: it may share nothing mutable between calls.
 int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate);
 
 // --solver chain|ceres: how the sliding window solves (online, compare).

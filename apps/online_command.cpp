@@ -76,7 +76,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
           if (!log.truth.empty()) {
             Evaluation ekf = Evaluate(log, EstimateTable(result.ekf.estimates));
             ekf.name = "EKF front end of " + log.directory + " against truth";
-            PrintEvaluation(ekf, options->run.json.text());
+            PrintEvaluation(ekf, report);
           }
           EstimatorOutput output{result.estimates, {}};
           std::vector<ExtraColumn> extra = {{"ekf_v_bx", {}},        {"ekf_sd_v_bx", {}},

@@ -1,6 +1,6 @@
 """--json on every subcommand, with one meaning: one JSON object on stdout (the text on stderr)
 with no FILE or '-', in FILE otherwise; each carries the version, the subcommand and its options.
-Run from ctest (cli.json_every_subcommand) with SLIPGRAPH_CLI, SLIPGRAPH_SOURCE_DIR and, for the
+Run from ctest (cli.pytest) with SLIPGRAPH_CLI, SLIPGRAPH_SOURCE_DIR and, for the
 import, SLIPGRAPH_TINY_BAG (a bag the suite writes)."""
 
 import json
