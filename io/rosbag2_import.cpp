@@ -32,7 +32,15 @@ std::vector<std::string> FilesFromMetadata(const fs::path& directory) {
                        "missing: which storage files make up the bag");
     }
     std::vector<std::string> out;
-    for (const YAML::Node& f : files) out.push_back((directory / f.as<std::string>()).string());
+    for (const YAML::Node& f : files) {
+      // rosbag2 before metadata version 4 wrote the paths from the bag's parent directory
+      // ("bag/bag_0.db3"); later versions from the bag's own.
+      const fs::path in_bag = directory / f.as<std::string>();
+      const fs::path in_parent = directory.parent_path() / f.as<std::string>();
+      std::error_code ec;
+      out.push_back(
+          (!fs::exists(in_bag, ec) && fs::exists(in_parent, ec) ? in_parent : in_bag).string());
+    }
     return out;
   });
 }
@@ -83,7 +91,19 @@ std::vector<std::string> Ros2BagFiles(const std::string& path) {
     for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
       if (IsStorageName(e.path())) files.push_back(e.path().string());
     }
-    std::sort(files.begin(), files.end());
+    // rosbag2 numbers split files bag_0, bag_1, ..., bag_10: in that order, not the names'.
+    const auto split_index = [](const std::string& file) {
+      const std::string stem = fs::path(file).stem().string();
+      const size_t underscore = stem.find_last_of('_');
+      const std::string digits = underscore == std::string::npos ? "" : stem.substr(underscore + 1);
+      const bool numbered = !digits.empty() && digits.size() < 10 &&
+                            digits.find_first_not_of("0123456789") == std::string::npos;
+      return std::make_pair(numbered ? stem.substr(0, underscore) : stem,
+                            numbered ? std::stol(digits) : -1L);
+    };
+    std::sort(files.begin(), files.end(), [&](const std::string& a, const std::string& b) {
+      return std::make_pair(split_index(a), a) < std::make_pair(split_index(b), b);
+    });
   }
   if (files.empty()) {
     throw InputError(path, 0, "", "", "no ROS 2 storage file (.db3 or .mcap) in the directory");

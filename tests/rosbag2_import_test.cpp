@@ -85,6 +85,16 @@ TEST(Rosbag2Import, EveryStorageImportsAsTheRos1Bag) {
       << "rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
          "  relative_file_paths:\n    - split_bag_0.db3\n    - split_bag_1.db3\n";
   bags.push_back(split);
+  // The same with an older rosbag2's metadata (version 3), its paths from the bag's parent.
+  const std::string old = Temp("old_bag");
+  fs::remove_all(old);
+  fs::create_directories(old);
+  fs::copy(split + "/split_bag_0.db3", old + "/old_bag_0.db3");
+  fs::copy(split + "/split_bag_1.db3", old + "/old_bag_1.db3");
+  std::ofstream(old + "/metadata.yaml")
+      << "rosbag2_bagfile_information:\n  version: 3\n  storage_identifier: sqlite3\n"
+         "  relative_file_paths:\n    - old_bag/old_bag_0.db3\n    - old_bag/old_bag_1.db3\n";
+  bags.push_back(old);
   // A directory without metadata: its storage files by name.
   const std::string bare = Temp("bare_bag");
   fs::remove_all(bare);
@@ -109,6 +119,20 @@ TEST(Rosbag2Import, EveryStorageImportsAsTheRos1Bag) {
     EXPECT_EQ(topics[1].count, 100);
     EXPECT_NEAR(topics[1].rate_hz, 50.0, 1e-6);
   }
+}
+
+TEST(Rosbag2Import, SplitFilesWithoutMetadataComeInTheirNumbersOrder) {
+  const std::string dir = Temp("numbered_bag");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* name : {"bag_10.db3", "bag_2.db3", "bag_0.db3", "bag_1.db3"}) {
+    testing::WriteSqliteBag(dir + "/" + name, {});
+  }
+  std::vector<std::string> names;
+  for (const std::string& file : Ros2BagFiles(dir)) {
+    names.push_back(fs::path(file).filename().string());
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"bag_0.db3", "bag_1.db3", "bag_2.db3", "bag_10.db3"}));
 }
 
 TEST(Rosbag2Import, ACutShortMcapImportsUpToItsEndAndSaysSo) {
