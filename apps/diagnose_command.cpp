@@ -102,7 +102,6 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
         logs, options->suite,
         [&](size_t i, std::ostream& out, std::ostream& err) {
           const std::string& log_dir = logs[i];
-          per_log[i] = {{"log", log_dir}, {"error", "did not finish"}};
           DriveLog log = ReadLogWithWarnings(log_dir, options->read, err);
           const ModelConfig model = ModelForLog(&log, options->model);
           const Diagnosis before = Diagnose(log, model, diagnosis);
@@ -156,12 +155,11 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     std::map<std::string, int> top_counts;
     int unexplained = 0;
     nlohmann::json all = nlohmann::json::array();
+    for (const LogFailure& failure : failures) {
+      per_log[failure.index] = {{"log", failure.log}, {"error", failure.error}};
+    }
     for (size_t i = 0; i < logs.size(); ++i) {
-      if (per_log[i].contains("error")) {
-        for (const LogFailure& failure : failures) {
-          if (failure.log == logs[i]) per_log[i]["error"] = failure.error;
-        }
-      } else {
+      if (!per_log[i].contains("error")) {
         if (!top[i].empty()) ++top_counts[top[i]];
         unexplained += explained[i] ? 0 : 1;
       }

@@ -96,7 +96,6 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
       logs, options.suite,
       [&](size_t i, std::ostream& out, std::ostream& err) {
         const std::string& log_dir = logs[i];
-        records[i] = {{"log", log_dir}, {"error", "did not finish"}};
         DriveLog log = ReadLogWithWarnings(log_dir, options.read, err);
         const ModelConfig model = ModelForLog(&log, options.model);
         const std::string file = output_of(log_dir);
@@ -128,13 +127,11 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
       },
       options.json.text(), std::cerr);
   int untrusted = 0;
-  for (size_t i = 0; i < logs.size(); ++i) {
-    untrusted += records[i].contains("trusted") && !records[i]["trusted"].get<bool>() ? 1 : 0;
+  for (const nlohmann::json& record : records) {
+    untrusted += record.contains("trusted") && !record["trusted"].get<bool>() ? 1 : 0;
   }
   for (const LogFailure& failure : failures) {
-    for (nlohmann::json& record : records) {
-      if (record["log"] == failure.log) record["error"] = failure.error;
-    }
+    records[failure.index] = {{"log", failure.log}, {"error", failure.error}};
   }
   if (options.json.enabled()) {
     options.json.Write({{"logs", records},

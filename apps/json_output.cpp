@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -12,15 +13,32 @@ namespace slipgraph {
 
 void JsonOutput::Add(CLI::App* cmd) {
   cmd_ = cmd;
-  cmd->add_option("--json", path_,
-                  "Write the results as one JSON object to FILE, or to stdout with no FILE or "
-                  "'-' (the text then goes to stderr); put it last or write --json=FILE")
-      ->expected(0, 1)
-      ->default_str("-")
-      ->type_name("[FILE]");
+  // A directory is a log that --json took for its FILE ("--json LOG"): an error, not a run on
+  // the bundled sample.
+  const CLI::Validator not_a_directory(
+      [](std::string& path) {
+        std::error_code error;
+        return std::filesystem::is_directory(path, error)
+                   ? "'" + path +
+                         "' is a directory: put --json after the log, or write "
+                         "--json=FILE"
+                   : std::string();
+      },
+      "FILE");
+  option_ = cmd->add_option("--json", path_,
+                            "Write the results as one JSON object to FILE, or to stdout with no "
+                            "FILE or '-' (the text then goes to stderr); put it last or write "
+                            "--json=FILE")
+                ->expected(0, 1)
+                ->check(not_a_directory)
+                ->type_name("[FILE]");
 }
 
-std::ostream& JsonOutput::text() const { return path_ == "-" ? std::cerr : std::cout; }
+bool JsonOutput::enabled() const { return option_ != nullptr && option_->count() > 0; }
+
+bool JsonOutput::to_stdout() const { return enabled() && (path_.empty() || path_ == "-"); }
+
+std::ostream& JsonOutput::text() const { return to_stdout() ? std::cerr : std::cout; }
 
 void JsonOutput::Write(nlohmann::json result) const {
   nlohmann::json options = nlohmann::json::object();
@@ -40,7 +58,7 @@ void JsonOutput::Write(nlohmann::json result) const {
                          {"command", cmd_ != nullptr ? cmd_->get_name() : ""},
                          {"options", options}};
   const std::string text = result.dump(2) + "\n";
-  if (path_ == "-") {
+  if (to_stdout()) {
     std::cout << text << std::flush;
   } else {
     WriteTextFile(path_, text);

@@ -18,16 +18,17 @@ class JsonOutput {
   // Registers --json on `cmd` (the object must outlive the parse: hold it in the subcommand's
   // options).
   void Add(CLI::App* cmd);
-  bool enabled() const { return !path_.empty(); }
-  bool to_stdout() const { return path_ == "-"; }
+  bool enabled() const;
+  bool to_stdout() const;
   // Where the subcommand's text goes: stderr when the JSON takes stdout, else stdout.
   std::ostream& text() const;
   // Adds the "slipgraph" record to `result` and writes it (a file write is checked).
   void Write(nlohmann::json result) const;
 
  private:
-  std::string path_;
+  std::string path_;  // empty or "-": stdout
   CLI::App* cmd_ = nullptr;
+  CLI::Option* option_ = nullptr;
 };
 
 // The model a run used, for its record: the file given (null: the vehicle's nominal model) and

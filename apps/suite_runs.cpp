@@ -18,40 +18,62 @@ void AddSuiteOptions(CLI::App* cmd, SuiteOptions* suite) {
                 "list of the failures and exit status 4");
 }
 
+namespace {
+
+std::string Describe(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    return e.what();
+  } catch (...) {
+    return "an unknown error";
+  }
+}
+
+}  // namespace
+
 std::vector<LogFailure> RunOverLogs(const std::vector<std::string>& logs, const SuiteOptions& suite,
                                     const LogJob& job, std::ostream& out, std::ostream& err) {
+  std::vector<LogFailure> failures;
+  const auto failed = [&](size_t i, const std::exception_ptr& error) {
+    if (!suite.keep_going) std::rethrow_exception(error);
+    failures.push_back({i, logs[i], Describe(error)});
+    err << "error: " << logs[i] << ": " << failures.back().error << "\n" << std::flush;
+  };
+  if (suite.jobs <= 1) {  // one at a time: the text as it comes (progress on long runs)
+    for (size_t i = 0; i < logs.size(); ++i) {
+      try {
+        job(i, out, err);
+      } catch (...) {
+        failed(i, std::current_exception());
+      }
+    }
+    return failures;
+  }
   struct Outcome {
     std::ostringstream out, err;
     std::exception_ptr error;
     bool done = false;
   };
   std::vector<Outcome> outcomes(logs.size());
-  std::atomic<bool> stop{false};
+  // Without keep_going, the first log (by index) that failed: no log after it starts, as none
+  // would have one at a time.
+  std::atomic<size_t> first_failed{logs.size()};
   std::mutex print_mutex;
   size_t next_to_print = 0;
-  std::vector<LogFailure> failures;
-  const auto describe = [](const std::exception_ptr& error) -> std::string {
-    try {
-      std::rethrow_exception(error);
-    } catch (const std::exception& e) {
-      return e.what();
-    } catch (...) {
-      return "an unknown error";
-    }
-  };
-  // Prints every finished outcome from next_to_print on, in order (the caller holds the lock).
+  // Prints every finished outcome from next_to_print on, in order (the caller holds the lock);
+  // without keep_going, stops at the first failure.
   const auto flush = [&] {
     for (; next_to_print < outcomes.size() && outcomes[next_to_print].done; ++next_to_print) {
       Outcome& o = outcomes[next_to_print];
+      err << o.err.str() << std::flush;
       out << o.out.str() << std::flush;
-      err << o.err.str();
-      err << std::flush;
-      if (o.error && !suite.keep_going) {  // the suite ends here: nothing after it is printed
+      if (o.error && !suite.keep_going) {
         next_to_print = outcomes.size();
         break;
       }
       if (o.error) {
-        failures.push_back({logs[next_to_print], describe(o.error)});
+        failures.push_back({next_to_print, logs[next_to_print], Describe(o.error)});
         err << "error: " << logs[next_to_print] << ": " << failures.back().error << "\n"
             << std::flush;
       }
@@ -59,23 +81,23 @@ std::vector<LogFailure> RunOverLogs(const std::vector<std::string>& logs, const 
   };
   RunConcurrently(logs.size(), suite.jobs, [&](size_t i) {
     Outcome& o = outcomes[i];
-    if (!stop) {
+    if (i < first_failed) {
       try {
         job(i, o.out, o.err);
       } catch (...) {
         o.error = std::current_exception();
-        if (!suite.keep_going) stop = true;
+        if (!suite.keep_going) {
+          size_t seen = first_failed;
+          while (i < seen && !first_failed.compare_exchange_weak(seen, i)) {
+          }
+        }
       }
     }
     std::lock_guard<std::mutex> lock(print_mutex);
     o.done = true;
     flush();
   });
-  if (!suite.keep_going) {
-    for (const Outcome& o : outcomes) {
-      if (o.error) std::rethrow_exception(o.error);
-    }
-  }
+  if (first_failed < logs.size()) std::rethrow_exception(outcomes[first_failed].error);
   return failures;
 }
 

@@ -1,6 +1,7 @@
 // A suite's logs run one job each, on --jobs threads, with --keep-going: what the subcommands
-// that take a suite (filter, smooth, online, diagnose) share. Each log's text is held until the
-// logs before it are printed, so the output reads in the suite's order whatever the threads do.
+// that take a suite (filter, smooth, online, diagnose) share. On more than one thread each log's
+// text is held until the logs before it are printed, so the output reads in the suite's order
+// whatever the threads do.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -23,6 +24,7 @@ void AddSuiteOptions(CLI::App* cmd, SuiteOptions* suite);
 constexpr int kFailedLogsExit = 4;
 
 struct LogFailure {
+  size_t index = 0;  // in the suite's order
   std::string log;
   std::string error;
 };
@@ -30,10 +32,11 @@ struct LogFailure {
 // One log's job: `out` and `err` stand for stdout and stderr (printed in the suite's order).
 using LogJob = std::function<void(size_t index, std::ostream& out, std::ostream& err)>;
 
-// Runs job(i) for each of `logs` on suite.jobs threads. A job's exception fails its log: with
-// keep_going the failure is printed with the log's text and the rest run; without, no further
-// log starts, and once the logs before it are printed the first failure's exception is
-// rethrown. Returns the failures (keep_going), in the suite's order.
+// Runs job(i) for each of `logs` on suite.jobs threads (one: in turn, on `out` and `err` as the
+// text comes; more: each log's text held and printed in the suite's order, its stderr first). A
+// job's exception fails its log: with keep_going the failure is printed after the log's text and
+// the rest run; without, no later log starts, and once the logs before it are printed its
+// exception is rethrown. Returns the failures (keep_going), in the suite's order.
 std::vector<LogFailure> RunOverLogs(const std::vector<std::string>& logs, const SuiteOptions& suite,
                                     const LogJob& job, std::ostream& out, std::ostream& err);
 

@@ -96,6 +96,13 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
   const auto a_dist_it = estimates.columns.find("a_dist");
   const std::vector<double>* a_dist =
       a_dist_it == estimates.columns.end() ? nullptr : &a_dist_it->second;
+  const std::string source = estimates.path.empty() ? "estimates" : estimates.path;
+  for (const auto& [name, column] : estimates.columns) {
+    if (column.size() != t.size()) {  // a table built in memory (a file's columns are equal)
+      throw InputError(source, 0, name, std::to_string(column.size()) + " values",
+                       "not one per time stamp (" + std::to_string(t.size()) + ")");
+    }
+  }
   const TruthTrack truth(log.truth);
   std::vector<Event> immobilized;
   for (const Event& e : log.events) {
@@ -105,7 +112,6 @@ Evaluation Evaluate(const DriveLog& log, const NumericTable& estimates,
 
   // Estimates off the truth's time span were scored against its end values: a file of another
   // log, or one on another clock (shifted by 1000 s), scored as if it were this log's.
-  const std::string source = estimates.path.empty() ? "estimates" : estimates.path;
   const double first_t = log.truth.front().t - kTruthSpanToleranceS;
   const double last_t = log.truth.back().t + kTruthSpanToleranceS;
   for (size_t i = 0; i < t.size(); ++i) {

@@ -7,9 +7,12 @@ namespace slipgraph {
 namespace {
 
 // Stream files in log-format.md's order; the first two are required.
-const std::vector<std::string> kStreamFiles = {
-    "imu.csv",          "wheels.csv", "attitude.csv", "gps.csv",   "pose.csv",
-    "articulation.csv", "range.csv",  "commands.csv", "truth.csv", "events.csv"};
+const std::vector<std::string>& StreamFiles() {
+  static const std::vector<std::string> files = {
+      "imu.csv",          "wheels.csv", "attitude.csv", "gps.csv",   "pose.csv",
+      "articulation.csv", "range.csv",  "commands.csv", "truth.csv", "events.csv"};
+  return files;
+}
 
 // Columns of samples of one type, added in the file's order.
 template <typename Sample>
@@ -70,9 +73,9 @@ size_t SampleCount(const DriveLog& log, const std::string& file) {
 }  // namespace
 
 std::vector<std::string> LogTableFiles(const DriveLog& log) {
-  std::vector<std::string> files = {kStreamFiles[0], kStreamFiles[1]};
-  for (size_t i = 2; i < kStreamFiles.size(); ++i) {
-    const std::string& file = kStreamFiles[i];
+  std::vector<std::string> files = {StreamFiles()[0], StreamFiles()[1]};
+  for (size_t i = 2; i < StreamFiles().size(); ++i) {
+    const std::string& file = StreamFiles()[i];
     if (log.Has(file) || SampleCount(log, file) > 0) files.push_back(file);
   }
   return files;
@@ -168,7 +171,7 @@ LogTable StreamTable(const DriveLog& log, const std::string& file) {
         .Text("label", [](const Event& e) { return e.label; });
   } else {
     std::string known;
-    for (const std::string& name : kStreamFiles) known += (known.empty() ? "" : ", ") + name;
+    for (const std::string& name : StreamFiles()) known += (known.empty() ? "" : ", ") + name;
     throw std::invalid_argument("'" + file + "' is not a stream file of a drive log (" + known +
                                 ")");
   }

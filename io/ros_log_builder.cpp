@@ -148,12 +148,6 @@ bool ToRotation(const std::array<double, 4>& q_xyzw, Eigen::Matrix3d* r) {
   return true;
 }
 
-std::string StampText(double t) {
-  char text[40];
-  std::snprintf(text, sizeof(text), "t=%.6f", t);
-  return text;
-}
-
 }  // namespace
 
 std::vector<std::string> RosMapping::topics() const {
@@ -184,7 +178,7 @@ void RosLogBuilder::Add(const std::string& topic, const RosMessage& message) {
           }
         },
         message);
-    throw InputError(source_path_, 0, topic, StampText(t), std::string("not a ") + needed);
+    throw InputError(source_path_, 0, topic, RosTimeText(t), std::string("not a ") + needed);
   };
   if (topic == mapping_.imu_topic) {
     if (!std::holds_alternative<RosImu>(message)) wrong(kRosImuType);

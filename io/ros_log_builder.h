@@ -11,11 +11,11 @@
 //
 // imu: sensor_msgs/Imu. Its mounting is either `body_from_sensor`, the rotation (rows: the body's
 // x, y, z axes in sensor coordinates), or `body_frame: base_link`, which takes it from the
-// recording's static transforms (`tf_topic`, /tf_static by default: tf2_msgs/TFMessage) along the
-// tree from that frame to the IMU messages' frame_id. The rotation is applied to acceleration and
-// rate, and to the orientation when `attitude: true` writes attitude.csv from it (roll, pitch,
-// yaw REP-103; sd from the orientation covariance); yaw_offset (rad) is added to the yaw, for a
-// sensor whose heading is not referenced to east.
+// recording's static transforms (the top-level `tf_topic`, /tf_static by default:
+// tf2_msgs/TFMessage) along the tree from that frame to the IMU messages' frame_id. The rotation
+// is applied to acceleration and rate, and to the orientation when `attitude: true` writes
+// attitude.csv from it (roll, pitch, yaw REP-103; sd from the orientation covariance); yaw_offset
+// (rad) is added to the yaw, for a sensor whose heading is not referenced to east.
 // wheels, `from: body_twist`: nav_msgs/Odometry's body twist turned into side speeds,
 // left = (v - w c/2) / r, right = (v + w c/2) / r (the controller's own odometry: it carries no
 // slip of its own). `from: joint_state`: sensor_msgs/JointState's velocities (rad/s), each of the
@@ -58,7 +58,7 @@ struct RosMapping {
   // joint_state: per wheel of the vehicle (WheelNames order), its joints and its sign.
   std::vector<std::vector<std::string>> wheel_joints;
   std::vector<double> wheel_signs;
-  double gps_sd_v = 0.0;  // kMissing when not stated
+  double gps_sd_v = kMissing;  // as the mapping states it; kMissing when it does not
 
   // The topics to read, the static transforms' among them when the mounting comes from them.
   std::vector<std::string> topics() const;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdio>
 #include <string>
 #include <variant>
 #include <vector>
@@ -55,6 +56,13 @@ struct RosTfMessage {
 };
 
 using RosMessage = std::variant<RosImu, RosOdometry, RosNavSatFix, RosJointState, RosTfMessage>;
+
+// A stamp or a receive time (s) as an importer's error names it: "t=12.345678901".
+inline std::string RosTimeText(double t_s) {
+  char text[40];
+  std::snprintf(text, sizeof(text), "t=%.9f", t_s);
+  return text;
+}
 
 // The ROS 1 names of the types above ("sensor_msgs/Imu"); ROS 2 inserts "/msg/".
 inline constexpr const char* kRosImuType = "sensor_msgs/Imu";

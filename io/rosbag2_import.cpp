@@ -150,9 +150,6 @@ DriveLog ImportRos2Bag(const std::string& path, const std::string& mapping_path,
     ReadStorage(
         file, topics,
         [&](const BagTopic& topic, int64_t time_ns, const uint8_t* data, size_t size) {
-          char time[40];
-          std::snprintf(time, sizeof(time), "t=%.9f (receive)",
-                        1e-9 * static_cast<double>(time_ns));
           if (topic.serialization != "cdr") {
             throw InputError(file, 0, topic.name, topic.serialization,
                              "messages serialized as '" + topic.serialization +
@@ -162,7 +159,8 @@ DriveLog ImportRos2Bag(const std::string& path, const std::string& mapping_path,
           try {
             message = DecodeRos2Message(topic.type, data, size);
           } catch (const CdrError& e) {
-            throw InputError(file, 0, topic.name, time,
+            throw InputError(file, 0, topic.name,
+                             RosTimeText(1e-9 * static_cast<double>(time_ns)) + " (receive)",
                              "message does not decode as " + topic.type + ": " + e.what());
           }
           if (!message) {

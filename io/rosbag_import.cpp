@@ -54,16 +54,14 @@ bool IsRosBag(const std::string& path) {
 
 namespace {
 
-// The message `m`, of the data type `Message` is. Bytes that do not decode as the type (fewer
+// The message `m` decoded as the data type `Message`. Bytes that do not decode as the type (fewer
 // than it needs, or a definition other than the library's) are an InputError naming the bag, the
 // topic and the time.
 template <typename Message>
 boost::shared_ptr<const Message> Decode(const rosbag::MessageInstance& m,
                                         const std::string& bag_path) {
   const auto fail = [&](const std::string& why) {
-    char time[32];
-    std::snprintf(time, sizeof(time), "t=%.6f", m.getTime().toSec());
-    throw InputError(bag_path, 0, m.getTopic(), time,
+    throw InputError(bag_path, 0, m.getTopic(), RosTimeText(m.getTime().toSec()),
                      "message does not decode as " + m.getDataType() + ": " + why);
   };
   boost::shared_ptr<const Message> out;

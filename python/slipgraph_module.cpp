@@ -212,6 +212,11 @@ NumericTable ToTable(const py::dict& columns, const std::string& what) {
     if (values.ndim() != 1) {
       throw std::invalid_argument(what + ": column '" + name + "' is not one-dimensional");
     }
+    if (!table.names.empty() && static_cast<size_t>(values.size()) != table.rows()) {
+      throw std::invalid_argument(what + ": column '" + name + "' has " +
+                                  std::to_string(values.size()) + " values, not " +
+                                  std::to_string(table.rows()));
+    }
     table.names.push_back(name);
     table.columns[name].assign(values.data(), values.data() + values.size());
   }
@@ -268,6 +273,8 @@ PYBIND11_MODULE(_core, m) {
         return std::make_shared<DriveLog>(ReadDriveLog(path, options));
       },
       py::arg("path"), py::arg("skip_bad") = false, py::arg("max_bad_fraction") = 0.01);
+  m.def("list_logs", &ListLogs, py::arg("path"),
+        "The logs at path: itself when it is a log, else its sub-directories that are logs");
   m.def("filter", &FilterRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("single_law") = false, py::arg("gnss_fading") = false,
         py::arg("disturbance_modes") = false);

@@ -14,17 +14,18 @@ CLI = os.environ["SLIPGRAPH_CLI"]
 
 @pytest.fixture(scope="module")
 def suite(tmp_path_factory):
-    """ward21 (seed 3) runs 1-4 and a copy of run 1 whose wheels.csv has a bad cell."""
+    """ward21 (seed 3) runs 1-4 and, third by name, a copy of run 1 whose wheels.csv has a bad
+    cell."""
     root = tmp_path_factory.mktemp("suite")
     subprocess.run([CLI, "simulate", "--scenario", "ward21", "--seed", "3", "--out",
                     root / "ward21"], check=True, capture_output=True)
     logs = root / "logs"
     for k in range(1, 5):
         shutil.copytree(root / "ward21" / f"run_{k:02d}", logs / f"run_{k:02d}")
-    shutil.copytree(logs / "run_01", logs / "run_00_bad")
-    lines = (logs / "run_00_bad" / "wheels.csv").read_text().splitlines()
+    shutil.copytree(logs / "run_01", logs / "run_02_bad")  # between run_02 and run_03
+    lines = (logs / "run_02_bad" / "wheels.csv").read_text().splitlines()
     lines[4] = lines[4].replace(",", ",x", 1)
-    (logs / "run_00_bad" / "wheels.csv").write_text("\n".join(lines) + "\n")
+    (logs / "run_02_bad" / "wheels.csv").write_text("\n".join(lines) + "\n")
     return logs
 
 
@@ -37,11 +38,12 @@ def test_keep_going_runs_the_rest_and_lists_the_failure(suite, tmp_path):
                "--json", tmp_path / "two.json")
     assert done.returncode == 4, done.stderr
     assert "filter: 1 of 5 log(s) failed:" in done.stderr
-    assert "run_00_bad/wheels.csv:5: column 'left'" in done.stderr
+    assert "run_02_bad/wheels.csv:5: column 'left'" in done.stderr
     written = sorted(p.name for p in (tmp_path / "two").iterdir())
     assert written == [f"run_{k:02d}.csv" for k in range(1, 5)]
     records = json.loads((tmp_path / "two.json").read_text())
-    assert records["failed"] == 1 and "wheels.csv:5" in records["logs"][0]["error"]
+    assert records["failed"] == 1 and "wheels.csv:5" in records["logs"][2]["error"]
+    assert [r.get("trusted") for r in records["logs"]] == [True, True, None, True, True]
     # The suite's text reads in its order whatever the threads did.
     runs = [line.split()[0] for line in done.stdout.splitlines() if "against truth" in line]
     assert runs == [str(suite / f"run_{k:02d}") for k in range(1, 5)]
@@ -54,6 +56,20 @@ def test_keep_going_runs_the_rest_and_lists_the_failure(suite, tmp_path):
     for k in range(1, 5):
         name = f"run_{k:02d}.csv"
         assert (tmp_path / "one" / name).read_bytes() == (tmp_path / "two" / name).read_bytes()
+
+
+def test_json_on_stdout_is_one_document_with_jobs(suite):
+    done = run("diagnose", suite, "--jobs", "2", "--keep-going", "--threads", "1", "--json")
+    assert done.returncode == 4, done.stderr
+    result = json.loads(done.stdout)
+    assert result["total"]["logs"] == 5 and result["total"]["failed"] == 1
+    assert [log["log"] for log in result["logs"]] == sorted(log["log"] for log in result["logs"])
+    assert "diagnose: 1 of 5 log(s) failed:" in done.stderr
+
+
+def test_json_before_the_log_is_an_error_not_a_run_on_the_sample(suite):
+    done = run("filter", "--json", suite / "run_01")
+    assert done.returncode != 0 and "is a directory" in done.stderr
 
 
 def test_without_keep_going_the_first_bad_log_ends_the_run(tmp_path_factory, suite):

@@ -9,8 +9,8 @@ or from a shell, on a local cluster of two worker processes:
 
     python3 -m slipgraph.suite SUITE_DIR --workers 2 --json records.json
 
-A log that fails (a bad file, a solver error) is a record with ok False and its error, not the
-end of the suite. The workers need the slipgraph package on their path, and the logs at the same
+A log that fails (a bad file, a solver error, a worker lost) is a record with ok False and its
+error, not the end of the suite; the command exits 1 when one did. The workers need the slipgraph package on their path, and the logs at the same
 paths (a shared file system), as a Slurm or Dask-jobqueue cluster has them.
 """
 
@@ -27,14 +27,10 @@ ESTIMATORS = ("filter", "smooth")
 
 def list_logs(path: Union[str, Path]) -> List[str]:
     """The logs at `path`: itself when it is a log (has vehicle.yaml), else its sub-directories
-    that are logs, sorted (as the CLI lists a suite)."""
-    path = Path(path)
-    if (path / "vehicle.yaml").is_file():
-        return [str(path)]
-    logs = sorted(str(p) for p in path.iterdir() if (p / "vehicle.yaml").is_file())
-    if not logs:
-        raise ValueError(f"{path}: no log (a directory with vehicle.yaml) in it")
-    return logs
+    that are logs, sorted: the CLI's list. A directory without one is an InputError."""
+    from . import _core
+
+    return _core.list_logs(str(path))
 
 
 def run_log(path: str, estimator: str = "smooth", model: Optional[str] = None,
@@ -76,17 +72,26 @@ def run_suite(logs: Union[str, Path, Iterable[str]], estimator: str = "smooth",
         return [run_log(p, estimator, model, use_gps, out_dir) for p in paths]
     futures = client.map(run_log, paths, estimator=estimator, model=model, use_gps=use_gps,
                          out_dir=out_dir, pure=False)
-    return client.gather(futures)
+    records = []
+    for path, future in zip(paths, futures):
+        try:
+            records.append(future.result())
+        except Exception as error:  # noqa: BLE001: a worker lost (killed, out of memory)
+            records.append({"log": path, "estimator": estimator, "model": model,
+                            "use_gps": use_gps, "ok": False,
+                            "error": f"the task failed: {type(error).__name__}: {error}"})
+    return records
 
 
 def summary(records: List[dict]) -> str:
     """Lines for a terminal: the failures with their errors, the untrusted, the pooled
     velocity RMSE and false-alarm share over the logs with truth."""
     failed = [r for r in records if not r["ok"]]
-    scored = [r for r in records if r["ok"] and r.get("evaluation")]
+    scored = [r for r in records if r["ok"] and r.get("evaluation")
+              and r["evaluation"]["samples"] > 0 and r["evaluation"]["velocity_rmse"] is not None]
     lines = [f"{len(records)} log(s): {len(records) - len(failed)} ran, {len(failed)} failed"]
     lines += [f"  failed: {r['log']}: {r['error']}" for r in failed]
-    lines += [f"  not trusted: {r['log']}" for r in records if r["ok"] and not r["trusted"]]
+    lines += [f"  not trusted: {r['log']}" for r in records if r["ok"] and not r.get("trusted")]
     if scored:
         samples = sum(r["evaluation"]["samples"] for r in scored)
         rmse = (sum(r["evaluation"]["velocity_rmse"] ** 2 * r["evaluation"]["samples"]
@@ -130,9 +135,9 @@ def main(argv=None) -> int:
             client.close()
         if cluster is not None:
             cluster.close()
-    print(summary(records))
     if args.json:
         Path(args.json).write_text(json.dumps(records, indent=2) + "\n")
+    print(summary(records))
     return 0 if all(r["ok"] for r in records) else 1
 
 

@@ -107,6 +107,15 @@ def test_smoother_beats_the_filter_against_truth_and_scores_as_the_cli(sample, t
     assert score["false_immobilized_samples"] == cli["false_immobilized_samples"]
 
 
+def test_columns_of_different_lengths_are_an_error_not_a_crash(sample, tmp_path):
+    columns = dict(slipgraph.filter(sample).columns)
+    columns["v_bx"] = columns["v_bx"][:-1]
+    with pytest.raises(ValueError, match="v_bx"):
+        slipgraph.evaluate(sample, columns)
+    with pytest.raises(ValueError, match="v_bx"):
+        slipgraph.write_estimates(columns, tmp_path / "short.csv")
+
+
 def test_diagnose_names_the_hidden_clock_offset():
     log = slipgraph.read_log(HIDDEN)
     diagnosis = slipgraph.diagnose(log)

@@ -70,8 +70,8 @@ def test_without_a_client_the_same_records_in_order(logs):
     here = suite.run_suite([str(logs / "run_02"), str(logs / "run_01")], estimator="filter")
     assert [Path(r["log"]).name for r in here] == ["run_02", "run_01"]
     assert all(r["ok"] for r in here)
-    with pytest.raises(ValueError, match="no log"):
-        suite.list_logs(logs.parent)
+    with pytest.raises(ValueError, match="vehicle.yaml"):
+        suite.list_logs(logs.parent / "nothing_here")
 
 
 def test_the_command_line_names_what_failed(logs, tmp_path, capsys):
