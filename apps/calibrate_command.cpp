@@ -179,6 +179,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
       alpha_plot.series.push_back(s);
     }
     html.Figure(alpha_plot);
+    html.Paragraph(options->json.RecordText());
     html.Write((fs::path(out) / "report.html").string());
     if (options->json.enabled()) {
       nlohmann::json j = {{"method", options->method},

@@ -212,9 +212,11 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                      batch_law + ".");
       page.Table(kHeader, rows);
       page.Append(summary);
+      page.Paragraph(options->json.RecordText());
       page.Write(html_path);
     } else {
       text << name << ": no truth in the log(s); see the plots\n";
+      html.Paragraph(options->json.RecordText());
       html.Write(html_path);
     }
     text << "report: " << html_path << "\n";

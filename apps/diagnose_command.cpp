@@ -172,6 +172,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       text << "; unexplained failures in " << unexplained << " log(s)\n";
     }
     if (!options->report.empty() && report) {
+      report->Paragraph(options->json.RecordText());
       report->Write(options->report);
       text << "report: " << options->report << "\n";
     } else if (!options->report.empty()) {

@@ -40,13 +40,13 @@ bool JsonOutput::to_stdout() const { return enabled() && (path_.empty() || path_
 
 std::ostream& JsonOutput::text() const { return to_stdout() ? std::cerr : std::cout; }
 
-void JsonOutput::Write(nlohmann::json result) const {
+nlohmann::json JsonOutput::Record() const {
   nlohmann::json options = nlohmann::json::object();
   if (cmd_ != nullptr) {
     for (const CLI::Option* option : cmd_->get_options()) {
       if (option->count() == 0 || option->get_name() == "--json") continue;
       const std::vector<std::string>& values = option->results();
-      const std::string name = option->get_name(false, true);
+      const std::string name = option->get_name();
       if (values.size() == 1) {
         options[name] = values.front();
       } else {
@@ -54,9 +54,23 @@ void JsonOutput::Write(nlohmann::json result) const {
       }
     }
   }
-  result["slipgraph"] = {{"version", SLIPGRAPH_VERSION},
-                         {"command", cmd_ != nullptr ? cmd_->get_name() : ""},
-                         {"options", options}};
+  return {{"version", SLIPGRAPH_VERSION},
+          {"command", cmd_ != nullptr ? cmd_->get_name() : ""},
+          {"options", options}};
+}
+
+std::string JsonOutput::RecordText() const {
+  const nlohmann::json record = Record();
+  std::string text = "Written by slipgraph " + record["version"].get<std::string>() + ": " +
+                     record["command"].get<std::string>();
+  for (const auto& [name, value] : record["options"].items()) {
+    text += " " + name + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+  }
+  return text + ".";
+}
+
+void JsonOutput::Write(nlohmann::json result) const {
+  result["slipgraph"] = Record();
   const std::string text = result.dump(2) + "\n";
   if (to_stdout()) {
     std::cout << text << std::flush;

@@ -1,7 +1,8 @@
 // --json [FILE] on every subcommand, with one meaning: the subcommand's results as one JSON
 // object, written to FILE, or to stdout when FILE is '-' or left out (the text the subcommand
 // prints then goes to stderr, so that stdout is one JSON document). Every object carries
-// "slipgraph": the program's version, the subcommand and the options it was given.
+// "slipgraph": the program's version, the subcommand and the options it was given (the HTML
+// pages carry the same record at their foot).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,10 @@ class JsonOutput {
   std::ostream& text() const;
   // Adds the "slipgraph" record to `result` and writes it (a file write is checked).
   void Write(nlohmann::json result) const;
+  // The record: the version, the subcommand and the options given (by name, as typed); and as a
+  // line for the foot of an HTML page the subcommand writes.
+  nlohmann::json Record() const;
+  std::string RecordText() const;
 
  private:
   std::string path_;  // empty or "-": stdout
