@@ -6,6 +6,7 @@
 
 #include "apps/commands.h"
 #include "evaluation/evaluation.h"
+#include "evaluation/progress.h"
 #include "io/estimate_file.h"
 #include "io/input_error.h"
 #include "io/log_reader.h"
@@ -61,7 +62,14 @@ CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                       ".csv or ./<suite>_" + name + "/");
   run->json.Add(cmd);
   AddSuiteOptions(cmd, &run->suite);
+  cmd->add_flag("--quiet", run->quiet,
+                "No progress line on stderr (shown on a terminal for runs over 2 s, one log at a "
+                "time)");
   return cmd;
+}
+
+bool ShowsProgress(const EstimatorRunOptions& run) {
+  return !run.quiet && run.suite.jobs <= 1 && StderrIsTerminal();
 }
 
 int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& estimate) {

@@ -34,7 +34,11 @@ struct EstimatorRunOptions {
   // evaluation against truth.
   JsonOutput json;
   SuiteOptions suite;  // --jobs, --keep-going
+  bool quiet = false;  // --quiet: no progress line
 };
+
+// Whether a run shows a progress line on stderr: a terminal, not --quiet, one log at a time.
+bool ShowsProgress(const EstimatorRunOptions& run);
 
 // The exit status of an estimator subcommand run with --strict when a log's estimates are not
 // trusted (its outputs are still written).
@@ -63,8 +67,8 @@ DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read,
 ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
-// --skip-bad, --strict, --out, --json, --jobs, --keep-going); the caller adds its own and sets the
-// callback.
+// --skip-bad, --strict, --out, --json, --jobs, --keep-going, --quiet); the caller adds its own and
+// sets the callback.
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               const std::string& description, EstimatorRunOptions* run,
                               bool* no_gps);

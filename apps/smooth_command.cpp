@@ -1,5 +1,6 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
+#include "evaluation/progress.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/wilcox_graph.h"
 #include "solvers/wilcox_velocity.h"
@@ -47,6 +48,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     *status = RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
                                                      std::ostream& report) {
       BatchSmootherOptions smoother_options = base_options;
+      ProgressPrinter progress(ShowsProgress(options->run), std::cerr);
+      smoother_options.progress = progress.callback();
       if (options->advance_velocity) {
         WilcoxGraphOptions graph;
         graph.shared_advance = true;

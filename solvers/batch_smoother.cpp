@@ -169,6 +169,20 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     problem->offsets = {options.start->back().accel_offset_mps2,
                         options.start->back().gyro_offset_radps};
   }
+  // Progress after each iteration, for a caller that shows it.
+  class ProgressReporter : public ceres::IterationCallback {
+   public:
+    explicit ProgressReporter(const ProgressCallback& progress) : progress_(progress) {}
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+      progress_({"batch smoother: iteration", summary.iteration, 0, summary.cost});
+      return ceres::SOLVER_CONTINUE;
+    }
+
+   private:
+    const ProgressCallback& progress_;
+  };
+  ProgressReporter reporter(options.progress);
+  if (options.progress) solver_options.callbacks.push_back(&reporter);
   const std::map<std::string, double> initial_costs = CostByKind(*problem);
   ceres::Solve(solver_options, problem->problem.get(), &result.summary);
   std::ostringstream breakdown;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/progress.h"
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "problems/ward_batch_problem.h"
@@ -29,6 +30,9 @@ constexpr double kPostProcessingStiffnessPriorSd = 0.15;
 
 struct BatchSmootherOptions {
   int max_iterations = 200;
+  // Told after each solver iteration (its number and cost; no total, max_iterations is only a
+  // bound).
+  ProgressCallback progress;
   // Ceres's relative cost change at convergence. 1e-12 for post-processing; a likelihood-ratio
   // fit needs the cost to a few thousandths only.
   double function_tolerance = 1e-12;

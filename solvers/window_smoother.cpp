@@ -365,11 +365,17 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   const WardFactorSource source(log, model, result.ekf.estimates, problem_options);
   Window window(source, options, &result);
   const size_t every = static_cast<size_t>(std::max(1, options.update_every));
+  const long total = static_cast<long>((n - 1) / every + 1);
+  long done = 0;
+  const auto progress = [&] {
+    if (options.progress) options.progress({options.progress_stage, ++done, total});
+  };
   for (size_t k = 0; k < n; ++k) {
     window.Push(k);
-    if ((k + 1) % every == 0 && k + 1 < n) window.Update(false);
+    if ((k + 1) % every == 0 && k + 1 < n) window.Update(false), progress();
   }
   window.Update(true);
+  progress();
   if (options.covariance && options.law_spread_in_sd &&
       std::any_of(result.ekf.law_spread_sd.begin(), result.ekf.law_spread_sd.end(),
                   [](const std::array<double, kStateSize>& s) { return s[kVbx] > 0.0; })) {
@@ -397,6 +403,8 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.filter = batch.filter;
   options.problem = batch.problem;
   options.min_immobilized_s = batch.min_immobilized_s;
+  options.progress = batch.progress;
+  options.progress_stage = "chunk";
   return options;
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/progress.h"
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "problems/ward_factor_source.h"
@@ -59,6 +60,9 @@ struct WindowSmootherOptions {
   FilterRunOptions filter;
   WardProblemOptions problem;
   double min_immobilized_s = 0.1;  // as the batch smoother's post-processing detection
+  // Told after each update (done of total), as `progress_stage` ("chunk" in chunked mode).
+  ProgressCallback progress;
+  std::string progress_stage = "window update";
   // Each field in its range; the first that is not is named in *error.
   bool IsValid(std::string* error) const;
 };
