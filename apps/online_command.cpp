@@ -78,23 +78,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
             ekf.name = "EKF front end of " + log.directory + " against truth";
             PrintEvaluation(ekf, report);
           }
-          EstimatorOutput output{result.estimates, {}};
-          std::vector<ExtraColumn> extra = {{"ekf_v_bx", {}},        {"ekf_sd_v_bx", {}},
-                                            {"ekf_a_dist", {}},      {"ekf_sd_a_dist", {}},
-                                            {"ekf_slip_ema", {}},    {"ekf_immobilized", {}},
-                                            {"lag_s", result.lag_s}, {"from_filter", {}}};
-          for (size_t k = 0; k < result.estimates.size(); ++k) {
-            const WardEstimate& e = result.ekf.estimates[k];
-            extra[0].values.push_back(e.x[ward::kVbx]);
-            extra[1].values.push_back(e.sd[ward::kVbx]);
-            extra[2].values.push_back(e.x[ward::kAdist]);
-            extra[3].values.push_back(e.sd[ward::kAdist]);
-            extra[4].values.push_back(e.slip.slip_ema);
-            extra[5].values.push_back(e.slip.immobilized ? 1.0 : 0.0);
-            extra[7].values.push_back(result.from_filter[k] ? 1.0 : 0.0);
-          }
-          output.extra = std::move(extra);
-          return output;
+          return EstimatorOutput{result.estimates, OnlineColumns(result)};
         });
   });
 }

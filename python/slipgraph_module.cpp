@@ -7,6 +7,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -26,6 +28,7 @@
 #include "solvers/identification_json.h"
 #include "solvers/model_identification.h"
 #include "solvers/trust_check.h"
+#include "solvers/window_smoother.h"
 #include "workbench/diagnosis.h"
 #include "workbench/diagnosis_json.h"
 #include "workbench/diagnosis_series.h"
@@ -95,10 +98,12 @@ CalibratedLog Calibrate(const DriveLog& log, const std::string& model_path) {
 // An estimator's run as Python gets it: its estimates as the estimate file's columns (with the
 // trust check's `suspect`, as the CLI writes it), its report, and the trust check.
 py::dict RunDict(const DriveLog& log, const std::vector<WardEstimate>& estimates,
-                 const std::string& report, bool used_fallback) {
+                 const std::string& report, bool used_fallback,
+                 std::vector<ExtraColumn> extra = {}) {
   const TrustReport trust = CheckTrust(log, estimates);
+  extra.push_back({"suspect", trust.suspect});
   py::dict run;
-  run["columns"] = TableColumns(EstimateColumns(estimates, {{"suspect", trust.suspect}}));
+  run["columns"] = TableColumns(EstimateColumns(estimates, extra));
   run["report"] = report;
   run["trusted"] = trust.trusted;
   run["trust_warnings"] = trust.warnings;
@@ -144,6 +149,34 @@ py::dict SmoothRun(const LogPtr& log, const std::string& model, bool use_gps, do
   out["converged"] = result.summary.termination_type == ceres::CONVERGENCE;
   out["final_cost"] = result.final_cost;
   out["iterations"] = result.summary.iterations.size();
+  return out;
+}
+
+py::dict OnlineRun(const LogPtr& log, const std::string& model, bool use_gps, double window_s,
+                   int update_every, int iterations, double stiffness_sd, bool covariance) {
+  const CalibratedLog run = Calibrate(*log, model);
+  WindowSmootherOptions options;
+  options.filter.use_gps = use_gps;
+  options.window_s = window_s;
+  options.update_every = update_every;
+  options.max_iterations = iterations;
+  options.stiffness_prior_sd = stiffness_sd;
+  options.covariance = covariance;
+  WindowSmootherResult result;
+  {
+    py::gil_scoped_release release;
+    result = SmoothWindowed(run.log, run.model, options);
+  }
+  py::dict out =
+      RunDict(run.log, result.estimates, DescribeWindowRun(result), false, OnlineColumns(result));
+  std::vector<double> sorted = result.update_ms;
+  std::sort(sorted.begin(), sorted.end());
+  const auto percentile = [&](double p) {
+    return sorted.empty() ? std::nan("")
+                          : sorted[static_cast<size_t>(p * static_cast<double>(sorted.size() - 1))];
+  };
+  out["update_ms_p50"] = percentile(0.5);
+  out["update_ms_p99"] = percentile(0.99);
   return out;
 }
 
@@ -280,6 +313,12 @@ PYBIND11_MODULE(_core, m) {
         py::arg("disturbance_modes") = false);
   m.def("smooth", &SmoothRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("stiffness_sd") = kPostProcessingStiffnessPriorSd, py::arg("threads") = 1);
+  const WindowSmootherOptions window;
+  m.def("online", &OnlineRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
+        py::arg("window_s") = window.window_s, py::arg("update_every") = window.update_every,
+        py::arg("iterations") = window.max_iterations,
+        py::arg("stiffness_sd") = window.stiffness_prior_sd,
+        py::arg("covariance") = window.covariance);
   m.def("diagnose", &DiagnoseRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("with_effects") = std::vector<std::string>{}, py::arg("threads") = 2);
   m.def("identify", &IdentifyJson, py::arg("logs"), py::arg("model") = "",

@@ -19,6 +19,7 @@
 
 #include "evaluation/progress.h"
 #include "io/drive_log.h"
+#include "io/estimate_file.h"
 #include "model/model_config.h"
 #include "problems/ward_factor_source.h"
 #include "solvers/batch_smoother.h"
@@ -106,5 +107,11 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
                                      const BatchSmootherOptions& batch);
 
 std::string DescribeWindowRun(const WindowSmootherResult& result);
+
+// The columns `online` adds to the estimate file (docs/estimate-file.md), per estimate: the front
+// end's own at the same sample (ekf_v_bx, ekf_sd_v_bx, ekf_a_dist, ekf_sd_a_dist, ekf_slip_ema,
+// ekf_immobilized), lag_s (when the refined estimate became final) and from_filter (1 where a
+// failed window left the front end's estimate).
+std::vector<ExtraColumn> OnlineColumns(const WindowSmootherResult& result);
 
 }  // namespace slipgraph

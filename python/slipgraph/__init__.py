@@ -31,6 +31,7 @@ __all__ = [
     "read_log",
     "filter",
     "smooth",
+    "online",
     "diagnose",
     "identify",
     "score_model",
@@ -47,7 +48,8 @@ class Run:
     columns: the estimate file's columns (docs/estimate-file.md) as numpy arrays, ``suspect``
     last; report: what the CLI prints about the run; trusted and trust_warnings: the check of
     the estimates against the log's own wheels and GNSS; used_fallback: the smoother failed and
-    the estimates are the front end's. Smoother runs also give converged, final_cost, iterations.
+    the estimates are the front end's. Smoother runs also give converged, final_cost, iterations;
+    online runs update_ms_p50 and update_ms_p99.
     """
 
     columns: Dict[str, _np.ndarray]
@@ -58,6 +60,8 @@ class Run:
     converged: Optional[bool] = None
     final_cost: Optional[float] = None
     iterations: Optional[int] = None
+    update_ms_p50: Optional[float] = None
+    update_ms_p99: Optional[float] = None
 
     def __getitem__(self, name: str) -> _np.ndarray:
         return self.columns[name]
@@ -99,6 +103,18 @@ def smooth(log, model=None, use_gps: bool = True, stiffness_sd: Optional[float] 
     (stiffness_sd: its prior on the tire law's slip stiffness, the CLI's default when None)."""
     kwargs = {} if stiffness_sd is None else {"stiffness_sd": stiffness_sd}
     return Run(**_core.smooth(_log(log), _model(model), use_gps, threads=threads, **kwargs))
+
+
+def online(log, model=None, use_gps: bool = True, **window) -> Run:
+    """The EKF at every sample and the sliding-window smoother behind it, as ``slipgraph
+    online``: the window's estimates with the front end's beside them (ekf_* columns), lag_s and
+    from_filter; window: window_s, update_every, iterations, stiffness_sd, covariance (the CLI's
+    defaults). The run also gives update_ms_p50 and update_ms_p99, the window's latency."""
+    result = _core.online(_log(log), _model(model), use_gps, **window)
+    latency = {k: result.pop(k) for k in ("update_ms_p50", "update_ms_p99")}
+    run = Run(**result)
+    run.update_ms_p50, run.update_ms_p99 = latency["update_ms_p50"], latency["update_ms_p99"]
+    return run
 
 
 def diagnose(log, model=None, use_gps: bool = True,

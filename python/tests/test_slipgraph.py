@@ -107,6 +107,20 @@ def test_smoother_beats_the_filter_against_truth_and_scores_as_the_cli(sample, t
     assert score["false_immobilized_samples"] == cli["false_immobilized_samples"]
 
 
+def test_online_gives_the_estimate_file_the_cli_writes(sample, tmp_path):
+    run_cli("online", SAMPLE, "--out", tmp_path / "online.csv", cwd=tmp_path)
+    written = read_csv(tmp_path / "online.csv")
+    online = slipgraph.online(sample)
+    assert list(online.columns) == list(written)
+    # The window's sums run in the order Ceres keeps its blocks in (a hash set under fast
+    # removal): two runs of the CLI itself differ by up to 1e-6 (sd_a_dist), not to the bit.
+    for key in written:
+        assert np.allclose(online[key], written[key], rtol=1e-5, atol=1e-5, equal_nan=True), key
+    assert 0 < online.update_ms_p50 <= online.update_ms_p99
+    ekf_score = slipgraph.evaluate(sample, slipgraph.filter(sample))
+    assert slipgraph.evaluate(sample, online)["velocity_rmse"] < ekf_score["velocity_rmse"]
+
+
 def test_columns_of_different_lengths_are_an_error_not_a_crash(sample, tmp_path):
     columns = dict(slipgraph.filter(sample).columns)
     columns["v_bx"] = columns["v_bx"][:-1]
