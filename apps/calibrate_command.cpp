@@ -193,7 +193,7 @@ void RegisterCalibrateCommand(CLI::App* app, int* status) {
       options->json.Write(j);
     }
     {
-      std::FILE* text = options->json.to_stdout() ? stderr : stdout;
+      std::FILE* text = options->json.text_file();
       std::fprintf(
           text,
           "| model | mean position error m | sd along m | sd cross m | mean |heading| rad |\n");

@@ -16,6 +16,7 @@
 #include "apps/suite_runs.h"
 #include "io/log_reader.h"
 #include "io/text_file.h"
+#include "io/yaml_config.h"
 #include "model/effect_catalogue.h"
 #include "workbench/diagnosis.h"
 #include "workbench/diagnosis_series.h"

@@ -4,8 +4,7 @@
 
 #include "apps/commands.h"
 #include "apps/json_output.h"
-#include "model/effect_catalogue.h"
-#include "workbench/diagnosis.h"
+#include "workbench/diagnosis_json.h"
 
 namespace slipgraph {
 
@@ -21,21 +20,14 @@ void RegisterEffectsCommand(CLI::App* app, int* status) {
   options->json.Add(cmd);
   cmd->callback([options, status]() {
     std::ostream& text = options->json.text();
-    nlohmann::json effects = nlohmann::json::array();
-    for (const EffectInfo& e : EffectCatalogue()) {
-      const bool can_add = CanAddEffect(e.name);
-      text << e.name << " (default " << e.default_value << " " << e.unit << ")"
-           << (e.in_model_catalogue ? "" : ", not a diagnose candidate")
-           << (can_add ? ", diagnose --with adds it" : "") << "\n"
-           << "  physics: " << e.physics << "\n"
-           << "  evidence: " << e.evidence << "\n";
-      effects.push_back({{"name", e.name},
-                         {"default_value", e.default_value},
-                         {"unit", e.unit},
-                         {"physics", e.physics},
-                         {"evidence", e.evidence},
-                         {"candidate", e.in_model_catalogue},
-                         {"can_add", can_add}});
+    const nlohmann::json effects = EffectCatalogueJson();
+    for (const nlohmann::json& e : effects) {
+      text << e["name"].get<std::string>() << " (default " << e["default_value"].get<double>()
+           << " " << e["unit"].get<std::string>() << ")"
+           << (e["candidate"].get<bool>() ? "" : ", not a diagnose candidate")
+           << (e["can_add"].get<bool>() ? ", diagnose --with adds it" : "") << "\n"
+           << "  physics: " << e["physics"].get<std::string>() << "\n"
+           << "  evidence: " << e["evidence"].get<std::string>() << "\n";
     }
     if (options->json.enabled()) options->json.Write({{"effects", effects}});
     *status = 0;

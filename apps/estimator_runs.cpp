@@ -37,13 +37,6 @@ DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read,
   return log;
 }
 
-ModelConfig ModelForLog(DriveLog* log, const std::string& model_path) {
-  const ModelConfig model = model_path.empty() ? DefaultModelConfig(log->vehicle)
-                                               : ReadModelYaml(model_path, log->vehicle);
-  ApplyCalibration(model, log);
-  return model;
-}
-
 CLI::App* AddEstimatorCommand(CLI::App* app, const std::string& name,
                               const std::string& description, EstimatorRunOptions* run,
                               bool* no_gps) {

@@ -62,9 +62,6 @@ void AddReadOptions(CLI::App* cmd, ReadOptions* read);
 // values) to `warnings`; throws InputError where estimates would mean nothing.
 DriveLog ReadLogWithWarnings(const std::string& path, const ReadOptions& read,
                              std::ostream& warnings = std::cerr);
-// The log's model: the vehicle's nominal one, or `model_path` (a model YAML) over it, with its
-// calibration (wheel radii, effective track) applied to the log.
-ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 // Registers an estimator subcommand with the flags they all share (LOG, --model, --no-gps,
 // --skip-bad, --strict, --out, --json, --jobs, --keep-going, --quiet); the caller adds its own and

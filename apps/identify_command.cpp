@@ -92,8 +92,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     for (size_t i = 0; i < options->logs.size(); ++i) {
       const DriveLog log = ReadLogWithWarnings(options->logs[i], options->read);
       if (i == 0) {
-        model = options->model.empty() ? DefaultModelConfig(log.vehicle)
-                                       : ReadModelYaml(options->model, log.vehicle);
+        model = ReadModelOrNominal(options->model, log.vehicle);
       }
       if (log.wheels.size() < 2) {
         std::cerr << "identify: " << options->logs[i] << ": no wheel data\n";

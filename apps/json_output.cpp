@@ -40,6 +40,8 @@ bool JsonOutput::to_stdout() const { return enabled() && (path_.empty() || path_
 
 std::ostream& JsonOutput::text() const { return to_stdout() ? std::cerr : std::cout; }
 
+std::FILE* JsonOutput::text_file() const { return to_stdout() ? stderr : stdout; }
+
 nlohmann::json JsonOutput::Record() const {
   nlohmann::json options = nlohmann::json::object();
   if (cmd_ != nullptr) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
@@ -20,9 +21,10 @@ class JsonOutput {
   // options).
   void Add(CLI::App* cmd);
   bool enabled() const;
-  bool to_stdout() const;
-  // Where the subcommand's text goes: stderr when the JSON takes stdout, else stdout.
+  // Where the subcommand's text goes: stderr when the JSON takes stdout, else stdout (as a
+  // stream, and as a FILE for printf-style tables).
   std::ostream& text() const;
+  std::FILE* text_file() const;
   // Adds the "slipgraph" record to `result` and writes it (a file write is checked).
   void Write(nlohmann::json result) const;
   // The record: the version, the subcommand and the options given (by name, as typed); and as a
@@ -31,6 +33,8 @@ class JsonOutput {
   std::string RecordText() const;
 
  private:
+  bool to_stdout() const;
+
   std::string path_;  // empty or "-": stdout
   CLI::App* cmd_ = nullptr;
   CLI::Option* option_ = nullptr;

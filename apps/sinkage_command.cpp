@@ -118,7 +118,7 @@ void RegisterSinkageCommand(CLI::App* app, int* status) {
       options->json.Write(j);
     }
     {
-      std::FILE* text = options->json.to_stdout() ? stderr : stdout;
+      std::FILE* text = options->json.text_file();
       for (const WilcoxSide& side : result.sides) {
         std::fprintf(
             text, "%s: advance %.4f m over rim %.4f m (slip %.1f %%), mean front sinkage %.1f mm\n",

@@ -72,11 +72,7 @@ std::vector<LogFailure> RunOverLogs(const std::vector<std::string>& logs, const 
         next_to_print = outcomes.size();
         break;
       }
-      if (o.error) {
-        failures.push_back({next_to_print, logs[next_to_print], Describe(o.error)});
-        err << "error: " << logs[next_to_print] << ": " << failures.back().error << "\n"
-            << std::flush;
-      }
+      if (o.error) failed(next_to_print, o.error);
     }
   };
   RunConcurrently(logs.size(), suite.jobs, [&](size_t i) {

@@ -343,6 +343,16 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle) {
   return ParseModelYaml(path, ReadTextFile(path), vehicle);
 }
 
+ModelConfig ReadModelOrNominal(const std::string& model_path, const Vehicle& vehicle) {
+  return model_path.empty() ? DefaultModelConfig(vehicle) : ReadModelYaml(model_path, vehicle);
+}
+
+ModelConfig ModelForLog(DriveLog* log, const std::string& model_path) {
+  const ModelConfig model = ReadModelOrNominal(model_path, log->vehicle);
+  ApplyCalibration(model, log);
+  return model;
+}
+
 ModelConfig ParseModelYaml(const std::string& name, const std::string& text,
                            const Vehicle& vehicle) {
   return NamingYamlErrors(name, [&] { return ReadModel(name, text, vehicle); });

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "io/drive_log.h"
 #include "model/model_config.h"
 #include "model/vehicle.h"
 
@@ -29,6 +30,11 @@ ModelConfig ReadModelYaml(const std::string& path, const Vehicle& vehicle);
 // The same from the text of a model file held in memory; `name` stands for its path in errors.
 ModelConfig ParseModelYaml(const std::string& name, const std::string& text,
                            const Vehicle& vehicle);
+
+// The vehicle's nominal model, or, when `model_path` is not empty, the model file over it.
+ModelConfig ReadModelOrNominal(const std::string& model_path, const Vehicle& vehicle);
+// The same for a log, with the model's calibration (wheel radii, effective track) applied to it.
+ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 void WriteVehicleYaml(const Vehicle& vehicle, std::ostream& out);
 // The effective configuration, in the model-file schema (loadable by ReadModelYaml).

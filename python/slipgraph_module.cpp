@@ -22,7 +22,6 @@
 #include "io/log_summary.h"
 #include "io/log_tables.h"
 #include "io/yaml_config.h"
-#include "model/effect_catalogue.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 #include "solvers/identification_json.h"
@@ -89,9 +88,8 @@ struct CalibratedLog {
   ModelConfig model;
 };
 CalibratedLog Calibrate(const DriveLog& log, const std::string& model_path) {
-  CalibratedLog out{log, model_path.empty() ? DefaultModelConfig(log.vehicle)
-                                            : ReadModelYaml(model_path, log.vehicle)};
-  ApplyCalibration(out.model, &out.log);
+  CalibratedLog out{log, {}};
+  out.model = ModelForLog(&out.log, model_path);
   return out;
 }
 
@@ -213,8 +211,7 @@ std::string IdentifyJson(const std::vector<LogPtr>& logs, const std::string& mod
   if (logs.empty()) throw std::invalid_argument("identify: no logs");
   std::vector<DriveLog> copies;
   for (const LogPtr& log : logs) copies.push_back(*log);
-  const ModelConfig start = model.empty() ? DefaultModelConfig(copies.front().vehicle)
-                                          : ReadModelYaml(model, copies.front().vehicle);
+  const ModelConfig start = ReadModelOrNominal(model, copies.front().vehicle);
   IdentifyOptions options;
   options.use_gps = use_gps;
   options.fit_radius = fit_radius;
@@ -334,21 +331,6 @@ PYBIND11_MODULE(_core, m) {
       py::arg("columns"), py::arg("path"),
       "Columns (a dict of 1-D arrays) as a CSV file in the log format's dialect");
   m.def(
-      "effects",
-      [] {
-        std::vector<py::dict> out;
-        for (const EffectInfo& e : EffectCatalogue()) {
-          py::dict d;
-          d["name"] = e.name;
-          d["default_value"] = e.default_value;
-          d["unit"] = e.unit;
-          d["physics"] = e.physics;
-          d["evidence"] = e.evidence;
-          d["candidate"] = e.in_model_catalogue;
-          d["can_add"] = CanAddEffect(e.name);
-          out.push_back(d);
-        }
-        return out;
-      },
-      "The catalogue of physical effects (model/effect_catalogue.h)");
+      "effects", [] { return EffectCatalogueJson().dump(); },
+      "The catalogue of physical effects (model/effect_catalogue.h), as JSON text");
 }

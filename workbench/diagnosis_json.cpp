@@ -1,6 +1,7 @@
 #include "workbench/diagnosis_json.h"
 
 #include "evaluation/json_number.h"
+#include "model/effect_catalogue.h"
 
 namespace slipgraph {
 
@@ -91,6 +92,20 @@ nlohmann::json ToJson(const Diagnosis& d) {
   j["trust_warnings"] = d.trust.warnings;
   j["notes"] = d.notes;
   return j;
+}
+
+nlohmann::json EffectCatalogueJson() {
+  nlohmann::json effects = nlohmann::json::array();
+  for (const EffectInfo& e : EffectCatalogue()) {
+    effects.push_back({{"name", e.name},
+                       {"default_value", e.default_value},
+                       {"unit", e.unit},
+                       {"physics", e.physics},
+                       {"evidence", e.evidence},
+                       {"candidate", e.in_model_catalogue},
+                       {"can_add", CanAddEffect(e.name)}});
+  }
+  return effects;
 }
 
 }  // namespace slipgraph

@@ -8,5 +8,9 @@
 namespace slipgraph {
 
 nlohmann::json ToJson(const Diagnosis& diagnosis);
+// The catalogue of physical effects (model/effect_catalogue.h), each with whether diagnose tests
+// it ("candidate") and whether `--with` can add it ("can_add"), as `slipgraph effects --json`
+// writes it and the Python module returns it.
+nlohmann::json EffectCatalogueJson();
 
 }  // namespace slipgraph

@@ -165,4 +165,4 @@ def write_estimates(estimates, path) -> None:
 def effects() -> List[dict]:
     """The catalogue of physical effects: name, default value and unit, physics, evidence,
     whether it is a diagnose candidate and whether ``with_effects`` can add it."""
-    return _core.effects()
+    return _json.loads(_core.effects())
