@@ -3,6 +3,7 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "evaluation/evaluation.h"
+#include "evaluation/progress.h"
 #include "solvers/wilcox_baseline.h"
 #include "solvers/wilcox_velocity.h"
 #include "solvers/window_smoother.h"
@@ -62,6 +63,8 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
     *status = RunEstimatorOverLogs(
         options->run, [&](const DriveLog& log, const ModelConfig& model, std::ostream& report) {
           WindowSmootherOptions window = options->window;
+          ProgressPrinter progress(ShowsProgress(options->run), std::cerr);
+          window.progress = progress.callback();
           if (options->advance_velocity) {
             WilcoxOptions wilcox;
             wilcox.learn_slip = true;
