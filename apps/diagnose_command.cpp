@@ -24,19 +24,6 @@
 
 namespace slipgraph {
 
-namespace {
-
-// The effects the workbench can test and add, comma-separated.
-std::string EffectNames() {
-  std::string names;
-  for (const EffectSignature& signature : EffectSignatures()) {
-    names += (names.empty() ? "" : ", ") + signature.effect;
-  }
-  return names;
-}
-
-}  // namespace
-
 void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   struct Options {
     std::string log, model, report, series;
@@ -60,7 +47,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->add_option("--with", options->with,
                   "Switch a catalogue effect on in the model and report before and after "
                   "(repeatable): " +
-                      EffectNames());
+                      EffectRegistry::Catalogue().Names());
   cmd->add_flag("--add-best", options->add_best,
                 "The whole loop: add the top-ranked significant candidate (if the smoother has a "
                 "term or a correction for it) and report before and after");
@@ -83,9 +70,10 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     for (const std::string& effect : options->with) {
-      if (FindEffect(effect) == nullptr && FindSignature(effect) == nullptr) {
-        throw CLI::ValidationError(
-            "--with", "unknown effect '" + effect + "' (known: " + EffectNames() + ")");
+      if (FindEffect(effect) == nullptr &&
+          EffectRegistry::Catalogue().FindSignature(effect) == nullptr) {
+        throw CLI::ValidationError("--with", "unknown effect '" + effect + "' (known: " +
+                                                 EffectRegistry::Catalogue().Names() + ")");
       }
     }
     DiagnosisOptions diagnosis = options->diagnosis;
@@ -122,7 +110,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
             const CandidateScore* best = BestExplanation(before.candidates);
             if (best == nullptr) {
               out << "--add-best: no significant, plausible candidate to add\n";
-            } else if (!CanAddEffect(best->effect)) {
+            } else if (!EffectRegistry::Catalogue().CanAdd(best->effect)) {
               out << "--add-best: " << best->effect
                   << " has no smoother term or measurement correction yet\n";
             } else {

@@ -22,12 +22,19 @@ void RegisterEffectsCommand(CLI::App* app, int* status) {
     std::ostream& text = options->json.text();
     const nlohmann::json effects = EffectCatalogueJson();
     for (const nlohmann::json& e : effects) {
-      text << e["name"].get<std::string>() << " (default " << e["default_value"].get<double>()
-           << " " << e["unit"].get<std::string>() << ")"
-           << (e["candidate"].get<bool>() ? "" : ", not a diagnose candidate")
+      text << e["name"].get<std::string>() << " (";
+      if (e["default_value"].is_null()) {
+        text << "model term only, in " << e["unit"].get<std::string>();
+      } else {
+        text << "default " << e["default_value"].get<double>() << " "
+             << e["unit"].get<std::string>();
+      }
+      text << ")" << (e["candidate"].get<bool>() ? "" : ", not a diagnose candidate")
            << (e["can_add"].get<bool>() ? ", diagnose --with adds it" : "") << "\n"
-           << "  physics: " << e["physics"].get<std::string>() << "\n"
-           << "  evidence: " << e["evidence"].get<std::string>() << "\n";
+           << "  physics: " << e["physics"].get<std::string>() << "\n";
+      if (!e["evidence"].get<std::string>().empty()) {
+        text << "  evidence: " << e["evidence"].get<std::string>() << "\n";
+      }
     }
     if (options->json.enabled()) options->json.Write({{"effects", effects}});
     *status = 0;

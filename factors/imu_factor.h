@@ -1,11 +1,9 @@
-// IMU factors, Ward & Iagnemma eq. (11), rows 1 and 2:
+// IMU factors, Ward & Iagnemma eq. (11): the accelerometer's reading (row 1; the factor is
+// factors/accelerometer_factor.h) and the yaw gyro (row 2),
 //
-//   accelerometer: r = (a_x - (f_tire(x) + c_ax + b_ax + a_dist)) / sd_a
-//   yaw gyro:      r = (w_z - (yaw_rate + c_gz + b_gz)) / sd_g
+//   yaw gyro: r = (w_z - (yaw_rate + c_gz + b_gz)) / sd_g
 //
-// Parameter blocks: x_k (7), IMU offsets [c_ax, c_gz] (2). Inputs: the attitude at the sample
-// (REP-103 roll and pitch, rad). sd_a includes the tire law's uncertainty
-// (ModelConfig::tire_uncertainty) when the accelerometer also drives the velocity.
+// Parameter blocks: x_k (7), IMU offsets [c_ax, c_gz] (2).
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
@@ -14,9 +12,9 @@
 
 namespace slipgraph {
 
-// What every accelerometer factor of eq. (11) holds: the physics, the attitude's normal forces
+// What the accelerometer factor of eq. (11) holds: the physics, the attitude's normal forces
 // and g sin(phi) (computed once), the reading and its weight. Residual() is the row given the
-// model's tire balance at the state (f_tire, with whatever terms a variant adds).
+// model's tire balance at the state (f_tire, with whatever unknowns the problem gives it).
 struct AccelerometerReading {
   AccelerometerReading(const ward::Params& params_in, const ward::Attitude<double>& attitude,
                        double accel_x_mps2, double sd_mps2)
@@ -35,29 +33,6 @@ struct AccelerometerReading {
   ward::AttitudeLoads<double> loads;
   double measured;
   double sqrt_information;
-};
-
-struct AccelerometerFactor {
-  AccelerometerFactor(const ward::Params& params, const ward::Attitude<double>& attitude,
-                      double accel_x_mps2, double sd_mps2)
-      : reading_(params, attitude, accel_x_mps2, sd_mps2) {}
-
-  template <typename T>
-  bool operator()(const T* x, const T* offsets, T* residual) const {
-    const ward::TireForces<T> forces = ward::ComputeTireForces(x, reading_.loads, reading_.params);
-    residual[0] = reading_.Residual(forces.f_tire_mps2, x, offsets);
-    return true;
-  }
-
-  static ceres::CostFunction* Create(const ward::Params& params,
-                                     const ward::Attitude<double>& attitude, double accel_x_mps2,
-                                     double sd_mps2) {
-    return new ceres::AutoDiffCostFunction<AccelerometerFactor, 1, ward::kStateSize, 2>(
-        new AccelerometerFactor(params, attitude, accel_x_mps2, sd_mps2));
-  }
-
- private:
-  AccelerometerReading reading_;
 };
 
 struct YawGyroFactor {

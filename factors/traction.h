@@ -14,7 +14,7 @@
 namespace slipgraph {
 
 // Eq. (8) with coefficients of any scalar S (a Ceres parameter block when the law is identified,
-// factors/law_accelerometer_factor.h). The rate At enters through the saturation's argument,
+// factors/tire_law_coefficients.h). The rate At enters through the saturation's argument,
 // sgn(v)(1 - exp(-At |v|)) = sat(v At / At_ref; At_ref) for any positive constant At_ref, so the
 // saturation keeps its one-exp Jet path; with At_ref = At the argument is v exactly.
 template <typename N, typename T, typename S>

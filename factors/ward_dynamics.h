@@ -73,7 +73,7 @@ inline AttitudeLoads<A> ComputeAttitudeLoads(const Attitude<A>& attitude, const 
 // The tire forces with the laws given as functions: traction_n(N, v_rel), eq. (8), and
 // rolling_per_n(v_fwd), eq. (9) per newton of load. ComputeTireForces below passes the model's
 // laws; identifying the law passes laws whose coefficients are parameter blocks
-// (factors/law_accelerometer_factor.h).
+// (factors/tire_law_coefficients.h).
 // T: the state's scalar; A: the attitude's (double when attitude is a measured input, which
 // keeps the trigonometry of the normal forces out of the automatic differentiation).
 template <typename T, typename A, typename Traction, typename Rolling>

@@ -2,8 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <set>
 
+#include "factors/catalogue_terms.h"
 #include "io/input_error.h"
 #include "io/text_file.h"
 #include "io/yaml_errors.h"
@@ -316,7 +318,8 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
       for (const auto& effect : entry.second) {
         const std::string name = effect.as<std::string>();
         const EffectInfo* info = FindEffect(name);
-        if (info == nullptr || !info->in_model_catalogue) {
+        if (CatalogueTerms().Find(name) == nullptr &&
+            (info == nullptr || !info->in_model_catalogue)) {
           Fail(path, effect, key, name, "unknown effect (not in the model's effect catalogue)");
         }
         m.effects.push_back(name);
@@ -334,6 +337,27 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
   m.offset_init_samples = static_cast<int>(init_samples);
   std::string error;
   if (!m.IsValid(&error)) throw InputError(path, 0, "", "", "invalid model: " + error);
+  // The effects that act on windows of the drive need them, and only they take them.
+  for (const ModelConfig::EffectWindow& w : m.effect_windows) {
+    const EffectTerm* term = CatalogueTerms().Find(w.effect);
+    if (term == nullptr || !term->acts_on_windows) {
+      throw InputError(path, 0, "effect_windows", w.effect,
+                       "invalid model: effect_windows: '" + w.effect +
+                           "' does not act on windows (only sinkage_resistance and "
+                           "terrain_change)");
+    }
+  }
+  for (const std::string& name : m.effects) {
+    const EffectTerm* term = CatalogueTerms().Find(name);
+    if (term == nullptr || !term->acts_on_windows) continue;
+    if (std::none_of(m.effect_windows.begin(), m.effect_windows.end(),
+                     [&](const ModelConfig::EffectWindow& w) { return w.effect == name; })) {
+      throw InputError(path, 0, "effects", name,
+                       "invalid model: effects: " + name +
+                           " needs effect_windows (the times it acts; `slipgraph diagnose --with " +
+                           name + "` takes them from what it finds)");
+    }
+  }
   return m;
 }
 

@@ -109,31 +109,9 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "weak_constraints.decay_alpha must lie in (0, 1)";
     return false;
   }
-  for (const std::string& effect : effects) {
-    const EffectInfo* info = FindEffect(effect);
-    if ((info == nullptr || !info->in_model_catalogue) && !IsRegisteredModelEffectName(effect)) {
-      *error = "effects: unknown effect '" + effect + "'";
-      return false;
-    }
-  }
   for (const EffectWindow& w : effect_windows) {
-    if (!ActsOnWindows(w.effect)) {
-      *error = "effect_windows: '" + w.effect +
-               "' does not act on windows (only sinkage_resistance and terrain_change)";
-      return false;
-    }
     if (!(std::isfinite(w.t_start_s) && std::isfinite(w.t_end_s) && w.t_end_s > w.t_start_s)) {
       *error = "effect_windows: a window must have finite from < to";
-      return false;
-    }
-  }
-  for (const std::string& name : effects) {
-    if (!ActsOnWindows(name)) continue;
-    if (std::none_of(effect_windows.begin(), effect_windows.end(),
-                     [&](const EffectWindow& w) { return w.effect == name; })) {
-      *error = "effects: " + name +
-               " needs effect_windows (the times it acts; `slipgraph diagnose --with " + name +
-               "` takes them from what it finds)";
       return false;
     }
   }
@@ -146,26 +124,6 @@ bool ModelConfig::IsValid(std::string* error) const {
     return false;
   }
   return true;
-}
-
-namespace {
-std::vector<std::string>& RegisteredModelEffectNames() {
-  static std::vector<std::string> names;
-  return names;
-}
-}  // namespace
-
-void RegisterModelEffectName(const std::string& effect) {
-  if (!IsRegisteredModelEffectName(effect)) RegisteredModelEffectNames().push_back(effect);
-}
-
-bool IsRegisteredModelEffectName(const std::string& effect) {
-  const std::vector<std::string>& names = RegisteredModelEffectNames();
-  return std::find(names.begin(), names.end(), effect) != names.end();
-}
-
-bool ActsOnWindows(const std::string& effect) {
-  return effect == "sinkage_resistance" || effect == "terrain_change";
 }
 
 bool ModelConfig::InEffectWindow(const std::string& effect, double t) const {

@@ -124,10 +124,12 @@ struct ModelConfig {
   // An at-rest IMU sample updates the offsets only once the robot has stayed at rest this long
   // after it (the encoders see a start late; solvers/imu_offsets.h).
   double offset_rest_guard_s = 0.5;
-  std::vector<std::string> effects;  // optional physical effects switched on, by name
-  // Where an effect that acts on part of a drive acts (ActsOnWindows): for sinkage_resistance
-  // the time spans (log time, s) on soft ground, for terrain_change those on the changed
-  // terrain, as `diagnose` found them. Required when such an effect is on.
+  // Optional physical effects switched on, by the names of their terms (factors/effect_term.h;
+  // io/yaml_config checks a model file's against the terms).
+  std::vector<std::string> effects;
+  // Where an effect that acts on part of a drive acts (EffectTerm::acts_on_windows): for
+  // sinkage_resistance the time spans (log time, s) on soft ground, for terrain_change those on
+  // the changed terrain, as `diagnose` found them. Required when such an effect is on.
   struct EffectWindow {
     std::string effect;
     double t_start_s = 0.0, t_end_s = 0.0;
@@ -139,14 +141,6 @@ struct ModelConfig {
   // Ceres-style validity check: false with a message naming the first bad field.
   bool IsValid(std::string* error) const;
 };
-
-// The effects that act on windows of a drive (ModelConfig::effect_windows).
-bool ActsOnWindows(const std::string& effect);
-
-// Effects a program adds beyond the catalogue (factors/force_term.h registers its terms' names
-// here), so a model may name them in `effects`.
-void RegisterModelEffectName(const std::string& effect);
-bool IsRegisteredModelEffectName(const std::string& effect);
 
 // In-class defaults with the vehicle's nominal tire, rolling and sensor values merged in.
 ModelConfig DefaultModelConfig(const Vehicle& vehicle);

@@ -1,6 +1,6 @@
 // One Ceres problem over one or more logs of the same robot in which the model's parameters are
 // parameter blocks beside the states: the tire and rolling laws' coefficients and the two sides'
-// rolling-radius errors (factors/law_accelerometer_factor.h), shared by every log, and each
+// rolling-radius errors (factors/tire_law_coefficients.h), shared by every log, and each
 // log's states and constant IMU offsets (every factor of problems/ward_factor_source, as the
 // whole-log smoother). Weak Gaussian priors around the model's values keep the parameters the
 // data do not see where the user put them; bounds keep the law physical.
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "factors/law_accelerometer_factor.h"
+#include "factors/tire_law_coefficients.h"
 #include "io/drive_log.h"
 #include "io/state_estimate.h"
 #include "model/model_config.h"

@@ -1,13 +1,10 @@
 #include "problems/ward_batch_problem.h"
 
-#include <ceres/manifold.h>
 #include <ceres/normal_prior.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include "factors/diagonal_prior.h"
 
 namespace slipgraph {
 
@@ -33,59 +30,22 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   for (size_t k = 0; k < n; ++k) problem.AddParameterBlock(out->states[k].data(), ward::kStateSize);
   problem.AddParameterBlock(out->offsets.data(), 2);
 
-  out->force_terms = source.force_terms();
-  out->force_term_values.assign(out->force_terms.size(), 0.0);
-  for (const std::string& name : model.effects) {
-    const int index = ModelEffectIndex(name);
-    if (index < 0 && FindForceTerm(name) != nullptr) continue;
-    if (index < 0) {
-      out->ignored_effects.push_back(name);
-    } else if (std::find(out->active_effects.begin(), out->active_effects.end(), index) ==
-               out->active_effects.end()) {
-      out->active_effects.push_back(index);
-    }
-  }
-  std::sort(out->active_effects.begin(), out->active_effects.end());
+  out->effect_terms = source.effect_terms();
+  out->effects.assign(out->effect_terms.size(), 0.0);
+  out->ignored_effects = source.effects_without_term();
   double* effects = nullptr;
-  double* force_terms = nullptr;
   std::vector<AddedFactor> added;
-  if (!out->force_terms.empty()) {
-    // The accelerometer factor of force terms carries the catalogue's magnitudes too: held at 0
-    // when the model has none of them.
-    force_terms = out->force_term_values.data();
-    const int count = static_cast<int>(out->force_terms.size());
-    problem.AddParameterBlock(force_terms, count);
+  if (!out->effect_terms.empty()) {
+    effects = out->effects.data();
+    const int count = static_cast<int>(out->effect_terms.size());
+    problem.AddParameterBlock(effects, count);
     Eigen::VectorXd sd(count);
-    for (int j = 0; j < count; ++j) sd[j] = out->force_terms[j]->prior_sd;
+    for (int j = 0; j < count; ++j) sd[j] = out->effect_terms[j]->prior_sd;
     added.push_back(
         {"effect_prior", problem.AddResidualBlock(
                              new ceres::NormalPrior(Eigen::MatrixXd(sd.cwiseInverse().asDiagonal()),
                                                     Eigen::VectorXd::Zero(count)),
-                             nullptr, force_terms)});
-    if (out->active_effects.empty()) {
-      problem.AddParameterBlock(out->effects.data(), kModelEffectCount);
-      problem.SetParameterBlockConstant(out->effects.data());
-      effects = out->effects.data();
-    }
-  }
-  if (!out->active_effects.empty()) {
-    effects = out->effects.data();
-    problem.AddParameterBlock(effects, kModelEffectCount);
-    std::vector<int> inactive;
-    for (int i = 0; i < kModelEffectCount; ++i) {
-      if (std::find(out->active_effects.begin(), out->active_effects.end(), i) ==
-          out->active_effects.end()) {
-        inactive.push_back(i);
-      }
-    }
-    if (!inactive.empty()) {
-      problem.SetManifold(effects, new ceres::SubsetManifold(kModelEffectCount, inactive));
-    }
-    // A weak prior: each magnitude's scale, several times what the catalogue calls typical.
-    added.push_back(
-        {"effect_prior",
-         problem.AddResidualBlock(DiagonalPrior<kModelEffectCount>::Create({}, kModelEffectPriorSd),
-                                  nullptr, effects)});
+                             nullptr, effects)});
   }
   double* stiffness = nullptr;
   if (options.stiffness_prior_sd > 0.0 && effects == nullptr && source.size() > 0) {
@@ -100,8 +60,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   std::vector<long> state_of(added.size(), -1);
   for (size_t k = 0; k < n; ++k) {
     source.AddStep(k, k > 0 ? out->states[k - 1].data() : nullptr, out->states[k].data(),
-                   {out->offsets.data(), effects, force_terms, stiffness}, &problem, &added,
-                   &out->counts);
+                   {out->offsets.data(), effects, stiffness}, &problem, &added, &out->counts);
     state_of.resize(added.size(), static_cast<long>(k));
   }
   for (size_t i = 0; i < added.size(); ++i) {

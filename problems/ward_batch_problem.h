@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "factors/model_effects.h"
+#include "factors/effect_term.h"
 #include "io/drive_log.h"
 #include "io/state_estimate.h"
 #include "model/model_config.h"
@@ -25,15 +25,11 @@ struct WardProblem {
   std::vector<double> times;                  // state times: the wheel samples
   std::vector<std::array<double, 7>> states;  // parameter blocks, one per time
   std::array<double, 2> offsets{};            // [c_ax, c_gz]
-  // Magnitudes of the model effects (factors/model_effects.h); a parameter block only when the
-  // model switches one on (`active`), the others held at 0.
-  std::array<double, kModelEffectCount> effects{};
-  std::vector<int> active_effects;
-  std::vector<std::string> ignored_effects;  // named in the model, no model term yet
-  // Magnitudes of the registered force terms the model names (factors/force_term.h), in the
-  // order of `force_terms`; one parameter block when there is any.
-  std::vector<double> force_term_values;
-  std::vector<const ForceTerm*> force_terms;
+  // The effect terms the model names (factors/effect_term.h) and their magnitudes, in that
+  // order: one parameter block when there is any, with a weak prior of each term's prior_sd.
+  std::vector<const EffectTerm*> effect_terms;
+  std::vector<double> effects;
+  std::vector<std::string> ignored_effects;  // named in the model, no term for them
   // The tire law's slip-stiffness walk (WardProblemOptions::stiffness_walk_sd): one block per
   // node, empty when off.
   std::vector<double> stiffness;

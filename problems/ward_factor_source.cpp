@@ -8,22 +8,19 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "factors/accelerometer_factor.h"
 #include "factors/at_rest_prior.h"
 #include "factors/bound_prior.h"
+#include "factors/catalogue_terms.h"
 #include "factors/diagonal_prior.h"
 #include "factors/disturbance_decay_prior.h"
-#include "factors/effect_accelerometer_factor.h"
 #include "factors/encoder_factor.h"
-#include "factors/force_terms_accelerometer_factor.h"
 #include "factors/frames.h"
 #include "factors/gnss_velocity_factor.h"
-#include "factors/imu_factor.h"
-#include "factors/law_accelerometer_factor.h"
 #include "factors/linear_factor.h"
 #include "factors/oppose_motion_prior.h"
 #include "factors/rate_bound_prior.h"
 #include "factors/state_walk_factor.h"
-#include "factors/stiffness_accelerometer_factor.h"
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
 #include "io/measurement_stream.h"
@@ -117,11 +114,18 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
       tire_uncertainty_(model.tire_uncertainty) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  const EffectTerms& terms =
+      options.effect_terms != nullptr ? *options.effect_terms : CatalogueTerms();
+  for (const EffectTerm& term : terms.all()) {
+    if (std::find(model.effects.begin(), model.effects.end(), term.name) != model.effects.end()) {
+      effect_terms_.push_back(&term);
+    }
+  }
   for (const std::string& name : model.effects) {
-    const ForceTerm* term = FindForceTerm(name);
-    if (term != nullptr &&
-        std::find(force_terms_.begin(), force_terms_.end(), term) == force_terms_.end()) {
-      force_terms_.push_back(term);
+    if (terms.Find(name) == nullptr &&
+        std::find(effects_without_term_.begin(), effects_without_term_.end(), name) ==
+            effects_without_term_.end()) {
+      effects_without_term_.push_back(name);
     }
   }
   if (std::isfinite(options.tire_law_correlation_time_s)) {
@@ -245,13 +249,16 @@ bool WardFactorSource::GnssAlong(size_t k, const GpsSample& g, double* along, do
   return std::isfinite(*along);
 }
 
-ForceTermContext ForceTermContextAt(const DriveLog& log, double t) {
-  ForceTermContext c;
+EffectContext EffectContextAt(const DriveLog& log, const ModelConfig& model, const EffectTerm& term,
+                              double t) {
+  EffectContext c;
   c.t_s = t;
   const long a = LatestAtOrBefore(log.attitude, t, kStampToleranceS);
   if (a >= 0) c.attitude = {log.attitude[a].roll, log.attitude[a].pitch};
+  c.loads = ward::ComputeAttitudeLoads(c.attitude, ward::MakeParams(log.vehicle, model));
   const long i = LatestAtOrBefore(log.imu, t, kStampToleranceS);
   if (i >= 0) c.accel_x_mps2 = log.imu[i].ax;
+  c.window = term.acts_on_windows && model.InEffectWindow(term.name, t) ? 1.0 : 0.0;
   return c;
 }
 
@@ -298,7 +305,6 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
                                FactorCounts* counts) const {
   double* offsets = globals.offsets;
   double* effects = globals.effects;
-  double* force_terms = globals.force_terms;
   double* stiffness_nodes = globals.stiffness;
   Params params = params_;
   if (k < options_.law_per_state.size()) {
@@ -331,32 +337,30 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
                                              tire_uncertainty_, imu_period_s_));
     }
     if (std::isfinite(imu.ax)) {
+      AccelerometerUnknowns unknowns;
+      std::vector<double*> blocks = {x, offsets};
       if (globals.law != nullptr) {
-        Add("accelerometer", LawAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a),
-            nullptr, x, offsets, globals.law, globals.radius_error);
-      } else if (force_terms != nullptr) {
-        // The sample's attitude is c's already: no second look-up.
-        const ForceTermContext context{imu.t, c.attitude, imu.ax};
-        Add("accelerometer",
-            new ForceTermsAccelerometerFactor(params, context, sd_a,
-                                              EffectWindowWeightsAt(model_, imu.t), force_terms_),
-            nullptr, x, offsets, effects, force_terms);
+        unknowns.law = true;
+        blocks.insert(blocks.end(), {globals.law, globals.radius_error});
       } else if (stiffness_nodes != nullptr && effects == nullptr) {
         size_t j = 0;
-        double u = 0.0;
-        StiffnessNodesAt(imu.t, &j, &u);
-        Add("accelerometer",
-            StiffnessAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a, u), nullptr, x,
-            offsets, &stiffness_nodes[j], &stiffness_nodes[j + 1]);
-      } else if (effects != nullptr) {
-        Add("accelerometer",
-            EffectAccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a,
-                                              EffectWindowWeightsAt(model_, imu.t)),
-            nullptr, x, offsets, effects);
-      } else {
-        Add("accelerometer", AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a), nullptr,
-            x, offsets);
+        unknowns.stiffness = true;
+        StiffnessNodesAt(imu.t, &j, &unknowns.stiffness_share);
+        blocks.insert(blocks.end(), {&stiffness_nodes[j], &stiffness_nodes[j + 1]});
       }
+      if (effects != nullptr) {
+        unknowns.effects = effect_terms_;
+        unknowns.t_s = imu.t;
+        for (const EffectTerm* term : effect_terms_) {
+          unknowns.windows.push_back(
+              term->acts_on_windows && model_.InEffectWindow(term->name, imu.t) ? 1.0 : 0.0);
+        }
+        blocks.push_back(effects);
+      }
+      added->push_back({"accelerometer",
+                        problem->AddResidualBlock(
+                            AccelerometerFactor::Create(params, c.attitude, imu.ax, sd_a, unknowns),
+                            nullptr, blocks)});
       ++counts->accelerometer;
     }
     if (std::isfinite(imu.gz)) {

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "factors/drive_direction.h"
-#include "factors/force_term.h"
+#include "factors/effect_term.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
 #include "io/state_estimate.h"
@@ -96,17 +96,17 @@ struct WardProblemOptions {
   //                         0.0160 / 0.0155 -> 0.0165 / 0.0157 (terrain mismatch dominates)
   double omega_walk_radps2_per_sqrt_hz = 0.3;
   double omega_walk_huber_sigmas = 3.0;
-  // The tire law's slip stiffness as a slowly varying unknown (factors/
-  // stiffness_accelerometer_factor.h) with a prior of this sd around the user's law on its first
-  // node; 0: off (the law's stiffness is taken as exact). Nodes every stiffness_node_s, a random
-  // walk of density stiffness_walk_sd (1/sqrt(s)) between them: 0.1 per minute. Only without
-  // model effects (the workbench's diagnoses keep the user's law). Measured (docs/smoother.md):
-  // the sensors see the stiffness only through a slip velocity of about 1 cm/s, so its estimate
-  // is weak and pulled low by any velocity bias; a prior of 0.15 took ward21 batch v RMSE from
-  // 0.0165/0.0157 to 0.0102/0.0121 (seeds 1/2) and cost fig5, where the law is right, 0.0031 ->
-  // 0.0048; 0.5 gave 0.0122/0.0148 and fig5 0.0076.
-  // The library's default keeps the law as given (the workbench and the window need that); the
-  // post-processing commands `smooth` and `compare` estimate it (kPostProcessingStiffnessPriorSd).
+  // The tire law's slip stiffness as a slowly varying unknown (the accelerometer factor's
+  // stiffness blocks, factors/accelerometer_factor.h) with a prior of this sd around the user's law
+  // on its first node; 0: off (the law's stiffness is taken as exact). Nodes every
+  // stiffness_node_s, a random walk of density stiffness_walk_sd (1/sqrt(s)) between them: 0.1 per
+  // minute. Only without model effects (the workbench's diagnoses keep the user's law). Measured
+  // (docs/smoother.md): the sensors see the stiffness only through a slip velocity of about 1 cm/s,
+  // so its estimate is weak and pulled low by any velocity bias; a prior of 0.15 took ward21 batch
+  // v RMSE from 0.0165/0.0157 to 0.0102/0.0121 (seeds 1/2) and cost fig5, where the law is right,
+  // 0.0031 -> 0.0048; 0.5 gave 0.0122/0.0148 and fig5 0.0076. The library's default keeps the law
+  // as given (the workbench and the window need that); the post-processing commands `smooth` and
+  // `compare` estimate it (kPostProcessingStiffnessPriorSd).
   double stiffness_prior_sd = 0.0;
   double stiffness_node_s = 60.0;
   double stiffness_walk_sd = 0.1 / std::sqrt(60.0);
@@ -119,6 +119,9 @@ struct WardProblemOptions {
   // bank then holds the law the bank's estimate came from. The stiffness walk and the law
   // blocks scale or replace it as they do the model's.
   std::vector<LawSample> law_per_state;
+  // The effect terms the model's `effects` may name (factors/effect_term.h); null: the
+  // catalogue's (CatalogueTerms()). Not owned: it outlives the problem.
+  const EffectTerms* effect_terms = nullptr;
   // Each field in its range; the first that is not is named in *error.
   bool IsValid(std::string* error) const;
 };
@@ -137,24 +140,24 @@ struct FactorCounts {
   std::string Describe() const;
 };
 
-// What a registered force term sees at time t of the log (factors/force_term.h): the latest
-// attitude and IMU sample at or before t (level and NaN when there is none).
-ForceTermContext ForceTermContextAt(const DriveLog& log, double t);
+// What an effect term sees at time t of the log (factors/effect_term.h): the latest attitude and
+// IMU sample at or before t (level and NaN when there is none), and whether t lies in the model's
+// windows for `term`.
+EffectContext EffectContextAt(const DriveLog& log, const ModelConfig& model, const EffectTerm& term,
+                              double t);
 
 // The parameter blocks a step's factors share with every other step.
 struct GlobalBlocks {
   double* offsets = nullptr;  // [c_ax, c_gz]
-  // The model-effect magnitudes (factors/model_effects.h), or null for the default model.
+  // The magnitudes of the effect terms the model names (effect_terms(), in that order), or null
+  // for a model without any.
   double* effects = nullptr;
-  // The magnitudes of the registered force terms the model names (force_terms(), in that
-  // order), or null when it names none (effects must then be given too).
-  double* force_terms = nullptr;
   // The slip-stiffness nodes (stiffness_node_count() contiguous blocks of one), or null when
   // the stiffness is the law's (WardProblemOptions::stiffness_prior_sd = 0). Not with effects.
   double* stiffness = nullptr;
   // The tire and rolling laws' coefficients (kLawCoefficientCount) and the two sides' radius
-  // errors as unknowns (factors/law_accelerometer_factor.h), or null when they are the model's.
-  // Both or neither; not with effects, force terms or the stiffness walk.
+  // errors as unknowns (factors/tire_law_coefficients.h), or null when they are the model's.
+  // Both or neither; not with effects or the stiffness walk.
   double* law = nullptr;
   double* radius_error = nullptr;
 };
@@ -196,8 +199,10 @@ class WardFactorSource {
                            ceres::Problem* problem, std::vector<AddedFactor>* added,
                            FactorCounts* counts) const;
 
-  // The registered force terms (factors/force_term.h) the model names, each once.
-  const std::vector<const ForceTerm*>& force_terms() const { return force_terms_; }
+  // The effect terms the model names, each once, in the order of the terms' collection; and the
+  // names it gives that no term has (a sensor effect: the smoother has nothing to add for it).
+  const std::vector<const EffectTerm*>& effect_terms() const { return effect_terms_; }
+  const std::vector<std::string>& effects_without_term() const { return effects_without_term_; }
   // The slip-stiffness walk's nodes (WardProblemOptions::stiffness_prior_sd): how many, and which
   // two carry time t with the second's share u.
   size_t stiffness_node_count() const;
@@ -222,7 +227,8 @@ class WardFactorSource {
   WardProblemOptions options_;
   ward::Params params_;
   TireLawUncertainty tire_uncertainty_;  // the model's, with the options' correlation time
-  std::vector<const ForceTerm*> force_terms_;
+  std::vector<const EffectTerm*> effect_terms_;
+  std::vector<std::string> effects_without_term_;
   std::vector<double> times_;
   std::vector<std::array<double, 2>> wheel_speeds_;
   std::vector<WheelStopTimer> stop_timers_;  // the at-rest timer as it stood at state k

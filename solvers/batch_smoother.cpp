@@ -6,8 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "factors/force_term.h"
-#include "factors/model_effects.h"
+#include "factors/catalogue_terms.h"
 #include "model/option_check.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/smoothed_detection.h"
@@ -99,7 +98,7 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
         BuildWardBatchProblem(log, perturbed, ekf.estimates, problem_options);
     if (other->states.size() != problem->states.size() ||
         other->stiffness.size() != problem->stiffness.size() ||
-        other->force_term_values.size() != problem->force_term_values.size()) {
+        other->effects.size() != problem->effects.size()) {
       notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
                        " has another structure");
       return {};
@@ -107,8 +106,6 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     std::copy(problem->states.begin(), problem->states.end(), other->states.begin());
     other->offsets = problem->offsets;
     other->effects = problem->effects;
-    std::copy(problem->force_term_values.begin(), problem->force_term_values.end(),
-              other->force_term_values.begin());
     std::copy(problem->stiffness.begin(), problem->stiffness.end(), other->stiffness.begin());
     const Eigen::VectorXd r = Residuals(other->problem.get());
     if (r.size() != base.size()) {
@@ -204,12 +201,8 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
                            " iterations; its last iterate is reported");
   }
   result.final_cost = result.summary.final_cost;
-  for (int index : problem->active_effects) {
-    result.effects.push_back({ModelEffectNames()[index], problem->effects[index], std::nan("")});
-  }
-  for (size_t j = 0; j < problem->force_terms.size(); ++j) {
-    result.effects.push_back(
-        {problem->force_terms[j]->name, problem->force_term_values[j], std::nan("")});
+  for (size_t j = 0; j < problem->effect_terms.size(); ++j) {
+    result.effects.push_back({problem->effect_terms[j]->name, problem->effects[j], std::nan("")});
   }
   if (options.problem.stiffness_prior_sd > 0.0 && problem->stiffness.empty()) {
     result.notes.push_back(
@@ -238,8 +231,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     states.reserve(n);
     for (size_t k = 0; k < n; ++k) states.push_back(problem->states[k].data());
     std::vector<double*> globals = {problem->offsets.data()};
-    if (!problem->active_effects.empty()) globals.push_back(problem->effects.data());
-    if (!problem->force_terms.empty()) globals.push_back(problem->force_term_values.data());
+    if (!problem->effects.empty()) globals.push_back(problem->effects.data());
     for (double& node : problem->stiffness) globals.push_back(&node);
     const ChainCovariance covariance =
         ComputeChainCovariance(problem->problem.get(), states, globals);
@@ -324,25 +316,18 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const 
 }
 
 std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
-                                                 const ModelConfig& model) {
+                                                 const ModelConfig& model,
+                                                 const EffectTerms* terms) {
   std::vector<WardEstimate> estimates = result.estimates;
-  double theta[kModelEffectCount] = {};
-  std::vector<const ForceTerm*> terms;
-  std::vector<double> phi;
-  for (const EffectEstimate& e : result.effects) {
-    const int index = ModelEffectIndex(e.name);
-    if (index >= 0) theta[index] = e.value;
-    const ForceTerm* term = FindForceTerm(e.name);
-    if (term != nullptr) terms.push_back(term), phi.push_back(e.value);
-  }
-  if (result.effects.empty()) return estimates;
+  const EffectTerms& known = terms != nullptr ? *terms : CatalogueTerms();
   const ward::Params params = ward::MakeParams(log.vehicle, model);
-  for (WardEstimate& e : estimates) {
-    e.x[ward::kAdist] += ExternalEffectsMps2(e.x.data(), params, theta,
-                                             EffectWindowWeightsAt(model, e.t).soft_ground);
-    if (!terms.empty()) {
-      const ForceTermContext context = ForceTermContextAt(log, e.t);
-      e.x[ward::kAdist] += ForceTermsMps2(terms, phi.data(), e.x.data(), context, params);
+  for (const EffectEstimate& effect : result.effects) {
+    const EffectTerm* term = known.Find(effect.name);
+    if (term == nullptr || term->kind != EffectKind::kForce) continue;
+    for (WardEstimate& e : estimates) {
+      e.x[ward::kAdist] +=
+          effect.value *
+          (*term->force)(e.x.data(), EffectContextAt(log, model, *term, e.t), params);
     }
   }
   return estimates;

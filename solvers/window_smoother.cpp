@@ -70,10 +70,9 @@ class Window {
     if (first) source_.AddStatePrior(k, x, &problem_, &added_);
     double* previous = first ? nullptr : states_[states_.size() - 2].data();
     AddStiffnessNodesFor(k);
-    source_.AddStep(
-        k, previous, x,
-        {offsets_.data(), nullptr, nullptr, stiffness_.empty() ? nullptr : stiffness_.data()},
-        &problem_, &added_, &counts_);
+    source_.AddStep(k, previous, x,
+                    {offsets_.data(), nullptr, stiffness_.empty() ? nullptr : stiffness_.data()},
+                    &problem_, &added_, &counts_);
     source_.AddLateBodyVelocity(
         k, [&](size_t j) { return j >= first_ && j < k ? states_[j - first_].data() : nullptr; },
         &problem_, &added_, &counts_);

@@ -41,7 +41,7 @@ DriveLog SteadyDrive() {
 }
 
 PlausibleRange RangeOf(const std::string& effect, const DriveLog& log) {
-  const EffectSignature* s = FindSignature(effect);
+  const EffectSignature* s = EffectRegistry::Catalogue().FindSignature(effect);
   EXPECT_NE(s, nullptr) << effect;
   EXPECT_TRUE(s != nullptr && s->plausible) << effect;
   return s != nullptr && s->plausible ? s->plausible(log) : PlausibleRange{};

@@ -1,20 +1,20 @@
-// Builds the walkthrough's physics example (workbench/examples/extra_rolling_resistance.cpp,
-// compiled into this test: one file, a force shape and its registration) and checks the loop end
-// to end on a log simulated with that force (the simulator's extra_force_n, as a user would
-// simulate a hypothesis): it is a candidate, ranked first and significant with its magnitude;
+// The walkthrough's physics example (workbench/examples/extra_rolling_resistance.h: one file, a
+// force shape and its term), added to a registry as a program would, checked end to end on a log
+// simulated with that force (the simulator's extra_force_n, as a user would simulate a hypothesis):
+// it is a candidate, ranked first and significant with its magnitude;
 // `--with` fits it as a smoother term and the velocity error falls; on the log without the force
 // it is not significant.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "factors/force_term.h"
 #include "factors/smooth_math.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "tests/estimate_check.h"
 #include "workbench/diagnosis.h"
 #include "workbench/effect_signatures.h"
+#include "workbench/examples/extra_rolling_resistance.h"
 
 namespace slipgraph {
 namespace {
@@ -31,31 +31,39 @@ DriveLog HiddenNone(bool with_force) {
   return sim::Simulate(run.scenario, run.seed).log;
 }
 
-TEST(ForceTermExample, RegisteredAsATermAndACandidate) {
-  const ForceTerm* term = FindForceTerm("extra_rolling_resistance");
+EffectRegistry WithTheExample() {
+  EffectRegistry registry = EffectRegistry::Catalogue();
+  registry.Add(ExtraRollingResistance());
+  return registry;
+}
+
+TEST(ForceTermExample, AddedAsATermAndACandidate) {
+  const EffectRegistry registry = WithTheExample();
+  const EffectTerm* term = registry.FindTerm("extra_rolling_resistance");
   ASSERT_NE(term, nullptr);
-  EXPECT_NE(FindSignature("extra_rolling_resistance"), nullptr);
-  EXPECT_TRUE(HasModelTerm("extra_rolling_resistance"));
-  EXPECT_TRUE(CanAddEffect("extra_rolling_resistance"));
-  // A model file may name it.
-  ModelConfig model;
-  model.effects = {"extra_rolling_resistance"};
-  std::string error;
-  EXPECT_TRUE(model.IsValid(&error)) << error;
-  // Its shape: -g sgn~(v), the same on doubles and Jets.
+  EXPECT_NE(registry.FindSignature("extra_rolling_resistance"), nullptr);
+  EXPECT_TRUE(registry.CanAdd("extra_rolling_resistance"));
+  // Only in this registry: the catalogue is unchanged.
+  EXPECT_EQ(EffectRegistry::Catalogue().FindTerm("extra_rolling_resistance"), nullptr);
+  EXPECT_EQ(registry.signatures().size(), EffectRegistry::Catalogue().signatures().size() + 1);
+  // A force term whose shape is -g sgn~(v), the same on doubles and Jets.
+  ASSERT_EQ(term->kind, EffectKind::kForce);
   const ward::Params params;
   double x[ward::kStateSize] = {0.8, 0, 0, 0, 0, 0, 0};
-  const double value = (*term->shape)(x, ForceTermContext(), params);
+  const double value = (*term->force)(x, EffectContext(), params);
   EXPECT_NEAR(value, -params.gravity_mps2 * SignedSaturation(0.8, 20.0), 1e-12);
-  ForceJet jets[ward::kStateSize];
-  for (int i = 0; i < ward::kStateSize; ++i) jets[i] = ForceJet(x[i], i);
-  EXPECT_DOUBLE_EQ((*term->shape)(jets, ForceTermContext(), params).a, value);
+  EffectJet jets[ward::kStateSize];
+  for (int i = 0; i < ward::kStateSize; ++i) jets[i] = EffectJet(x[i], i);
+  EXPECT_DOUBLE_EQ((*term->force)(jets, EffectContext(), params).a, value);
 }
 
 TEST(ForceTermExample, FoundFittedAndQuietWhenAbsent) {
   const DriveLog log = HiddenNone(true);
   const ModelConfig model = DefaultModelConfig(log.vehicle);
-  const Diagnosis before = Diagnose(log, model);
+  const EffectRegistry registry = WithTheExample();
+  DiagnosisOptions options;
+  options.effects = &registry;
+  const Diagnosis before = Diagnose(log, model, options);
   ASSERT_FALSE(before.candidates.empty());
   const CandidateScore& top = before.candidates.front();
   EXPECT_EQ(top.effect, "extra_rolling_resistance");
@@ -64,8 +72,9 @@ TEST(ForceTermExample, FoundFittedAndQuietWhenAbsent) {
   EXPECT_TRUE(testing::EstimateOf(top.magnitude, top.magnitude_sd, kTrueFraction,
                                   0.3 * kTrueFraction, 0.3 * kTrueFraction));
 
-  const ExtendedModel extended = AddEffects(log, model, before, {"extra_rolling_resistance"});
-  const Diagnosis after = Diagnose(extended.log, extended.model);
+  const ExtendedModel extended =
+      AddEffects(log, model, before, {"extra_rolling_resistance"}, registry);
+  const Diagnosis after = Diagnose(extended.log, extended.model, options);
   ASSERT_EQ(after.fitted_effects.size(), 1u);
   EXPECT_EQ(after.fitted_effects[0].name, "extra_rolling_resistance");
   EXPECT_TRUE(testing::EstimateOf(after.fitted_effects[0].value, after.fitted_effects[0].sd,
@@ -77,7 +86,7 @@ TEST(ForceTermExample, FoundFittedAndQuietWhenAbsent) {
     EXPECT_FALSE(c.significant) << c.effect << " " << c.magnitude;
   }
 
-  const Diagnosis quiet = Diagnose(HiddenNone(false), model);
+  const Diagnosis quiet = Diagnose(HiddenNone(false), model, options);
   ASSERT_FALSE(quiet.candidates.empty());  // "none significant" must test some
   for (const CandidateScore& c : quiet.candidates) {
     EXPECT_FALSE(c.significant) << c.effect << " " << c.magnitude;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Dense>
 
+#include "factors/catalogue_terms.h"
 #include "factors/ward_state.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
@@ -39,9 +40,13 @@ ShortLog MakeShortLog() {
 
 ModelConfig WithAllEffects(ModelConfig model) {
   model.effects.clear();
-  for (const char* name : ModelEffectNames()) model.effects.push_back(name);
+  for (const EffectTerm& term : CatalogueTerms().all()) model.effects.push_back(term.name);
   return model;
 }
+
+// Indices in the catalogue's order (the problem's effect block).
+constexpr int kQuadraticDrag = 0, kTurnSlip = 1;
+const int kEffectCount = static_cast<int>(CatalogueTerms().size());
 
 TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
   const ShortLog s = MakeShortLog();
@@ -71,9 +76,9 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
       for (int p = crs.rows[i]; p < crs.rows[i + 1]; ++p) J(i, crs.cols[p]) = crs.values[p];
     }
     const Eigen::VectorXd residuals = Eigen::Map<Eigen::VectorXd>(r.data(), r.size());
-    const int first_effect = crs.num_cols - kModelEffectCount;
+    const int first_effect = crs.num_cols - kEffectCount;
 
-    for (int e = 0; e < kModelEffectCount; ++e) {
+    for (int e = 0; e < kEffectCount; ++e) {
       const bool in = std::find(in_model.begin(), in_model.end(), e) != in_model.end();
       if (in) {
         EXPECT_FALSE(scores[e].tested);
@@ -93,7 +98,7 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
       ASSERT_TRUE(scores[e].tested) << e;
       std::vector<int> free;
       for (int c = 0; c < first_effect; ++c) free.push_back(c);
-      for (int f = 0; f < kModelEffectCount; ++f) {
+      for (int f = 0; f < kEffectCount; ++f) {
         const bool f_in = std::find(in_model.begin(), in_model.end(), f) != in_model.end();
         if (f == e || f_in) free.push_back(first_effect + f);
       }
@@ -151,7 +156,7 @@ TEST(GraphScoreTest, NothingToTestWithEveryEffectInTheModel) {
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(s.log, WithAllEffects(s.model), s.ekf.estimates);
   std::vector<int> all;
-  for (int e = 0; e < kModelEffectCount; ++e) all.push_back(e);
+  for (int e = 0; e < kEffectCount; ++e) all.push_back(e);
   const auto scores = GraphScoreTests(*problem, all);
   for (const GraphScore& g : scores) EXPECT_FALSE(g.tested);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 
+#include "factors/accelerometer_factor.h"
 #include "factors/encoder_factor.h"
 #include "factors/gnss_velocity_factor.h"
 #include "factors/imu_factor.h"

@@ -7,7 +7,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "factors/model_effects.h"
 #include "factors/ward_state.h"
 #include "model/option_check.h"
 #include "solvers/run_concurrently.h"
@@ -101,14 +100,14 @@ std::vector<FailureSegment> FindFailures(const std::vector<Series>& streams,
   return out;
 }
 
-CandidateScore Score(const EffectSignature& signature, const ModelResiduals& m, const DriveLog& log,
-                     const ModelConfig& model) {
+CandidateScore Score(const EffectSignature& signature, const EffectRegistry& registry,
+                     const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
   CandidateScore c;
   c.effect = signature.effect;
   c.test = signature.test;
-  c.added_as = HasModelTerm(signature.effect) ? "smoother term"
-               : signature.correct            ? "measurement correction"
-                                              : "";
+  c.added_as = registry.FindTerm(signature.effect) != nullptr ? "smoother term"
+               : signature.correct                            ? "measurement correction"
+                                                              : "";
   double searched = 1.0, precision = 0.0, weighted = 0.0, model_precision = 0.0;
   for (const SignatureSeries& s : signature.series(m, log, model)) {
     const SlopeFit fit =
@@ -175,15 +174,16 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
 // its statistic becomes the quasi-likelihood ratio and its p-value that statistic's
 // (CandidateScore). candidate_count: the Bonferroni multiplier the score tests had.
 void FitAndCompare(const DriveLog& log, const ModelConfig& model, const SmootherResult& without,
-                   const DiagnosisOptions& options, size_t candidate_count,
-                   std::vector<CandidateScore>* candidates) {
+                   const DiagnosisOptions& options, const EffectRegistry& registry,
+                   size_t candidate_count, std::vector<CandidateScore>* candidates) {
   const size_t to_fit =
       options.fit_candidates < 0 ? candidates->size() : static_cast<size_t>(options.fit_candidates);
   std::vector<CandidateScore*> chosen;
   for (CandidateScore& c : *candidates) {
     if (chosen.size() >= to_fit) break;
-    if (!HasModelTerm(c.effect) || c.dof == 0) continue;
-    if (ActsOnWindows(c.effect) && c.windows.empty()) continue;
+    const EffectTerm* term = registry.FindTerm(c.effect);
+    if (term == nullptr || c.dof == 0) continue;
+    if (term->acts_on_windows && c.windows.empty()) continue;
     chosen.push_back(&c);
   }
   // The fits are independent solves from the same solution, applied in the candidates' order.
@@ -252,9 +252,13 @@ bool DiagnosisOptions::IsValid(std::string* error) const {
          smoother.IsValid(error);
 }
 
-Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
+Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& given) {
   std::string error;
-  if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  if (!given.IsValid(&error)) throw std::invalid_argument(error);
+  const EffectRegistry& registry =
+      given.effects != nullptr ? *given.effects : EffectRegistry::Catalogue();
+  DiagnosisOptions options = given;
+  options.smoother.problem.effect_terms = &registry.terms();
   Diagnosis d;
   d.log = log.directory;
   d.model_effects = model.effects;
@@ -296,7 +300,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   d.failures = FindFailures(series, m, options);
 
   std::vector<const EffectSignature*> candidates;
-  for (const EffectSignature& s : EffectSignatures()) {
+  for (const EffectSignature& s : registry.signatures()) {
     const bool corrected = std::any_of(options.corrected.begin(), options.corrected.end(),
                                        [&](const EffectEstimate& e) { return e.name == s.effect; });
     if (!corrected &&
@@ -312,27 +316,27 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   d.candidates.resize(candidates.size());
   RunConcurrently(candidates.size(), options.threads, [&](size_t i) {
     CandidateScore& c = d.candidates[i];
-    c = Score(*candidates[i], m, log, model);
+    c = Score(*candidates[i], registry, m, log, model);
     c.p_value = std::min(1.0, c.p_value * candidates.size());
     c.significant = c.dof > 0 && c.p_value < options.alpha;
   });
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
-  FitAndCompare(log, model, d.solution, options, candidates.size(), &d.candidates);
+  FitAndCompare(log, model, d.solution, options, registry, candidates.size(), &d.candidates);
   std::stable_sort(d.candidates.begin(), d.candidates.end(), most_evident);
   for (CandidateScore& c : d.candidates) {
     SetDetectable(options.alpha, candidates.size(), &c);
-    const EffectSignature* signature = FindSignature(c.effect);
+    const EffectSignature* signature = registry.FindSignature(c.effect);
     if (c.dof > 0 && signature != nullptr && signature->plausible) {
       c.implausible = ImplausibleBy(signature->plausible(log), c);
     }
   }
   // The model's own effects through their signatures: what is left of each once it is in.
-  for (const EffectSignature& s : EffectSignatures()) {
+  for (const EffectSignature& s : registry.signatures()) {
     const bool in_model =
         std::find(model.effects.begin(), model.effects.end(), s.effect) != model.effects.end() ||
         std::any_of(options.corrected.begin(), options.corrected.end(),
                     [&](const EffectEstimate& e) { return e.name == s.effect; });
-    if (in_model) d.in_model.push_back(Score(s, m, log, model));
+    if (in_model) d.in_model.push_back(Score(s, registry, m, log, model));
   }
   // A force along the path the model lacks, whatever its shape, and what is left of it once the
   // best candidate is taken out; its local stretches are failures too.
@@ -364,7 +368,8 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   if (!log.truth.empty()) {
     // The simulator's disturbance is every external force; with drag, turn slip or sinkage in
     // the model the estimate's a_dist no longer carries them, so they are added back.
-    const std::vector<WardEstimate> estimates = DisturbanceWithEffects(d.solution, log, model);
+    const std::vector<WardEstimate> estimates =
+        DisturbanceWithEffects(d.solution, log, model, &registry.terms());
     const Evaluation e = Evaluate(log, EstimateTable(estimates));
     d.truth.available = true;
     d.truth.velocity_rmse = e.velocity_rmse;
@@ -373,18 +378,14 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   return d;
 }
 
-bool CanAddEffect(const std::string& effect) {
-  const EffectSignature* signature = FindSignature(effect);
-  return HasModelTerm(effect) || (signature != nullptr && signature->correct);
-}
-
 ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
-                         const std::vector<std::string>& effects) {
+                         const std::vector<std::string>& effects, const EffectRegistry& registry) {
   ExtendedModel out{log, model, before.corrected};
   for (const std::string& name : effects) {
-    const EffectSignature* signature = FindSignature(name);
-    if (HasModelTerm(name)) {
-      if (ActsOnWindows(name)) {
+    const EffectSignature* signature = registry.FindSignature(name);
+    const EffectTerm* term = registry.FindTerm(name);
+    if (term != nullptr) {
+      if (term->acts_on_windows) {
         // A term on windows: where the diagnosis found the effect (a patch, a change).
         const auto it = std::find_if(before.candidates.begin(), before.candidates.end(),
                                      [&](const CandidateScore& c) { return c.effect == name; });
@@ -408,8 +409,8 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
       out.corrected.push_back({name, it->magnitude, it->magnitude_sd});
     } else {
       std::string usable;
-      for (const EffectSignature& s : EffectSignatures()) {
-        if (HasModelTerm(s.effect) || s.correct) usable += " " + s.effect;
+      for (const EffectSignature& s : registry.signatures()) {
+        if (registry.CanAdd(s.effect)) usable += " " + s.effect;
       }
       throw std::invalid_argument("effect '" + name +
                                   "' has neither a smoother term nor a measurement correction "

@@ -18,6 +18,7 @@
 #include "model/model_config.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/trust_check.h"
+#include "workbench/effect_signatures.h"
 #include "workbench/model_residuals.h"
 #include "workbench/path_force_test.h"
 #include "workbench/robust_statistics.h"
@@ -54,6 +55,9 @@ struct DiagnosisOptions {
   // (BatchSmootherOptions::initial_trust_region_radius): 2-5 iterations against 7-9 at Ceres's
   // default on the bundled log.
   double fit_initial_trust_region_radius = 1e8;
+  // The effects to test and their smoother terms; null: EffectRegistry::Catalogue(). Not owned.
+  // The smoother runs with its terms (smoother.problem.effect_terms is set from it).
+  const EffectRegistry* effects = nullptr;
 
   bool IsValid(std::string* error) const;
 };
@@ -183,9 +187,8 @@ struct ExtendedModel {
   ModelConfig model;
   std::vector<EffectEstimate> corrected;
 };
-// Whether AddEffects can add `effect` (a smoother term or a measurement correction).
-bool CanAddEffect(const std::string& effect);
 ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Diagnosis& before,
-                         const std::vector<std::string>& effects);
+                         const std::vector<std::string>& effects,
+                         const EffectRegistry& registry = EffectRegistry::Catalogue());
 
 }  // namespace slipgraph

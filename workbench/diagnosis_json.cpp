@@ -95,6 +95,7 @@ nlohmann::json ToJson(const Diagnosis& d) {
 }
 
 nlohmann::json EffectCatalogueJson() {
+  const EffectRegistry& registry = EffectRegistry::Catalogue();
   nlohmann::json effects = nlohmann::json::array();
   for (const EffectInfo& e : EffectCatalogue()) {
     effects.push_back({{"name", e.name},
@@ -103,7 +104,18 @@ nlohmann::json EffectCatalogueJson() {
                        {"physics", e.physics},
                        {"evidence", e.evidence},
                        {"candidate", e.in_model_catalogue},
-                       {"can_add", CanAddEffect(e.name)}});
+                       {"can_add", registry.CanAdd(e.name)}});
+  }
+  // Model terms the simulator has no effect for: candidates it cannot hide in a log.
+  for (const EffectTerm& term : registry.terms().all()) {
+    if (FindEffect(term.name) != nullptr) continue;
+    effects.push_back({{"name", term.name},
+                       {"default_value", nullptr},
+                       {"unit", term.unit},
+                       {"physics", term.physics},
+                       {"evidence", ""},
+                       {"candidate", true},
+                       {"can_add", true}});
   }
   return effects;
 }

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <mutex>
 #include <random>
 
+#include "factors/catalogue_terms.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/measurement_stream.h"
@@ -54,11 +54,14 @@ std::optional<SlopeFit> FitOf(const GraphScore& g) {
   return fit;
 }
 
-SignatureSeries GraphSeries(const ModelResiduals& m, int effect) {
+// The score test of the term named `effect` on the whole graph (its column in the effect block).
+SignatureSeries GraphSeries(const ModelResiduals& m, const std::string& effect) {
   SignatureSeries s;
   s.stream = "graph";
-  s.fit = FitOf(m.graph_scores[effect]);
-  s.graph_column = [effect](const GraphProjector& g) { return g.EffectColumn(effect); };
+  const int index = m.EffectIndex(effect);
+  if (index < 0 || static_cast<size_t>(index) >= m.graph_scores.size()) return s;
+  s.fit = FitOf(m.graph_scores[index]);
+  s.graph_column = [index](const GraphProjector& g) { return g.EffectColumn(index); };
   return s;
 }
 
@@ -269,9 +272,10 @@ std::vector<EffectSignature> MakeSignatures() {
          }
        }});
   list.push_back({"wheel_radius_error",
-                  "score test on the graph of its term's column (factors/model_effects.h)", nullptr,
+                  "score test on the graph of its term's column (factors/catalogue_terms.h)",
+                  nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{GraphSeries(m, kWheelRadiusError)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, "wheel_radius_error")};
                   },
                   nullptr});
   list.push_back(
@@ -307,13 +311,13 @@ std::vector<EffectSignature> MakeSignatures() {
   list.push_back({"slope_slip", "score test on the graph of its term's column (traction x |grade|)",
                   nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{GraphSeries(m, kSlopeSlip)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, "slope_slip")};
                   },
                   nullptr});
   list.push_back({"turn_slip",
                   "score test on the graph of its term's column (-g |yaw rate| sgn(v))", nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{GraphSeries(m, kTurnSlip)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, "turn_slip")};
                   },
                   nullptr});
   list.push_back(
@@ -370,7 +374,7 @@ std::vector<EffectSignature> MakeSignatures() {
                     if (log.vehicle.type != VehicleType::kDiffDriveCastor) {
                       return std::vector<SignatureSeries>{};
                     }
-                    return std::vector{GraphSeries(m, kLoadTransfer)};
+                    return std::vector{GraphSeries(m, "load_transfer")};
                   },
                   nullptr});
   list.push_back(
@@ -415,7 +419,7 @@ std::vector<EffectSignature> MakeSignatures() {
   list.push_back({"quadratic_drag", "score test on the graph of its term's column (-v |v| / m)",
                   nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
-                    return std::vector<SignatureSeries>{GraphSeries(m, kQuadraticDrag)};
+                    return std::vector<SignatureSeries>{GraphSeries(m, "quadratic_drag")};
                   },
                   nullptr});
   list.push_back(
@@ -463,61 +467,61 @@ std::vector<EffectSignature> MakeSignatures() {
 
 namespace {
 
-std::vector<EffectSignature>& Registry() {
-  static std::vector<EffectSignature> signatures = MakeSignatures();
-  return signatures;
-}
-
-// A registered force term's test: its shape at the solution's states, scored on the graph.
-EffectSignature ForceTermSignature(const ForceTerm& term) {
+// A model term's test without a signature of its own: its column on the graph.
+EffectSignature TermSignature(const EffectTerm& term) {
   EffectSignature s;
   s.effect = term.name;
-  s.test = "graph score of its force shape (registered force term, " + term.unit + ")";
+  s.test = "graph score of its model term (" + term.unit + ")";
   const std::string name = term.name;
-  s.series = [name](const ModelResiduals& m, const DriveLog& log, const ModelConfig& model) {
-    SignatureSeries series;
-    series.stream = "graph";
-    const ForceTerm* t = FindForceTerm(name);
-    if (t == nullptr || m.graph == nullptr || !m.graph->ok()) return std::vector{series};
-    const ward::Params params = ward::MakeParams(log.vehicle, model);
-    std::vector<double> h(m.states.size());
-    for (size_t k = 0; k < h.size(); ++k) {
-      h[k] = (*t->shape)(m.states[k].x.data(), ForceTermContextAt(log, m.states[k].t), params);
-    }
-    SetForceFit(m, h, &series);
-    return std::vector{series};
+  s.series = [name](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {
+    return std::vector<SignatureSeries>{GraphSeries(m, name)};
   };
   return s;
 }
 
 }  // namespace
 
-const std::vector<EffectSignature>& EffectSignatures() {
-  // Registered force terms without a signature of their own get the graph test of their shape.
-  // Guarded: two diagnoses may run at once in a user's program.
-  static std::mutex mutex;
-  const std::lock_guard<std::mutex> lock(mutex);
-  for (const ForceTerm& term : ForceTerms()) {
-    if (std::none_of(Registry().begin(), Registry().end(),
-                     [&](const EffectSignature& s) { return s.effect == term.name; })) {
-      Registry().push_back(ForceTermSignature(term));
-    }
-  }
-  return Registry();
+const EffectRegistry& EffectRegistry::Catalogue() {
+  static const EffectRegistry kCatalogue = [] {
+    EffectRegistry r;
+    r.signatures_ = MakeSignatures();
+    for (const EffectTerm& term : CatalogueTerms().all()) r.Add(term);
+    return r;
+  }();
+  return kCatalogue;
 }
 
-bool HasModelTerm(const std::string& effect) {
-  return ModelEffectIndex(effect) >= 0 || FindForceTerm(effect) != nullptr;
+void EffectRegistry::Add(EffectTerm term) {
+  if (FindSignature(term.name) == nullptr) signatures_.push_back(TermSignature(term));
+  terms_.Add(std::move(term));
 }
 
-void RegisterEffectSignature(EffectSignature signature) {
-  for (EffectSignature& s : Registry()) {
+void EffectRegistry::Add(EffectSignature signature) {
+  for (EffectSignature& s : signatures_) {
     if (s.effect == signature.effect) {
       s = std::move(signature);
       return;
     }
   }
-  Registry().push_back(std::move(signature));
+  signatures_.push_back(std::move(signature));
+}
+
+const EffectSignature* EffectRegistry::FindSignature(const std::string& effect) const {
+  for (const EffectSignature& s : signatures_) {
+    if (s.effect == effect) return &s;
+  }
+  return nullptr;
+}
+
+bool EffectRegistry::CanAdd(const std::string& effect) const {
+  const EffectSignature* signature = FindSignature(effect);
+  return FindTerm(effect) != nullptr || (signature != nullptr && signature->correct);
+}
+
+std::string EffectRegistry::Names() const {
+  std::string names;
+  for (const EffectSignature& s : signatures_) names += (names.empty() ? "" : ", ") + s.effect;
+  return names;
 }
 
 namespace {
@@ -563,13 +567,6 @@ std::vector<double> HighPass(const std::vector<double>& t, const std::vector<dou
     out[i] = x[i] - sum / static_cast<double>(end - begin);
   }
   return out;
-}
-
-const EffectSignature* FindSignature(const std::string& effect) {
-  for (const EffectSignature& s : EffectSignatures()) {
-    if (s.effect == effect) return &s;
-  }
-  return nullptr;
 }
 
 HeadingSeries AttitudeAndGyroHeadings(const ModelResiduals& m, const DriveLog& log) {

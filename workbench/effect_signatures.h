@@ -7,10 +7,12 @@
 // whole graph instead (workbench/graph_score_test.h: its term's column, or an external force
 // shape through ModelResiduals::graph): its series carries the ready fit and no (y, g).
 //
-// The built-in signatures are the table in effect_signatures.cpp. A new effect is one file: a
-// signature (and, for a sensor effect, its correction) registered with a static
-// EffectSignatureRegistration; docs/adding-an-effect.md walks through one
-// (workbench/examples/gyro_scale_error.cpp, built and tested by tests/effect_example_test.cpp).
+// The built-in signatures are the table in effect_signatures.cpp; EffectRegistry holds them with
+// the catalogue's model terms (factors/catalogue_terms.h). A program adds its own effect to a
+// registry it builds and hands to Diagnose: a signature (and, for a sensor effect, its
+// correction), or a model term whose graph test comes with it. docs/adding-an-effect.md walks
+// through both (workbench/examples/, tested by tests/effect_example_test.cpp and
+// tests/force_term_example_test.cpp).
 #pragma once
 
 #include <functional>
@@ -20,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "factors/effect_term.h"
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "workbench/model_residuals.h"
@@ -77,22 +80,34 @@ struct EffectSignature {
   std::function<PlausibleRange(const DriveLog& log)> plausible = nullptr;
 };
 
-// Every effect with a signature: the built-ins in catalogue order, then the registered ones
-// (a registered force term without a signature of its own gets the graph test of its shape).
-const std::vector<EffectSignature>& EffectSignatures();
-const EffectSignature* FindSignature(const std::string& effect);
+// The effects a diagnosis knows: the smoother's terms (factors/effect_term.h) and every effect's
+// signature. Built by the caller: Catalogue() and what a program adds to a copy of it.
+class EffectRegistry {
+ public:
+  // The catalogue's terms and the built-in signatures, built once.
+  static const EffectRegistry& Catalogue();
 
-// Whether the smoother has a term for `effect`: a catalogue effect's (factors/model_effects.h)
-// or a registered force term's (factors/force_term.h).
-bool HasModelTerm(const std::string& effect);
+  // A model term: the smoother's, with the graph test of its column as its signature unless one
+  // of its name is in the registry (or added later). A term of the same name is replaced.
+  void Add(EffectTerm term);
+  // A signature: an effect without a model term (a sensor effect with its correction), or a
+  // second opinion replacing the signature of the same name.
+  void Add(EffectSignature signature);
 
-// Adds a signature (an effect the catalogue does not have, or a second opinion replacing a
-// built-in of the same name).
-void RegisterEffectSignature(EffectSignature signature);
-struct EffectSignatureRegistration {
-  explicit EffectSignatureRegistration(EffectSignature signature) {
-    RegisterEffectSignature(std::move(signature));
-  }
+  const EffectTerms& terms() const { return terms_; }
+  // Every signature, in the order they were added (the catalogue's first).
+  const std::vector<EffectSignature>& signatures() const { return signatures_; }
+  const EffectSignature* FindSignature(const std::string& effect) const;
+  // nullptr when the smoother has no term for `effect`.
+  const EffectTerm* FindTerm(const std::string& effect) const { return terms_.Find(effect); }
+  // Whether AddEffects can add `effect`: a smoother term or a measurement correction.
+  bool CanAdd(const std::string& effect) const;
+  // The names a diagnosis can test, comma-separated.
+  std::string Names() const;
+
+ private:
+  EffectTerms terms_;
+  std::vector<EffectSignature> signatures_;
 };
 
 // What bounds a magnitude's plausibility on a log: the robot's weight and how fast, how sharply

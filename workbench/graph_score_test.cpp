@@ -17,16 +17,14 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
     : in_model_(in_model) {
   ceres::Problem& p = *problem.problem;
   states_ = problem.states.size();
-  if (states_ == 0 || !p.HasParameterBlock(problem.effects.data())) return;
+  effect_count_ = problem.effects.size();
+  if (states_ == 0 || effect_count_ == 0) return;
 
-  // Columns: the states, the offsets, the effects, the force terms (in that order).
+  // Columns: the states, the offsets, the effect terms (in that order).
   ceres::Problem::EvaluateOptions options;
   for (auto& x : problem.states) options.parameter_blocks.push_back(x.data());
   options.parameter_blocks.push_back(problem.offsets.data());
   options.parameter_blocks.push_back(problem.effects.data());
-  // Registered force terms the model has (factors/force_term.h): nuisance like the effects in it.
-  const int force_terms = static_cast<int>(problem.force_terms.size());
-  if (force_terms > 0) options.parameter_blocks.push_back(problem.force_term_values.data());
   effect_column_ = static_cast<int>(ward::kStateSize * states_ + 2);
   // Rows: every residual block, remembering its state (global priors count with the first) and
   // whether a force term enters it.
@@ -58,9 +56,6 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   int c = 0;
   for (; c < effect_column_; ++c) select.emplace_back(c, c, 1.0);
   for (int e : in_model) select.emplace_back(effect_column_ + e, c++, 1.0);
-  for (int j = 0; j < force_terms; ++j) {
-    select.emplace_back(effect_column_ + kModelEffectCount + j, c++, 1.0);
-  }
   Sparse S(J_.cols(), c);
   S.setFromTriplets(select.begin(), select.end());
   N_ = J_ * S;
@@ -116,9 +111,9 @@ Eigen::VectorXd GraphProjector::EffectColumn(int effect) const {
   return t;
 }
 
-std::array<GraphScore, kModelEffectCount> GraphProjector::EffectScores() const {
-  std::array<GraphScore, kModelEffectCount> out{};
-  for (int e = 0; e < kModelEffectCount; ++e) {
+std::vector<GraphScore> GraphProjector::EffectScores() const {
+  std::vector<GraphScore> out(effect_count_);
+  for (int e = 0; e < static_cast<int>(effect_count_); ++e) {
     if (std::find(in_model_.begin(), in_model_.end(), e) != in_model_.end()) continue;
     out[e] = Test(EffectColumn(e));
   }
@@ -159,8 +154,7 @@ ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<doubl
   return Project(T);
 }
 
-std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,
-                                                          const std::vector<int>& in_model) {
+std::vector<GraphScore> GraphScoreTests(WardProblem& problem, const std::vector<int>& in_model) {
   return GraphProjector(problem, in_model).EffectScores();
 }
 

@@ -19,7 +19,7 @@
 // the Newey-West long-run variance of c_k (Boos 1992; Wooldridge's robust LM test). The
 // workbench uses the larger of the two.
 //
-// The tested term is a model effect's column (factors/model_effects.h) or any external force
+// The tested term is an effect term's column (factors/effect_term.h) or any external force
 // shape h_k (m/s^2 per unit magnitude at state k), which enters the graph where the disturbance
 // does in the model's own equations (the accelerometer and dynamics factors, not the
 // disturbance's priors). A scan over many shapes (a patch of path) uses the projected basis: the
@@ -29,11 +29,9 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-#include <array>
 #include <memory>
 #include <vector>
 
-#include "factors/model_effects.h"
 #include "problems/ward_batch_problem.h"
 
 namespace slipgraph {
@@ -56,18 +54,19 @@ struct ProjectedBasis {
 
 class GraphProjector {
  public:
-  // `problem` holds every model effect as a parameter block (no manifold) and its parameter
-  // blocks are set to the solution; `in_model` lists the effects the user's model has (nuisance,
-  // not tested), to which the registered force terms the problem carries are added. Throws
-  // std::runtime_error when Ceres cannot evaluate the problem.
+  // `problem` holds every effect term to test in its effect block and its parameter blocks are
+  // set to the solution; `in_model` lists the indices (in WardProblem::effect_terms) of the terms
+  // the user's model has (nuisance, not tested). Throws std::runtime_error when Ceres cannot
+  // evaluate the problem.
   GraphProjector(WardProblem& problem, const std::vector<int>& in_model);
 
   bool ok() const { return ok_; }
   size_t states() const { return states_; }
   Eigen::Index rows() const { return J_.rows(); }  // the graph's residual rows (column length)
 
-  // Each model effect not in the model, tested alone (the other candidates held at 0).
-  std::array<GraphScore, kModelEffectCount> EffectScores() const;
+  // Each effect term not in the model, tested alone (the other candidates held at 0), in the
+  // order of WardProblem::effect_terms.
+  std::vector<GraphScore> EffectScores() const;
   // An external force of shape h (one value per state, m/s^2 per unit magnitude).
   GraphScore TestForce(const std::vector<double>& h) const;
   // A basis of external force shapes (each one value per state), projected.
@@ -94,11 +93,11 @@ class GraphProjector {
   Sparse J_, N_;
   Eigen::VectorXd r_perp_;
   int effect_column_ = 0;
+  size_t effect_count_ = 0;
   Eigen::SimplicialLDLT<Sparse> solver_;
 };
 
 // Convenience: GraphProjector(problem, in_model).EffectScores().
-std::array<GraphScore, kModelEffectCount> GraphScoreTests(WardProblem& problem,
-                                                          const std::vector<int>& in_model);
+std::vector<GraphScore> GraphScoreTests(WardProblem& problem, const std::vector<int>& in_model);
 
 }  // namespace slipgraph

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "factors/catalogue_terms.h"
 #include "io/measurement_stream.h"
 #include "problems/ward_batch_problem.h"
 
@@ -15,6 +16,13 @@ const StreamResiduals* ModelResiduals::Find(const std::string& name) const {
     if (s.name == name) return &s;
   }
   return nullptr;
+}
+
+int ModelResiduals::EffectIndex(const std::string& effect) const {
+  for (size_t i = 0; i < effect_names.size(); ++i) {
+    if (effect_names[i] == effect) return static_cast<int>(i);
+  }
+  return -1;
 }
 
 namespace {
@@ -57,12 +65,11 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
                                       const BatchSmootherOptions& options) {
   // The same graph with every effect's term present (held at the solution's magnitudes), so the
   // accelerometer factors give the derivatives with respect to each.
+  const EffectTerms& terms =
+      options.problem.effect_terms != nullptr ? *options.problem.effect_terms : CatalogueTerms();
   ModelConfig all = model;
   all.effects.clear();
-  for (const char* name : ModelEffectNames()) all.effects.push_back(name);
-  for (const std::string& name : model.effects) {
-    if (FindForceTerm(name) != nullptr) all.effects.push_back(name);
-  }
+  for (const EffectTerm& term : terms.all()) all.effects.push_back(term.name);
   const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, all, solution.ekf.estimates, problem_options);
@@ -77,12 +84,10 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
   out.accel_offset = solution.estimates.back().accel_offset_mps2;
   out.gyro_offset = solution.estimates.back().gyro_offset_radps;
   problem->offsets = {out.accel_offset, out.gyro_offset};
+  for (const EffectTerm* term : problem->effect_terms) out.effect_names.push_back(term->name);
   for (const EffectEstimate& e : solution.effects) {
-    const int index = ModelEffectIndex(e.name);
+    const int index = out.EffectIndex(e.name);
     if (index >= 0) problem->effects[index] = e.value;
-    for (size_t j = 0; j < problem->force_terms.size(); ++j) {
-      if (problem->force_terms[j]->name == e.name) problem->force_term_values[j] = e.value;
-    }
   }
   out.effects = problem->effects;
   for (const GpsSample& g : log.gps) out.gnss_times.push_back(g.t);
@@ -182,7 +187,7 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
   out.streams = {accel, gyro, left, right, gnss};
   std::vector<int> in_model;
   for (const std::string& name : model.effects) {
-    if (ModelEffectIndex(name) >= 0) in_model.push_back(ModelEffectIndex(name));
+    if (out.EffectIndex(name) >= 0) in_model.push_back(out.EffectIndex(name));
   }
   auto graph = std::make_shared<GraphProjector>(*problem, in_model);
   out.graph_scores = graph->EffectScores();

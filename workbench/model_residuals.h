@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "factors/model_effects.h"
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "solvers/batch_smoother.h"
@@ -52,14 +51,18 @@ struct ModelResiduals {
   std::vector<StreamResiduals> streams;
   std::vector<StateContext> states;
   double accel_offset = 0.0, gyro_offset = 0.0;
-  std::array<double, kModelEffectCount> effects{};  // the solution's magnitudes (0 when off)
-  std::vector<double> gnss_times;                   // the GNSS samples' times, for averaging
-  // Each model effect's score test on the whole graph (untested for those in the model), and the
-  // graph's projector for signatures that test other force shapes (null if it could not be
-  // built).
-  std::array<GraphScore, kModelEffectCount> graph_scores{};
+  // Every effect term (the smoother's options' terms, factors/effect_term.h): its name, the
+  // solution's magnitude (0 when off), and its score test on the whole graph (untested for those
+  // in the model); and the graph's projector for signatures that test other force shapes (null
+  // if it could not be built).
+  std::vector<std::string> effect_names;
+  std::vector<double> effects;
+  std::vector<GraphScore> graph_scores;
+  std::vector<double> gnss_times;  // the GNSS samples' times, for averaging
   std::shared_ptr<const GraphProjector> graph;
   const StreamResiduals* Find(const std::string& name) const;
+  // The index of the term named `effect` in effect_names, or -1.
+  int EffectIndex(const std::string& effect) const;
 };
 
 // Distance driven along the path (m) at each state: the integral of |v_bx| over the states.

@@ -1,6 +1,7 @@
-// An effect the catalogue does not have, added in one file: a yaw gyro whose scale factor is off,
-// g_z = (1 + s) yaw_rate + offset + bias. The walkthrough is docs/adding-an-effect.md; the test
-// that builds and checks this file is tests/effect_example_test.cpp.
+// An effect the catalogue does not have, added by a program in one file: a yaw gyro whose scale
+// factor is off, g_z = (1 + s) yaw_rate + offset + bias. A program adds it to the registry it
+// hands to Diagnose (`registry.Add(GyroScaleError())`); the walkthrough is
+// docs/adding-an-effect.md, the test that checks it tests/effect_example_test.cpp.
 //
 // Evidence: the gyro's integrated heading grows (1 + s) times as fast as the true heading, so
 // against the attitude stream's heading (which the gyro does not feed here)
@@ -11,13 +12,16 @@
 // estimate make the difference walk slowly, so both sides are high-passed at 20 s (turns take a
 // few seconds; a 5 s window would cut the signal with the walk). The correction divides the
 // gyro by (1 + s).
+#pragma once
+
+#include <vector>
+
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
-namespace {
 
-std::vector<SignatureSeries> GyroScaleSeries(const ModelResiduals& m, const DriveLog& log,
-                                             const ModelConfig&) {
+inline std::vector<SignatureSeries> GyroScaleSeries(const ModelResiduals& m, const DriveLog& log,
+                                                    const ModelConfig&) {
   SignatureSeries s;
   s.stream = "attitude_yaw";
   const HeadingSeries h = AttitudeAndGyroHeadings(m, log);
@@ -31,17 +35,19 @@ std::vector<SignatureSeries> GyroScaleSeries(const ModelResiduals& m, const Driv
   return {s};
 }
 
-void UndoGyroScale(double scale_error, DriveLog* log) {
+inline void UndoGyroScale(double scale_error, DriveLog* log) {
   for (ImuSample& imu : log->imu) imu.gz /= 1.0 + scale_error;
 }
 
-const EffectSignatureRegistration kGyroScaleError({
-    "gyro_scale_error",
-    "attitude heading minus integrated gyro against minus the integrated gyro, high-passed at 20 s",
-    nullptr,  // no negligible magnitude: any scale error is an error
-    GyroScaleSeries,
-    UndoGyroScale,
-});
+inline EffectSignature GyroScaleError() {
+  return {
+      "gyro_scale_error",
+      "attitude heading minus integrated gyro against minus the integrated gyro, high-passed at 20 "
+      "s",
+      nullptr,  // no negligible magnitude: any scale error is an error
+      GyroScaleSeries,
+      UndoGyroScale,
+  };
+}
 
-}  // namespace
 }  // namespace slipgraph

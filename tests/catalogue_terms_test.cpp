@@ -1,7 +1,7 @@
-// Physical effects as model terms (factors/model_effects.h) and their accelerometer factor: with
-// every magnitude 0 it is the plain accelerometer factor; each term by hand; Jacobians in the
+// The catalogue's effects as model terms (factors/catalogue_terms.h) in the accelerometer factor:
+// with every magnitude 0 it is the plain accelerometer factor; each term by hand; Jacobians in the
 // state, the offsets and the magnitudes; and the batch smoother estimating a switched-on effect.
-#include "factors/model_effects.h"
+#include "factors/catalogue_terms.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
-#include "factors/effect_accelerometer_factor.h"
-#include "factors/imu_factor.h"
+#include "factors/accelerometer_factor.h"
 #include "io/log_reader.h"
+#include "model/effect_catalogue.h"
 #include "solvers/batch_smoother.h"
 #include "tests/estimate_check.h"
 #include "tests/factor_check.h"
@@ -27,38 +27,67 @@ const double kSlipping[kStateSize] = {0.6, 0.02, -1.5, 3.0, 3.4, 0.2, 0.003};
 const double kOffsets[2] = {0.1, -0.01};
 const Attitude<double> kOnASlope{0.02, -0.1};  // nose up 0.1 rad: uphill
 
+// The catalogue's terms in their order: drag, turn slip, slope slip, wheel radius, sinkage,
+// terrain change, load transfer.
+constexpr int kTerms = 7;
+enum { kDrag = 0, kTurn, kSlope, kRadius, kSinkage, kTerrain, kTransfer };
+
+// The accelerometer factor with every catalogue term; soft / changed: the sample inside the
+// sinkage and terrain-change windows.
+ceres::CostFunction* Factor(double measured, bool soft = false, bool changed = false) {
+  AccelerometerUnknowns u;
+  for (const EffectTerm& term : CatalogueTerms().all()) {
+    u.effects.push_back(&term);
+    u.windows.push_back((term.name == "sinkage_resistance" && soft) ||
+                                (term.name == "terrain_change" && changed)
+                            ? 1.0
+                            : 0.0);
+  }
+  return AccelerometerFactor::Create(kParams, kOnASlope, measured, 0.25, u);
+}
+
 double Residual(const ceres::CostFunction& f, const std::vector<const double*>& blocks) {
   return testing::Residuals(f, blocks)[0];
 }
 
-TEST(ModelEffects, NamesMatchTheCatalogue) {
-  EXPECT_EQ(ModelEffectIndex("quadratic_drag"), kQuadraticDrag);
-  EXPECT_EQ(ModelEffectIndex("wheel_radius_error"), kWheelRadiusError);
-  EXPECT_EQ(ModelEffectIndex("clock_offset"), -1);  // in the catalogue, no model term yet
+TEST(CatalogueTerms, AreTheSimulatorsCandidatesInOrder) {
+  const std::vector<std::string> names = {
+      "quadratic_drag",     "turn_slip",      "slope_slip",   "wheel_radius_error",
+      "sinkage_resistance", "terrain_change", "load_transfer"};
+  ASSERT_EQ(CatalogueTerms().size(), names.size());
+  for (size_t i = 0; i < names.size(); ++i) {
+    const EffectTerm& term = CatalogueTerms().all()[i];
+    EXPECT_EQ(term.name, names[i]);
+    const EffectInfo* info = FindEffect(term.name);
+    ASSERT_NE(info, nullptr) << term.name;
+    EXPECT_TRUE(info->in_model_catalogue);
+    EXPECT_GT(term.prior_sd, 0.0);
+    EXPECT_EQ(term.acts_on_windows,
+              term.name == "sinkage_resistance" || term.name == "terrain_change");
+  }
+  EXPECT_EQ(CatalogueTerms().Find("clock_offset"), nullptr);  // a sensor effect: no model term
 }
 
-TEST(EffectAccelerometerFactor, WithNoEffectIsThePlainAccelerometerFactor) {
+TEST(CatalogueTerms, AtZeroTheyAreThePlainAccelerometerFactor) {
   const std::unique_ptr<ceres::CostFunction> plain(
       AccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
-  const std::unique_ptr<ceres::CostFunction> with(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
-  const double none[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.0};
+  const std::unique_ptr<ceres::CostFunction> with(Factor(0.3, true, true));
+  const double none[kTerms] = {};
   EXPECT_DOUBLE_EQ(Residual(*with, {kSlipping, kOffsets, none}),
                    Residual(*plain, {kSlipping, kOffsets}));
 }
 
-TEST(EffectAccelerometerFactor, EachTermByHand) {
-  const std::unique_ptr<ceres::CostFunction> f(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25));
-  const double none[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.0};
+TEST(CatalogueTerms, EachTermByHand) {
+  const std::unique_ptr<ceres::CostFunction> f(Factor(0.3));
+  const double none[kTerms] = {};
   const double base = Residual(*f, {kSlipping, kOffsets, none});
   const double v = kSlipping[kVbx], yaw_rate = kSlipping[kYawRate];
   // Drag 40 N s^2/m^2 lowers the predicted acceleration by 40 v|v| / m: the residual rises.
-  const double drag[kModelEffectCount] = {40.0, 0.0, 0.0, 0.0, 0.0};
+  const double drag[kTerms] = {40.0};
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, drag}) - base,
               40.0 * v * std::abs(v) / kParams.mass_kg / 0.25, 1e-9);
   // Turn slip 0.15 s/rad: 0.15 g |yaw rate| times the saturated sign of v, 1 - exp(-20 v).
-  const double turn[kModelEffectCount] = {0.0, 0.15, 0.0, 0.0, 0.0};
+  const double turn[kTerms] = {0.0, 0.15};
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, turn}) - base,
               0.15 * kParams.gravity_mps2 * std::abs(yaw_rate) *
                   (1.0 - std::exp(-kModelEffectSignRate * v)) / 0.25,
@@ -66,10 +95,10 @@ TEST(EffectAccelerometerFactor, EachTermByHand) {
   // Slope slip 4/rad on a 0.1 rad slope: the traction shrinks by 40 %.
   const TireForces<double> forces = ComputeTireForces(kSlipping, kOnASlope, kParams);
   const double traction = (forces.traction_left_n + forces.traction_right_n) / kParams.mass_kg;
-  const double slope[kModelEffectCount] = {0.0, 0.0, 4.0, 0.0, 0.0};
+  const double slope[kTerms] = {0.0, 0.0, 4.0};
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, slope}) - base, 4.0 * 0.1 * traction / 0.25, 1e-9);
   // Wheel radius 5 % larger: the same as wheel speeds 5 % higher.
-  const double radius[kModelEffectCount] = {0.0, 0.0, 0.0, 0.05, 0.0};
+  const double radius[kTerms] = {0.0, 0.0, 0.0, 0.05};
   double faster[kStateSize];
   std::copy(kSlipping, kSlipping + kStateSize, faster);
   faster[kOmegaLeft] *= 1.05;
@@ -77,23 +106,17 @@ TEST(EffectAccelerometerFactor, EachTermByHand) {
   EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, radius}), Residual(*f, {faster, kOffsets, none}),
               1e-12);
   // Sinkage 0.08 of the weight, only on soft ground (the sample inside an effect window).
-  const double sinkage[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.08};
+  const double sinkage[kTerms] = {0.0, 0.0, 0.0, 0.0, 0.08};
   EXPECT_DOUBLE_EQ(Residual(*f, {kSlipping, kOffsets, sinkage}), base);
-  EffectWindowWeights on_soft_ground;
-  on_soft_ground.soft_ground = 1.0;
-  const std::unique_ptr<ceres::CostFunction> soft(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, on_soft_ground));
+  const std::unique_ptr<ceres::CostFunction> soft(Factor(0.3, true, false));
   EXPECT_NEAR(Residual(*soft, {kSlipping, kOffsets, sinkage}) - base,
               0.08 * kParams.gravity_mps2 * (1.0 - std::exp(-kModelEffectSignRate * v)) / 0.25,
               1e-9);
   // Terrain change -0.4 (a traction scale of 0.6), only on the changed terrain: the traction
   // shrinks by 40 %, and not on soft ground alone.
-  const double change[kModelEffectCount] = {0.0, 0.0, 0.0, 0.0, 0.0, -0.4};
+  const double change[kTerms] = {0.0, 0.0, 0.0, 0.0, 0.0, -0.4};
   EXPECT_DOUBLE_EQ(Residual(*soft, {kSlipping, kOffsets, change}), base);
-  EffectWindowWeights on_changed_terrain;
-  on_changed_terrain.changed_terrain = 1.0;
-  const std::unique_ptr<ceres::CostFunction> changed(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, on_changed_terrain));
+  const std::unique_ptr<ceres::CostFunction> changed(Factor(0.3, false, true));
   EXPECT_NEAR(Residual(*changed, {kSlipping, kOffsets, change}) - base, 0.4 * traction / 0.25,
               1e-9);
 }
@@ -101,13 +124,11 @@ TEST(EffectAccelerometerFactor, EachTermByHand) {
 // Load transfer 2 (twice the simulator's physics): accelerating at a (the model's, eq. 10), each
 // driven front wheel gives 2 m a h / (2 L) of its load to the castors, and its traction shrinks
 // in proportion.
-TEST(EffectAccelerometerFactor, LoadTransferUnloadsTheDrivenWheels) {
-  const double measured = 0.3;
-  const std::unique_ptr<ceres::CostFunction> f(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, measured, 0.25));
-  const double none[kModelEffectCount] = {};
-  double transfer[kModelEffectCount] = {};
-  transfer[kLoadTransfer] = 2.0;
+TEST(CatalogueTerms, LoadTransferUnloadsTheDrivenWheels) {
+  const std::unique_ptr<ceres::CostFunction> f(Factor(0.3));
+  const double none[kTerms] = {};
+  double transfer[kTerms] = {};
+  transfer[kTransfer] = 2.0;
   const double base = Residual(*f, {kSlipping, kOffsets, none});
   const ward::AttitudeLoads<double> loads = ward::ComputeAttitudeLoads(kOnASlope, kParams);
   const ward::TireForces<double> forces = ward::ComputeTireForces(kSlipping, loads, kParams);
@@ -122,10 +143,9 @@ TEST(EffectAccelerometerFactor, LoadTransferUnloadsTheDrivenWheels) {
   EXPECT_GT(std::abs(lost), 1.0);  // newtons: the term is not negligible here
 }
 
-TEST(EffectAccelerometerFactor, Jacobians) {
-  const std::unique_ptr<ceres::CostFunction> f(
-      EffectAccelerometerFactor::Create(kParams, kOnASlope, 0.3, 0.25, {1.0, 1.0}));
-  const double theta[kModelEffectCount] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4, 2.0};
+TEST(CatalogueTerms, Jacobians) {
+  const std::unique_ptr<ceres::CostFunction> f(Factor(0.3, true, true));
+  const double theta[kTerms] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4, 2.0};
   // As for the plain factor, the smoothed laws' kinks bound the finite differences (1e-5).
   testing::ExpectJacobiansMatchNumeric(*f, {kSlipping, kOffsets, theta}, 1e-5);
 }

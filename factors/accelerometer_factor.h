@@ -1,0 +1,203 @@
+// The accelerometer factor, Ward & Iagnemma eq. (11), row 1:
+//
+//   r = (a_x - (f_tire(x') + c_ax + b_ax + a_dist + sum_e a_e(theta_e, x, c))) / sd_a
+//
+// Parameter blocks: x_k (7) and the IMU offsets [c_ax, c_gz] (2), then, as a problem asks for
+// them (AccelerometerUnknowns):
+//   - law: the tire and rolling coefficients (kLawCoefficientCount) and the two sides' radius
+//     errors (2), f_tire evaluated with them (factors/tire_law_coefficients.h; identify);
+//   - stiffness: the law's slip stiffness as a slowly varying unknown theta(t), linear between
+//     two nodes theta_a, theta_b (1 each): each driven wheel's traction is the law at the
+//     relative velocity scaled by 1 + theta, which scales the law's slope at small slip
+//     (C1 At + C2, where a robot drives) and leaves its plateau (C1, which a hold-back reaches);
+//   - effects: the magnitudes of the model's effect terms (factors/effect_term.h), one block.
+// The law and the stiffness exclude each other. Inputs: the attitude at the sample (REP-103 roll
+// and pitch, rad); sd_a includes the tire law's uncertainty (ModelConfig::tire_uncertainty) when
+// the accelerometer also drives the velocity. The balance without effects is differentiated
+// automatically; the effect terms by Jets of the state and every magnitude
+// (tests/accelerometer_factor_test.cpp checks every block's Jacobian numerically).
+#pragma once
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/cost_function.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "factors/effect_term.h"
+#include "factors/imu_factor.h"
+#include "factors/tire_law_coefficients.h"
+#include "factors/traction.h"
+
+namespace slipgraph {
+
+// The balance f_tire with the slip stiffness scaled by `scale` (1: the law's).
+template <typename T, typename S>
+inline T TireBalanceWithStiffness(const T* x, const ward::AttitudeLoads<double>& loads,
+                                  const ward::Params& p, const S& scale) {
+  const ward::TireForces<T> forces = ward::ComputeTireForces(x, loads, p);
+  const T scaled = TractionForceN(loads.driven_left_n, scale * forces.v_rel_left_mps, p.tire) +
+                   TractionForceN(loads.driven_right_n, scale * forces.v_rel_right_mps, p.tire);
+  return forces.f_tire_mps2 +
+         (scaled - forces.traction_left_n - forces.traction_right_n) / p.mass_kg;
+}
+
+// What the factor takes as unknowns besides the state and the offsets.
+struct AccelerometerUnknowns {
+  bool law = false;
+  bool stiffness = false;
+  double stiffness_share = 0.0;  // u: theta_b's share of the sample's theta
+  // The effect terms, in the order of their magnitudes' block, and the sample's time and each
+  // term's window weight (EffectContext::window; empty: 0 for all).
+  std::vector<const EffectTerm*> effects;
+  std::vector<double> windows;
+  double t_s = 0.0;
+};
+
+namespace accelerometer_detail {
+
+struct Plain {
+  AccelerometerReading reading;
+  template <typename T>
+  bool operator()(const T* x, const T* offsets, T* residual) const {
+    const ward::TireForces<T> forces = ward::ComputeTireForces(x, reading.loads, reading.params);
+    residual[0] = reading.Residual(forces.f_tire_mps2, x, offsets);
+    return true;
+  }
+};
+
+struct Law {
+  AccelerometerReading reading;
+  template <typename T>
+  bool operator()(const T* x, const T* offsets, const T* law, const T* radius_error,
+                  T* residual) const {
+    const ward::TireForces<T> forces =
+        TireForcesWithLaw(x, reading.loads, reading.params, law, radius_error);
+    residual[0] = reading.Residual(forces.f_tire_mps2, x, offsets);
+    return true;
+  }
+};
+
+struct Stiffness {
+  AccelerometerReading reading;
+  double share_b;
+  template <typename T>
+  bool operator()(const T* x, const T* offsets, const T* theta_a, const T* theta_b,
+                  T* residual) const {
+    const T scale = T(1.0) + (1.0 - share_b) * theta_a[0] + share_b * theta_b[0];
+    residual[0] = reading.Residual(
+        TireBalanceWithStiffness(x, reading.loads, reading.params, scale), x, offsets);
+    return true;
+  }
+};
+
+}  // namespace accelerometer_detail
+
+class AccelerometerFactor final : public ceres::CostFunction {
+ public:
+  // Without effect terms the factor is the balance's automatic differentiation alone.
+  static ceres::CostFunction* Create(const ward::Params& params,
+                                     const ward::Attitude<double>& attitude, double accel_x_mps2,
+                                     double sd_mps2, const AccelerometerUnknowns& unknowns = {}) {
+    ceres::CostFunction* base = CreateBalance(params, attitude, accel_x_mps2, sd_mps2, unknowns);
+    if (unknowns.effects.empty()) return base;
+    return new AccelerometerFactor(base, params, attitude, accel_x_mps2, sd_mps2, unknowns);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    if (!base_->Evaluate(parameters, residuals, jacobians)) return false;
+    const double* x = parameters[0];
+    const double* theta = parameters[effect_block_];
+    double* jacobian_x = jacobians != nullptr ? jacobians[0] : nullptr;
+    double* jacobian_theta = jacobians != nullptr ? jacobians[effect_block_] : nullptr;
+    if (jacobian_x == nullptr && jacobian_theta == nullptr) {
+      residuals[0] -=
+          sqrt_information_ * EffectsAcceleration(effects_, theta, x, contexts_, params_);
+      return true;
+    }
+    if (effects_.size() <= static_cast<size_t>(kNarrowEffectTerms)) {
+      AddEffects<EffectJet>(x, theta, residuals, jacobian_x, jacobian_theta);
+    } else {
+      AddEffects<WideEffectJet>(x, theta, residuals, jacobian_x, jacobian_theta);
+    }
+    return true;
+  }
+
+ private:
+  // The effects' part of the residual and its Jacobians, by Jets J of the state and every
+  // magnitude.
+  template <typename J>
+  void AddEffects(const double* x, const double* theta, double* residuals, double* jacobian_x,
+                  double* jacobian_theta) const {
+    const int n = static_cast<int>(effects_.size());
+    J x_jet[ward::kStateSize];
+    for (int i = 0; i < ward::kStateSize; ++i) x_jet[i] = J(x[i], i);
+    J theta_jet[kMaxEffectTerms];
+    for (int j = 0; j < n; ++j) theta_jet[j] = J(theta[j], ward::kStateSize + j);
+    const J a = EffectsAcceleration(effects_, theta_jet, x_jet, contexts_, params_);
+    residuals[0] -= sqrt_information_ * a.a;
+    if (jacobian_x != nullptr) {
+      for (int i = 0; i < ward::kStateSize; ++i) jacobian_x[i] -= sqrt_information_ * a.v[i];
+    }
+    if (jacobian_theta != nullptr) {
+      for (int j = 0; j < n; ++j) {
+        jacobian_theta[j] = -sqrt_information_ * a.v[ward::kStateSize + j];
+      }
+    }
+  }
+
+  AccelerometerFactor(ceres::CostFunction* base, const ward::Params& params,
+                      const ward::Attitude<double>& attitude, double accel_x_mps2, double sd_mps2,
+                      const AccelerometerUnknowns& unknowns)
+      : base_(base), params_(params), sqrt_information_(1.0 / sd_mps2), effects_(unknowns.effects) {
+    if (effects_.size() > static_cast<size_t>(kMaxEffectTerms)) {
+      throw std::invalid_argument("accelerometer factor: " + std::to_string(effects_.size()) +
+                                  " effect terms, at most " + std::to_string(kMaxEffectTerms));
+    }
+    EffectContext context;
+    context.t_s = unknowns.t_s;
+    context.attitude = attitude;
+    context.loads = ward::ComputeAttitudeLoads(attitude, params);
+    context.accel_x_mps2 = accel_x_mps2;
+    contexts_.assign(effects_.size(), context);
+    for (size_t j = 0; j < effects_.size() && j < unknowns.windows.size(); ++j) {
+      contexts_[j].window = unknowns.windows[j];
+    }
+    set_num_residuals(1);
+    *mutable_parameter_block_sizes() = base->parameter_block_sizes();
+    effect_block_ = static_cast<int>(parameter_block_sizes().size());
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(effects_.size()));
+  }
+
+  static ceres::CostFunction* CreateBalance(const ward::Params& params,
+                                            const ward::Attitude<double>& attitude,
+                                            double accel_x_mps2, double sd_mps2,
+                                            const AccelerometerUnknowns& unknowns) {
+    using namespace accelerometer_detail;
+    const AccelerometerReading reading(params, attitude, accel_x_mps2, sd_mps2);
+    if (unknowns.law && unknowns.stiffness) {
+      throw std::invalid_argument("accelerometer factor: the law and the stiffness walk together");
+    }
+    if (unknowns.law) {
+      return new ceres::AutoDiffCostFunction<Law, 1, ward::kStateSize, 2, kLawCoefficientCount, 2>(
+          new Law{reading});
+    }
+    if (unknowns.stiffness) {
+      return new ceres::AutoDiffCostFunction<Stiffness, 1, ward::kStateSize, 2, 1, 1>(
+          new Stiffness{reading, unknowns.stiffness_share});
+    }
+    return new ceres::AutoDiffCostFunction<Plain, 1, ward::kStateSize, 2>(new Plain{reading});
+  }
+
+  std::unique_ptr<ceres::CostFunction> base_;
+  ward::Params params_;
+  double sqrt_information_;
+  std::vector<const EffectTerm*> effects_;
+  std::vector<EffectContext> contexts_;  // one per term: its window weight
+  int effect_block_ = 2;
+};
+
+}  // namespace slipgraph
