@@ -29,7 +29,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
     std::string log, model, report, series;
     JsonOutput json;
     std::vector<std::string> with;
-    bool no_gps = false, add_best = false;
+    bool no_gps = false, add_best = false, parameters = false;
     ReadOptions read;  // --skip-bad, --max-bad
     DiagnosisOptions diagnosis;
     SuiteOptions suite;  // --jobs, --keep-going
@@ -67,17 +67,24 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--no-gps", options->no_gps, "Ignore GNSS");
+  cmd->add_flag("--parameters", options->parameters,
+                "Also test whether a parameter of the model is off: the tire law's traction level "
+                "and slip stiffness, the rolling resistance");
   AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     for (const std::string& effect : options->with) {
       if (FindEffect(effect) == nullptr &&
-          EffectRegistry::Catalogue().FindSignature(effect) == nullptr) {
-        throw CLI::ValidationError("--with", "unknown effect '" + effect + "' (known: " +
-                                                 EffectRegistry::Catalogue().Names() + ")");
+          EffectRegistry::CatalogueWithParameters().FindSignature(effect) == nullptr) {
+        throw CLI::ValidationError(
+            "--with", "unknown effect '" + effect +
+                          "' (known: " + EffectRegistry::CatalogueWithParameters().Names() + ")");
       }
     }
+    const EffectRegistry& registry = options->parameters ? EffectRegistry::CatalogueWithParameters()
+                                                         : EffectRegistry::Catalogue();
     DiagnosisOptions diagnosis = options->diagnosis;
     diagnosis.smoother.filter.use_gps = !options->no_gps;
+    diagnosis.effects = &registry;
     const std::string path = options->log.empty() ? DefaultHiddenEffectLogPath() : options->log;
     std::ostream& text = options->json.text();
     const std::vector<std::string> logs = ListLogs(path);
@@ -110,7 +117,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
             const CandidateScore* best = BestExplanation(before.candidates);
             if (best == nullptr) {
               out << "--add-best: no significant, plausible candidate to add\n";
-            } else if (!EffectRegistry::Catalogue().CanAdd(best->effect)) {
+            } else if (!registry.CanAdd(best->effect)) {
               out << "--add-best: " << best->effect
                   << " has no smoother term or measurement correction yet\n";
             } else {
@@ -120,7 +127,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
           }
           const bool page = i == 0 && !options->report.empty();
           if (!with.empty()) {
-            const ExtendedModel extended = AddEffects(log, model, before, with);
+            const ExtendedModel extended = AddEffects(log, model, before, with, registry);
             DiagnosisOptions after_options = diagnosis;
             after_options.corrected = extended.corrected;
             const Diagnosis after = Diagnose(extended.log, extended.model, after_options);

@@ -29,7 +29,10 @@ void RegisterEffectsCommand(CLI::App* app, int* status) {
         text << "default " << e["default_value"].get<double>() << " "
              << e["unit"].get<std::string>();
       }
-      text << ")" << (e["candidate"].get<bool>() ? "" : ", not a diagnose candidate")
+      text << ")"
+           << (e["model_parameter"].get<bool>() ? ", a model parameter (diagnose --parameters)"
+               : e["candidate"].get<bool>()     ? ""
+                                                : ", not a diagnose candidate")
            << (e["can_add"].get<bool>() ? ", diagnose --with adds it" : "") << "\n"
            << "  physics: " << e["physics"].get<std::string>() << "\n";
       if (!e["evidence"].get<std::string>().empty()) {

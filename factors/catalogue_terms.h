@@ -9,6 +9,14 @@
 //   terrain_change      traction  g = w                               (relative change)
 //   load_transfer       traction  g = -m a h / (2 L N)                (scale)
 //
+// and three terms that say a parameter of the model is off rather than an effect is missing
+// (EffectTerm::model_parameter: `diagnose --parameters` tests them), each a relative change of
+// what the model's laws give (1 + theta times it):
+//
+//   tire_traction_level       traction  g = 1: the law's traction level C1     (relative change)
+//   tire_slip_stiffness       slip      g = v_rel: its slope at small slip     (relative change)
+//   rolling_resistance_level  force     h = the rolling law's acceleration     (relative change)
+//
 // N is a driven side's normal force; phi the grade; w 1 inside the effect's windows (soft ground,
 // the changed terrain; ModelConfig::effect_windows), 0 outside. Load transfer is the castor
 // vehicle's (its driven wheels are the front pair and the castors take the load they lose; zero for
@@ -93,8 +101,36 @@ struct LoadTransfer {
   }
 };
 
+struct TractionLevel {
+  template <typename T>
+  T operator()(const WheelTraction<T>&, const T*, const EffectContext&, const ward::Params&) const {
+    return T(1.0);
+  }
+};
+
+struct SlipStiffness {
+  template <typename T>
+  T operator()(const WheelTraction<T>& w, const T*, const EffectContext&,
+               const ward::Params&) const {
+    return w.v_rel_mps;
+  }
+};
+
+struct RollingLevel {
+  template <typename T>
+  T operator()(const T* x, const EffectContext& c, const ward::Params& p) const {
+    const ward::TireForces<T> f = ward::ComputeTireForces(x, c.loads, p);
+    return f.f_tire_mps2 - (f.traction_left_n + f.traction_right_n) / p.mass_kg;
+  }
+};
+
 inline EffectTerm Windowed(EffectTerm term) {
   term.acts_on_windows = true;
+  return term;
+}
+
+inline EffectTerm Parameter(EffectTerm term) {
+  term.model_parameter = true;
   return term;
 }
 
@@ -130,6 +166,18 @@ inline const EffectTerms& CatalogueTerms() {
         "load_transfer", "scale", 10.0,
         "Longitudinal load transfer theta m a h / L off the driven front wheels of a castor "
         "vehicle: traction residuals correlated with acceleration."));
+    t.Add(Parameter(MakeTractionTerm<TractionLevel>(
+        "tire_traction_level", "relative change", 1.0,
+        "The tire law's traction level C1 is off by theta over the whole drive: the terrain "
+        "holds more or less than the law says wherever the wheels pull hard.")));
+    t.Add(Parameter(MakeSlipTerm<SlipStiffness>(
+        "tire_slip_stiffness", "relative change", 1.0,
+        "The tire law's slope at small slip (At, C2) is off by theta: the slip the wheels need "
+        "for a force is not the law's, which a velocity bias at steady speed betrays.")));
+    t.Add(Parameter(MakeForceTerm<RollingLevel>(
+        "rolling_resistance_level", "relative change", 1.0,
+        "The rolling law's resistance is off by theta: a force against the motion in proportion "
+        "to the model's own rolling resistance.")));
     return t;
   }();
   return kTerms;

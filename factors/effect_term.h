@@ -61,10 +61,10 @@ struct EffectContext {
 };
 
 // The most effect terms one problem may hold: the Jets that differentiate them carry the state
-// and every magnitude, the narrow ones up to 8 terms (the catalogue's 7 and one more), the wide
-// ones up to kMaxEffectTerms.
+// and every magnitude, the narrow ones up to 10 terms (the catalogue's), the wide ones up to
+// kMaxEffectTerms.
 constexpr int kMaxEffectTerms = 16;
-constexpr int kNarrowEffectTerms = 8;
+constexpr int kNarrowEffectTerms = 10;
 using EffectJet = ceres::Jet<double, ward::kStateSize + kNarrowEffectTerms>;
 using WideEffectJet = ceres::Jet<double, ward::kStateSize + kMaxEffectTerms>;
 
@@ -113,6 +113,9 @@ struct EffectTerm {
   // true: it acts on windows of the drive only (soft ground, a changed terrain), which a model
   // that switches it on must give (ModelConfig::effect_windows).
   bool acts_on_windows = false;
+  // true: it says a parameter of the model (a law's coefficient) is off rather than an effect is
+  // missing; `diagnose` tests it only when asked (`--parameters`).
+  bool model_parameter = false;
   std::shared_ptr<const ForceShape> force;  // kForce
   std::shared_ptr<const WheelShape> wheel;  // kSlip, kTraction
 };

@@ -181,11 +181,14 @@ py::dict OnlineRun(const LogPtr& log, const std::string& model, bool use_gps, do
 // The diagnosis as the CLI's JSON text, and its series (workbench/diagnosis_series.h) by file
 // name as dicts of arrays.
 py::tuple DiagnoseRun(const LogPtr& log, const std::string& model, bool use_gps,
-                      const std::vector<std::string>& with, int threads) {
+                      const std::vector<std::string>& with, int threads, bool parameters) {
   const CalibratedLog run = Calibrate(*log, model);
+  const EffectRegistry& registry =
+      parameters ? EffectRegistry::CatalogueWithParameters() : EffectRegistry::Catalogue();
   DiagnosisOptions options;
   options.smoother.filter.use_gps = use_gps;
   options.threads = threads;
+  options.effects = &registry;
   std::string json_text;
   std::vector<NamedTable> series;
   {
@@ -193,7 +196,7 @@ py::tuple DiagnoseRun(const LogPtr& log, const std::string& model, bool use_gps,
     const Diagnosis before = Diagnose(run.log, run.model, options);
     nlohmann::json json = ToJson(before);
     if (!with.empty()) {
-      const ExtendedModel extended = AddEffects(run.log, run.model, before, with);
+      const ExtendedModel extended = AddEffects(run.log, run.model, before, with, registry);
       DiagnosisOptions after_options = options;
       after_options.corrected = extended.corrected;
       json["after"] = ToJson(Diagnose(extended.log, extended.model, after_options));
@@ -317,7 +320,8 @@ PYBIND11_MODULE(_core, m) {
         py::arg("stiffness_sd") = window.stiffness_prior_sd,
         py::arg("covariance") = window.covariance);
   m.def("diagnose", &DiagnoseRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
-        py::arg("with_effects") = std::vector<std::string>{}, py::arg("threads") = 2);
+        py::arg("with_effects") = std::vector<std::string>{}, py::arg("threads") = 2,
+        py::arg("parameters") = false);
   m.def("identify", &IdentifyJson, py::arg("logs"), py::arg("model") = "",
         py::arg("use_gps") = true, py::arg("fit_radius") = false, py::arg("threads") = 1);
   m.def("score_model", &ScoreModelJson, py::arg("log"), py::arg("model") = "",

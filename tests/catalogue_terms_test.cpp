@@ -28,9 +28,21 @@ const double kOffsets[2] = {0.1, -0.01};
 const Attitude<double> kOnASlope{0.02, -0.1};  // nose up 0.1 rad: uphill
 
 // The catalogue's terms in their order: drag, turn slip, slope slip, wheel radius, sinkage,
-// terrain change, load transfer.
-constexpr int kTerms = 7;
-enum { kDrag = 0, kTurn, kSlope, kRadius, kSinkage, kTerrain, kTransfer };
+// terrain change, load transfer, and the model parameters: traction level, slip stiffness,
+// rolling resistance.
+constexpr int kTerms = 10;
+enum {
+  kDrag = 0,
+  kTurn,
+  kSlope,
+  kRadius,
+  kSinkage,
+  kTerrain,
+  kTransfer,
+  kLevel,
+  kStiffness,
+  kRolling
+};
 
 // The accelerometer factor with every catalogue term; soft / changed: the sample inside the
 // sinkage and terrain-change windows.
@@ -51,17 +63,21 @@ double Residual(const ceres::CostFunction& f, const std::vector<const double*>& 
 }
 
 TEST(CatalogueTerms, AreTheSimulatorsCandidatesInOrder) {
-  const std::vector<std::string> names = {
-      "quadratic_drag",     "turn_slip",      "slope_slip",   "wheel_radius_error",
-      "sinkage_resistance", "terrain_change", "load_transfer"};
+  const std::vector<std::string> names = {"quadratic_drag",      "turn_slip",
+                                          "slope_slip",          "wheel_radius_error",
+                                          "sinkage_resistance",  "terrain_change",
+                                          "load_transfer",       "tire_traction_level",
+                                          "tire_slip_stiffness", "rolling_resistance_level"};
   ASSERT_EQ(CatalogueTerms().size(), names.size());
   for (size_t i = 0; i < names.size(); ++i) {
     const EffectTerm& term = CatalogueTerms().all()[i];
     EXPECT_EQ(term.name, names[i]);
+    EXPECT_EQ(term.model_parameter, static_cast<int>(i) >= kLevel);
+    EXPECT_GT(term.prior_sd, 0.0);
+    if (term.model_parameter) continue;  // a law's coefficient: the simulator has no such effect
     const EffectInfo* info = FindEffect(term.name);
     ASSERT_NE(info, nullptr) << term.name;
     EXPECT_TRUE(info->in_model_catalogue);
-    EXPECT_GT(term.prior_sd, 0.0);
     EXPECT_EQ(term.acts_on_windows,
               term.name == "sinkage_resistance" || term.name == "terrain_change");
   }
@@ -119,6 +135,22 @@ TEST(CatalogueTerms, EachTermByHand) {
   const std::unique_ptr<ceres::CostFunction> changed(Factor(0.3, false, true));
   EXPECT_NEAR(Residual(*changed, {kSlipping, kOffsets, change}) - base, 0.4 * traction / 0.25,
               1e-9);
+  // The parameters: the traction level 20 % higher everywhere; the slip stiffness 30 % lower,
+  // the law at 0.7 v_rel; the rolling resistance doubled.
+  double level[kTerms] = {}, stiffness[kTerms] = {}, rolling[kTerms] = {};
+  level[kLevel] = 0.2, stiffness[kStiffness] = -0.3, rolling[kRolling] = 1.0;
+  EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, level}) - base, -0.2 * traction / 0.25, 1e-9);
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(kOnASlope, kParams);
+  const double softer =
+      (TractionForceN(loads.driven_left_n, 0.7 * forces.v_rel_left_mps, kParams.tire) +
+       TractionForceN(loads.driven_right_n, 0.7 * forces.v_rel_right_mps, kParams.tire)) /
+      kParams.mass_kg;
+  EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, stiffness}) - base, -(softer - traction) / 0.25,
+              1e-9);
+  EXPECT_GT(std::abs(softer - traction), 0.1);  // m/s^2: the slip matters at this state
+  const double rolling_mps2 = forces.f_tire_mps2 - traction;
+  EXPECT_NEAR(Residual(*f, {kSlipping, kOffsets, rolling}) - base, -rolling_mps2 / 0.25, 1e-9);
+  EXPECT_LT(rolling_mps2, -0.05);
 }
 
 // Load transfer 2 (twice the simulator's physics): accelerating at a (the model's, eq. 10), each
@@ -145,7 +177,7 @@ TEST(CatalogueTerms, LoadTransferUnloadsTheDrivenWheels) {
 
 TEST(CatalogueTerms, Jacobians) {
   const std::unique_ptr<ceres::CostFunction> f(Factor(0.3, true, true));
-  const double theta[kTerms] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4, 2.0};
+  const double theta[kTerms] = {40.0, 0.15, 4.0, 0.05, 0.08, -0.4, 2.0, 0.2, -0.3, 0.5};
   // As for the plain factor, the smoothed laws' kinks bound the finite differences (1e-5).
   testing::ExpectJacobiansMatchNumeric(*f, {kSlipping, kOffsets, theta}, 1e-5);
 }

@@ -104,9 +104,11 @@ nlohmann::json EffectCatalogueJson() {
                        {"physics", e.physics},
                        {"evidence", e.evidence},
                        {"candidate", e.in_model_catalogue},
+                       {"model_parameter", false},
                        {"can_add", registry.CanAdd(e.name)}});
   }
-  // Model terms the simulator has no effect for: candidates it cannot hide in a log.
+  // Model terms the simulator has no effect for (a model parameter off: diagnose --parameters
+  // tests those).
   for (const EffectTerm& term : registry.terms().all()) {
     if (FindEffect(term.name) != nullptr) continue;
     effects.push_back({{"name", term.name},
@@ -114,7 +116,8 @@ nlohmann::json EffectCatalogueJson() {
                        {"unit", term.unit},
                        {"physics", term.physics},
                        {"evidence", ""},
-                       {"candidate", true},
+                       {"candidate", !term.model_parameter},
+                       {"model_parameter", term.model_parameter},
                        {"can_add", true}});
   }
   return effects;

@@ -240,6 +240,11 @@ void AttachPlausibleRanges(std::vector<EffectSignature>* list) {
       {"gps_velocity_averaging", fixed(0.0, 3.0, "a mean over up to three fix intervals")},
       {"imu_mounting_pitch", fixed(-0.2, 0.2, "a mounting pitch within 0.2 rad (11 deg)")},
       {"clock_offset", fixed(-1.0, 1.0, "the streams of one robot within 1 s")},
+      {"tire_traction_level",
+       fixed(-0.9, 4.0, "traction between a tenth and five times the law's")},
+      {"tire_slip_stiffness", fixed(-0.9, 9.0, "a slope between a tenth and ten times the law's")},
+      {"rolling_resistance_level",
+       fixed(-1.0, 9.0, "a rolling resistance between none and ten times the law's")},
   };
   for (EffectSignature& s : *list) {
     const auto it = ranges.find(s.effect);
@@ -459,7 +464,6 @@ std::vector<EffectSignature> MakeSignatures() {
        [](double offset, DriveLog* log) {
          for (ImuSample& imu : log->imu) imu.t -= offset;
        }});
-  AttachPlausibleRanges(&list);
   return list;
 }
 
@@ -486,14 +490,35 @@ const EffectRegistry& EffectRegistry::Catalogue() {
     EffectRegistry r;
     r.signatures_ = MakeSignatures();
     for (const EffectTerm& term : CatalogueTerms().all()) r.Add(term);
+    AttachPlausibleRanges(&r.signatures_);
     return r;
   }();
   return kCatalogue;
 }
 
+const EffectRegistry& EffectRegistry::CatalogueWithParameters() {
+  static const EffectRegistry kWithParameters = [] {
+    EffectRegistry r = Catalogue();
+    r.AddParameterCandidates();
+    AttachPlausibleRanges(&r.signatures_);
+    return r;
+  }();
+  return kWithParameters;
+}
+
 void EffectRegistry::Add(EffectTerm term) {
-  if (FindSignature(term.name) == nullptr) signatures_.push_back(TermSignature(term));
+  if (!term.model_parameter && FindSignature(term.name) == nullptr) {
+    signatures_.push_back(TermSignature(term));
+  }
   terms_.Add(std::move(term));
+}
+
+void EffectRegistry::AddParameterCandidates() {
+  for (const EffectTerm& term : terms_.all()) {
+    if (term.model_parameter && FindSignature(term.name) == nullptr) {
+      signatures_.push_back(TermSignature(term));
+    }
+  }
 }
 
 void EffectRegistry::Add(EffectSignature signature) {

@@ -84,12 +84,19 @@ struct EffectSignature {
 // signature. Built by the caller: Catalogue() and what a program adds to a copy of it.
 class EffectRegistry {
  public:
-  // The catalogue's terms and the built-in signatures, built once.
+  // The catalogue's terms and the built-in signatures, built once; and the same with the
+  // model-parameter candidates.
   static const EffectRegistry& Catalogue();
+  static const EffectRegistry& CatalogueWithParameters();
 
   // A model term: the smoother's, with the graph test of its column as its signature unless one
-  // of its name is in the registry (or added later). A term of the same name is replaced.
+  // of its name is in the registry (or added later), or it is a model parameter
+  // (EffectTerm::model_parameter), which is a candidate only after AddParameterCandidates(). A
+  // term of the same name is replaced.
   void Add(EffectTerm term);
+  // The model-parameter terms as candidates too: "a parameter of the model is off" beside the
+  // missing effects.
+  void AddParameterCandidates();
   // A signature: an effect without a model term (a sensor effect with its correction), or a
   // second opinion replacing the signature of the same name.
   void Add(EffectSignature signature);

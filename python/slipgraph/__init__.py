@@ -118,13 +118,15 @@ def online(log, model=None, use_gps: bool = True, **window) -> Run:
 
 
 def diagnose(log, model=None, use_gps: bool = True,
-             with_effects: Sequence[str] = (), threads: int = 2) -> dict:
+             with_effects: Sequence[str] = (), threads: int = 2, parameters: bool = False) -> dict:
     """The model workbench, as ``slipgraph diagnose --json``: streams, failures, candidates;
-    with_effects adds those effects and diagnoses again (the result's "after"). "series" holds
+    with_effects adds those effects and diagnoses again (the result's "after"); parameters also
+    tests whether a parameter of the model is off (``--parameters``). "series" holds
     the series behind the statistics, as ``diagnose --series`` writes them: per stream the
     smoother's normalized residuals ("residual_gnss.csv": t, normalized, sd) and the front
     end's normalized innovations ("innovation_gnss.csv": t, normalized), as arrays."""
-    text, series = _core.diagnose(_log(log), _model(model), use_gps, list(with_effects), threads)
+    text, series = _core.diagnose(_log(log), _model(model), use_gps, list(with_effects), threads,
+                                  parameters)
     result = _json.loads(text)
     result["series"] = series
     return result
