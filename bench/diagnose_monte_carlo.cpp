@@ -3,7 +3,9 @@
 // effect ranks first (and first and significant), how often anything at all is significant, and the
 // mean and sd of the top candidate's fitted magnitude, and how often the verdict is "no candidate
 // explains it". Prints a table (docs/workbench.md).
-// Run: build/bench/diagnose_monte_carlo [SEEDS=20] [EFFECT...]
+// Run: build/bench/diagnose_monte_carlo [--parameters] [--mismatch] [SEEDS=20] [EFFECT...]
+// --parameters: "a parameter of the model is off" as candidates too (diagnose --parameters);
+// --mismatch: the hiddenm suites (docs/mismatch.md) instead of hidden.
 //
 // With --detectable first: the minimum detectable magnitudes checked. For each effect and seed,
 // the diagnosis of the drive with nothing hidden states the effect's detectable magnitude D
@@ -83,7 +85,26 @@ int CheckDetectable(int seeds, double scale, std::vector<std::string> effects) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv_in) {
+  // The flags that may come first, then the positional arguments as before.
+  bool parameters = false, mismatch = false;
+  std::vector<char*> args = {argv_in[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv_in[i];
+    if (a == "--parameters") {
+      parameters = true;
+    } else if (a == "--mismatch") {
+      mismatch = true;
+    } else {
+      args.push_back(argv_in[i]);
+    }
+  }
+  argc = static_cast<int>(args.size());
+  char** argv = args.data();
+  DiagnosisOptions options;
+  options.effects =
+      parameters ? &EffectRegistry::CatalogueWithParameters() : &EffectRegistry::Catalogue();
+  const std::string suite = mismatch ? "hiddenm/" : "hidden/";
   const bool check_detectable = argc > 1 && std::string(argv[1]) == "--detectable";
   const bool scaled = check_detectable && argc > 3 && std::string(argv[2]) == "--scale";
   const double scale = scaled ? std::atof(argv[3]) : 1.0;
@@ -94,7 +115,10 @@ int main(int argc, char** argv) {
   if (check_detectable) return CheckDetectable(seeds, scale, effects);
   if (effects.empty()) {
     effects.push_back("none");
-    for (const EffectInfo& e : EffectCatalogue()) effects.push_back(e.name);
+    for (const EffectInfo& e : EffectCatalogue()) {
+      // Every mismatch log averages its GNSS velocity: hiddenm has no log of that name.
+      if (!(mismatch && e.name == "gps_velocity_averaging")) effects.push_back(e.name);
+    }
   }
   std::printf(
       "| hidden | seeds | top-1 | top-1 and significant | any significant | top candidate (most "
@@ -106,9 +130,9 @@ int main(int argc, char** argv) {
     std::string most;
     std::vector<std::pair<std::string, int>> counts;
     for (int seed = 1; seed <= seeds; ++seed) {
-      const sim::ScenarioRun run = sim::ExpandScenario("hidden/" + effect, seed).at(0);
+      const sim::ScenarioRun run = sim::ExpandScenario(suite + effect, seed).at(0);
       const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle));
+      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle), options);
       unexplained += !d.explained;
       if (d.candidates.empty()) continue;
       const CandidateScore& top = d.candidates.front();
