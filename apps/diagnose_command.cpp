@@ -47,7 +47,7 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->add_option("--with", options->with,
                   "Switch a catalogue effect on in the model and report before and after "
                   "(repeatable): " +
-                      EffectRegistry::Catalogue().Names());
+                      EffectRegistry::CatalogueWithParameters().Names());
   cmd->add_flag("--add-best", options->add_best,
                 "The whole loop: add the top-ranked significant candidate (if the smoother has a "
                 "term or a correction for it) and report before and after");

@@ -86,7 +86,7 @@ int CheckDetectable(int seeds, double scale, std::vector<std::string> effects) {
 }  // namespace
 
 int main(int argc, char** argv_in) {
-  // The flags that may come first, then the positional arguments as before.
+  // The flags, anywhere; the rest are the positional arguments.
   bool parameters = false, mismatch = false;
   std::vector<char*> args = {argv_in[0]};
   for (int i = 1; i < argc; ++i) {

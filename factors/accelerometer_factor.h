@@ -11,7 +11,8 @@
 //     relative velocity scaled by 1 + theta, which scales the law's slope at small slip
 //     (C1 At + C2, where a robot drives) and leaves its plateau (C1, which a hold-back reaches);
 //   - effects: the magnitudes of the model's effect terms (factors/effect_term.h), one block.
-// The law and the stiffness exclude each other. Inputs: the attitude at the sample (REP-103 roll
+// The law, the stiffness and the effects exclude each other (the effects' slip and traction
+// terms see the model's law). Inputs: the attitude at the sample (REP-103 roll
 // and pitch, rad); sd_a includes the tire law's uncertainty (ModelConfig::tire_uncertainty) when
 // the accelerometer also drives the velocity. The balance without effects is differentiated
 // automatically; the effect terms by Jets of the state and every magnitude
@@ -178,8 +179,9 @@ class AccelerometerFactor final : public ceres::CostFunction {
                                             const AccelerometerUnknowns& unknowns) {
     using namespace accelerometer_detail;
     const AccelerometerReading reading(params, attitude, accel_x_mps2, sd_mps2);
-    if (unknowns.law && unknowns.stiffness) {
-      throw std::invalid_argument("accelerometer factor: the law and the stiffness walk together");
+    if (int(unknowns.law) + int(unknowns.stiffness) + int(!unknowns.effects.empty()) > 1) {
+      throw std::invalid_argument(
+          "accelerometer factor: the law, the stiffness walk and effect terms exclude each other");
     }
     if (unknowns.law) {
       return new ceres::AutoDiffCostFunction<Law, 1, ward::kStateSize, 2, kLawCoefficientCount, 2>(

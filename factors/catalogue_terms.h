@@ -13,7 +13,7 @@
 // (EffectTerm::model_parameter: `diagnose --parameters` tests them), each a relative change of
 // what the model's laws give (1 + theta times it):
 //
-//   tire_traction_level       traction  g = 1: the law's traction level C1     (relative change)
+//   tire_traction_level       traction  g = 1: the law's traction, C1 and C2   (relative change)
 //   tire_slip_stiffness       slip      g = v_rel: its slope at small slip     (relative change)
 //   rolling_resistance_level  force     h = the rolling law's acceleration     (relative change)
 //
@@ -168,7 +168,8 @@ inline const EffectTerms& CatalogueTerms() {
         "vehicle: traction residuals correlated with acceleration."));
     t.Add(Parameter(MakeTractionTerm<TractionLevel>(
         "tire_traction_level", "relative change", 1.0,
-        "The tire law's traction level C1 is off by theta over the whole drive: the terrain "
+        "The tire law's traction (C1 and C2 together) is off by theta over the whole drive: the "
+        "terrain "
         "holds more or less than the law says wherever the wheels pull hard.")));
     t.Add(Parameter(MakeSlipTerm<SlipStiffness>(
         "tire_slip_stiffness", "relative change", 1.0,

@@ -61,8 +61,8 @@ struct EffectContext {
 };
 
 // The most effect terms one problem may hold: the Jets that differentiate them carry the state
-// and every magnitude, the narrow ones up to 10 terms (the catalogue's), the wide ones up to
-// kMaxEffectTerms.
+// and every magnitude, the narrow ones up to 10 terms (as many as the catalogue has), the wide
+// ones up to kMaxEffectTerms.
 constexpr int kMaxEffectTerms = 16;
 constexpr int kNarrowEffectTerms = 10;
 using EffectJet = ceres::Jet<double, ward::kStateSize + kNarrowEffectTerms>;

@@ -338,13 +338,16 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
   std::string error;
   if (!m.IsValid(&error)) throw InputError(path, 0, "", "", "invalid model: " + error);
   // The effects that act on windows of the drive need them, and only they take them.
+  std::string windowed;
+  for (const EffectTerm& term : CatalogueTerms().all()) {
+    if (term.acts_on_windows) windowed += (windowed.empty() ? "" : ", ") + term.name;
+  }
   for (const ModelConfig::EffectWindow& w : m.effect_windows) {
     const EffectTerm* term = CatalogueTerms().Find(w.effect);
     if (term == nullptr || !term->acts_on_windows) {
       throw InputError(path, 0, "effect_windows", w.effect,
                        "invalid model: effect_windows: '" + w.effect +
-                           "' does not act on windows (only sinkage_resistance and "
-                           "terrain_change)");
+                           "' does not act on windows (only " + windowed + ")");
     }
   }
   for (const std::string& name : m.effects) {

@@ -323,7 +323,8 @@ std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, c
   const ward::Params params = ward::MakeParams(log.vehicle, model);
   for (const EffectEstimate& effect : result.effects) {
     const EffectTerm* term = known.Find(effect.name);
-    if (term == nullptr || term->kind != EffectKind::kForce) continue;
+    // A model parameter's force (the rolling law's, rescaled) is the model's own, not external.
+    if (term == nullptr || term->kind != EffectKind::kForce || term->model_parameter) continue;
     for (WardEstimate& e : estimates) {
       e.x[ward::kAdist] +=
           effect.value *

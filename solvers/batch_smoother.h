@@ -108,11 +108,11 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const 
 
 std::string DescribeSmootherRun(const SmootherResult& result);
 
-// The estimates with the model's fitted force terms (drag, turn slip, sinkage resistance;
-// factors/effect_term.h) added to a_dist: the disturbance as every external force the tires and
-// gravity do not explain, as a simulator's truth and a reader of `a_dist` count it. The
-// solution's own a_dist leaves the modelled ones out (they are terms of their own). terms: the
-// ones the smoother ran with (null: the catalogue's).
+// The estimates with the model's fitted external forces (the force terms but the model
+// parameters': drag, turn slip, sinkage resistance; factors/effect_term.h) added to a_dist: the
+// disturbance as every external force the tires and gravity do not explain, as a simulator's truth
+// and a reader of `a_dist` count it. The solution's own a_dist leaves the modelled ones out (they
+// are terms of their own). terms: the ones the smoother ran with (null: the catalogue's).
 std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,
                                                  const ModelConfig& model,
                                                  const EffectTerms* terms = nullptr);
