@@ -102,9 +102,10 @@ class AccelerometerFactor final : public ceres::CostFunction {
   static ceres::CostFunction* Create(const ward::Params& params,
                                      const ward::Attitude<double>& attitude, double accel_x_mps2,
                                      double sd_mps2, const AccelerometerUnknowns& unknowns = {}) {
-    ceres::CostFunction* base = CreateBalance(params, attitude, accel_x_mps2, sd_mps2, unknowns);
+    const AccelerometerReading reading(params, attitude, accel_x_mps2, sd_mps2);
+    ceres::CostFunction* base = CreateBalance(reading, unknowns);
     if (unknowns.effects.empty()) return base;
-    return new AccelerometerFactor(base, params, attitude, accel_x_mps2, sd_mps2, unknowns);
+    return new AccelerometerFactor(base, reading, attitude, unknowns);
   }
 
   bool Evaluate(double const* const* parameters, double* residuals,
@@ -115,8 +116,8 @@ class AccelerometerFactor final : public ceres::CostFunction {
     double* jacobian_x = jacobians != nullptr ? jacobians[0] : nullptr;
     double* jacobian_theta = jacobians != nullptr ? jacobians[effect_block_] : nullptr;
     if (jacobian_x == nullptr && jacobian_theta == nullptr) {
-      residuals[0] -=
-          sqrt_information_ * EffectsAcceleration(effects_, theta, x, contexts_, params_);
+      residuals[0] -= reading_.sqrt_information *
+                      EffectsAcceleration(effects_, theta, x, contexts_, reading_.params);
       return true;
     }
     if (effects_.size() <= static_cast<size_t>(kNarrowEffectTerms)) {
@@ -138,22 +139,20 @@ class AccelerometerFactor final : public ceres::CostFunction {
     for (int i = 0; i < ward::kStateSize; ++i) x_jet[i] = J(x[i], i);
     J theta_jet[kMaxEffectTerms];
     for (int j = 0; j < n; ++j) theta_jet[j] = J(theta[j], ward::kStateSize + j);
-    const J a = EffectsAcceleration(effects_, theta_jet, x_jet, contexts_, params_);
-    residuals[0] -= sqrt_information_ * a.a;
+    const J a = EffectsAcceleration(effects_, theta_jet, x_jet, contexts_, reading_.params);
+    const double w = reading_.sqrt_information;
+    residuals[0] -= w * a.a;
     if (jacobian_x != nullptr) {
-      for (int i = 0; i < ward::kStateSize; ++i) jacobian_x[i] -= sqrt_information_ * a.v[i];
+      for (int i = 0; i < ward::kStateSize; ++i) jacobian_x[i] -= w * a.v[i];
     }
     if (jacobian_theta != nullptr) {
-      for (int j = 0; j < n; ++j) {
-        jacobian_theta[j] = -sqrt_information_ * a.v[ward::kStateSize + j];
-      }
+      for (int j = 0; j < n; ++j) jacobian_theta[j] = -w * a.v[ward::kStateSize + j];
     }
   }
 
-  AccelerometerFactor(ceres::CostFunction* base, const ward::Params& params,
-                      const ward::Attitude<double>& attitude, double accel_x_mps2, double sd_mps2,
-                      const AccelerometerUnknowns& unknowns)
-      : base_(base), params_(params), sqrt_information_(1.0 / sd_mps2), effects_(unknowns.effects) {
+  AccelerometerFactor(ceres::CostFunction* base, const AccelerometerReading& reading,
+                      const ward::Attitude<double>& attitude, const AccelerometerUnknowns& unknowns)
+      : base_(base), reading_(reading), effects_(unknowns.effects) {
     if (effects_.size() > static_cast<size_t>(kMaxEffectTerms)) {
       throw std::invalid_argument("accelerometer factor: " + std::to_string(effects_.size()) +
                                   " effect terms, at most " + std::to_string(kMaxEffectTerms));
@@ -161,8 +160,8 @@ class AccelerometerFactor final : public ceres::CostFunction {
     EffectContext context;
     context.t_s = unknowns.t_s;
     context.attitude = attitude;
-    context.loads = ward::ComputeAttitudeLoads(attitude, params);
-    context.accel_x_mps2 = accel_x_mps2;
+    context.loads = reading.loads;
+    context.accel_x_mps2 = reading.measured;
     contexts_.assign(effects_.size(), context);
     for (size_t j = 0; j < effects_.size() && j < unknowns.windows.size(); ++j) {
       contexts_[j].window = unknowns.windows[j];
@@ -173,12 +172,9 @@ class AccelerometerFactor final : public ceres::CostFunction {
     mutable_parameter_block_sizes()->push_back(static_cast<int>(effects_.size()));
   }
 
-  static ceres::CostFunction* CreateBalance(const ward::Params& params,
-                                            const ward::Attitude<double>& attitude,
-                                            double accel_x_mps2, double sd_mps2,
+  static ceres::CostFunction* CreateBalance(const AccelerometerReading& reading,
                                             const AccelerometerUnknowns& unknowns) {
     using namespace accelerometer_detail;
-    const AccelerometerReading reading(params, attitude, accel_x_mps2, sd_mps2);
     if (int(unknowns.law) + int(unknowns.stiffness) + int(!unknowns.effects.empty()) > 1) {
       throw std::invalid_argument(
           "accelerometer factor: the law, the stiffness walk and effect terms exclude each other");
@@ -195,8 +191,7 @@ class AccelerometerFactor final : public ceres::CostFunction {
   }
 
   std::unique_ptr<ceres::CostFunction> base_;
-  ward::Params params_;
-  double sqrt_information_;
+  AccelerometerReading reading_;
   std::vector<const EffectTerm*> effects_;
   std::vector<EffectContext> contexts_;  // one per term: its window weight
   int effect_block_ = 2;

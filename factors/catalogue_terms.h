@@ -184,4 +184,9 @@ inline const EffectTerms& CatalogueTerms() {
   return kTerms;
 }
 
+// The terms a caller gave, or the catalogue's when it gave none.
+inline const EffectTerms& TermsOrCatalogue(const EffectTerms* terms) {
+  return terms != nullptr ? *terms : CatalogueTerms();
+}
+
 }  // namespace slipgraph

@@ -36,7 +36,6 @@
 
 #include <limits>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -163,12 +162,18 @@ class WheelShapeOf final : public WheelShape {
   Shape shape_;
 };
 
-template <typename Shape>
-EffectTerm WheelTerm(EffectKind kind, std::string name, std::string unit, double prior_sd,
-                     std::string physics, Shape shape) {
+inline EffectTerm NamedTerm(EffectKind kind, std::string name, std::string unit, double prior_sd,
+                            std::string physics) {
   EffectTerm t;
   t.name = std::move(name), t.unit = std::move(unit), t.prior_sd = prior_sd;
   t.physics = std::move(physics), t.kind = kind;
+  return t;
+}
+
+template <typename Shape>
+EffectTerm WheelTerm(EffectKind kind, std::string name, std::string unit, double prior_sd,
+                     std::string physics, Shape shape) {
+  EffectTerm t = NamedTerm(kind, std::move(name), std::move(unit), prior_sd, std::move(physics));
   t.wheel = std::make_shared<WheelShapeOf<Shape>>(std::move(shape));
   return t;
 }
@@ -178,9 +183,8 @@ EffectTerm WheelTerm(EffectKind kind, std::string name, std::string unit, double
 template <typename Shape>
 EffectTerm MakeForceTerm(std::string name, std::string unit, double prior_sd, std::string physics,
                          Shape shape = Shape()) {
-  EffectTerm t;
-  t.name = std::move(name), t.unit = std::move(unit), t.prior_sd = prior_sd;
-  t.physics = std::move(physics), t.kind = EffectKind::kForce;
+  EffectTerm t = effect_term_detail::NamedTerm(EffectKind::kForce, std::move(name), std::move(unit),
+                                               prior_sd, std::move(physics));
   t.force = std::make_shared<effect_term_detail::ForceShapeOf<Shape>>(std::move(shape));
   return t;
 }
@@ -205,7 +209,6 @@ template <typename T>
 T EffectsAcceleration(const std::vector<const EffectTerm*>& terms, const T* theta, const T* x,
                       const std::vector<EffectContext>& contexts, const ward::Params& p) {
   T force = T(0.0);
-  T shift[2] = {T(0.0), T(0.0)}, scale[2] = {T(0.0), T(0.0)};
   bool wheels = false;
   for (size_t j = 0; j < terms.size(); ++j) {
     if (terms[j]->kind == EffectKind::kForce) {
@@ -222,11 +225,17 @@ T EffectsAcceleration(const std::vector<const EffectTerm*>& terms, const T* thet
        f.traction_left_n, f.f_tire_mps2},
       {loads.driven_right_n, f.v_rel_right_mps, x[ward::kOmegaRight] * p.wheel_radius_m,
        f.traction_right_n, f.f_tire_mps2}};
-  for (size_t j = 0; j < terms.size(); ++j) {
-    if (terms[j]->kind != EffectKind::kSlip) continue;
-    for (int i = 0; i < 2; ++i)
-      shift[i] += theta[j] * (*terms[j]->wheel)(side[i], x, contexts[j], p);
-  }
+  // sum_j theta_j g_j(side i) over the terms of one kind, per side.
+  const auto SumOf = [&](EffectKind kind, T* sum) {
+    sum[0] = sum[1] = T(0.0);
+    for (size_t j = 0; j < terms.size(); ++j) {
+      if (terms[j]->kind != kind) continue;
+      for (int i = 0; i < 2; ++i)
+        sum[i] += theta[j] * (*terms[j]->wheel)(side[i], x, contexts[j], p);
+    }
+  };
+  T shift[2], scale[2];
+  SumOf(EffectKind::kSlip, shift);
   T change = T(0.0);  // traction added by the slip terms, N
   for (int i = 0; i < 2; ++i) {
     side[i].v_rel_mps += shift[i];
@@ -235,11 +244,7 @@ T EffectsAcceleration(const std::vector<const EffectTerm*>& terms, const T* thet
     side[i].traction_n = shifted;
   }
   for (int i = 0; i < 2; ++i) side[i].f_tire_mps2 += change / p.mass_kg;
-  for (size_t j = 0; j < terms.size(); ++j) {
-    if (terms[j]->kind != EffectKind::kTraction) continue;
-    for (int i = 0; i < 2; ++i)
-      scale[i] += theta[j] * (*terms[j]->wheel)(side[i], x, contexts[j], p);
-  }
+  SumOf(EffectKind::kTraction, scale);
   return force +
          (change + side[0].traction_n * scale[0] + side[1].traction_n * scale[1]) / p.mass_kg;
 }

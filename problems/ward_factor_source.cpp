@@ -114,8 +114,7 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
       tire_uncertainty_(model.tire_uncertainty) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
-  const EffectTerms& terms =
-      options.effect_terms != nullptr ? *options.effect_terms : CatalogueTerms();
+  const EffectTerms& terms = TermsOrCatalogue(options.effect_terms);
   for (const EffectTerm& term : terms.all()) {
     if (std::find(model.effects.begin(), model.effects.end(), term.name) != model.effects.end()) {
       effect_terms_.push_back(&term);
@@ -249,16 +248,20 @@ bool WardFactorSource::GnssAlong(size_t k, const GpsSample& g, double* along, do
   return std::isfinite(*along);
 }
 
-EffectContext EffectContextAt(const DriveLog& log, const ModelConfig& model, const EffectTerm& term,
-                              double t) {
+double EffectWindowWeight(const ModelConfig& model, const EffectTerm& term, double t) {
+  return term.acts_on_windows && model.InEffectWindow(term.name, t) ? 1.0 : 0.0;
+}
+
+EffectContext EffectContextAt(const DriveLog& log, const ModelConfig& model,
+                              const ward::Params& params, const EffectTerm& term, double t) {
   EffectContext c;
   c.t_s = t;
   const long a = LatestAtOrBefore(log.attitude, t, kStampToleranceS);
   if (a >= 0) c.attitude = {log.attitude[a].roll, log.attitude[a].pitch};
-  c.loads = ward::ComputeAttitudeLoads(c.attitude, ward::MakeParams(log.vehicle, model));
+  c.loads = ward::ComputeAttitudeLoads(c.attitude, params);
   const long i = LatestAtOrBefore(log.imu, t, kStampToleranceS);
   if (i >= 0) c.accel_x_mps2 = log.imu[i].ax;
-  c.window = term.acts_on_windows && model.InEffectWindow(term.name, t) ? 1.0 : 0.0;
+  c.window = EffectWindowWeight(model, term, t);
   return c;
 }
 
@@ -352,8 +355,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
         unknowns.effects = effect_terms_;
         unknowns.t_s = imu.t;
         for (const EffectTerm* term : effect_terms_) {
-          unknowns.windows.push_back(
-              term->acts_on_windows && model_.InEffectWindow(term->name, imu.t) ? 1.0 : 0.0);
+          unknowns.windows.push_back(EffectWindowWeight(model_, *term, imu.t));
         }
         blocks.push_back(effects);
       }

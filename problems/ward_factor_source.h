@@ -140,11 +140,14 @@ struct FactorCounts {
   std::string Describe() const;
 };
 
+// Whether t (log time, s) lies in the model's windows for `term` (EffectContext::window): 1 or 0,
+// and 0 for a term that does not act on windows.
+double EffectWindowWeight(const ModelConfig& model, const EffectTerm& term, double t);
 // What an effect term sees at time t of the log (factors/effect_term.h): the latest attitude and
-// IMU sample at or before t (level and NaN when there is none), and whether t lies in the model's
-// windows for `term`.
-EffectContext EffectContextAt(const DriveLog& log, const ModelConfig& model, const EffectTerm& term,
-                              double t);
+// IMU sample at or before t (level and NaN when there is none), the normal forces there for the
+// model's params (ward::MakeParams(log.vehicle, model)), and its window weight.
+EffectContext EffectContextAt(const DriveLog& log, const ModelConfig& model,
+                              const ward::Params& params, const EffectTerm& term, double t);
 
 // The parameter blocks a step's factors share with every other step.
 struct GlobalBlocks {

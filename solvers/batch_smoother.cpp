@@ -319,7 +319,7 @@ std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, c
                                                  const ModelConfig& model,
                                                  const EffectTerms* terms) {
   std::vector<WardEstimate> estimates = result.estimates;
-  const EffectTerms& known = terms != nullptr ? *terms : CatalogueTerms();
+  const EffectTerms& known = TermsOrCatalogue(terms);
   const ward::Params params = ward::MakeParams(log.vehicle, model);
   for (const EffectEstimate& effect : result.effects) {
     const EffectTerm* term = known.Find(effect.name);
@@ -328,7 +328,7 @@ std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, c
     for (WardEstimate& e : estimates) {
       e.x[ward::kAdist] +=
           effect.value *
-          (*term->force)(e.x.data(), EffectContextAt(log, model, *term, e.t), params);
+          (*term->force)(e.x.data(), EffectContextAt(log, model, params, *term, e.t), params);
     }
   }
   return estimates;

@@ -65,8 +65,7 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
                                       const BatchSmootherOptions& options) {
   // The same graph with every effect's term present (held at the solution's magnitudes), so the
   // accelerometer factors give the derivatives with respect to each.
-  const EffectTerms& terms =
-      options.problem.effect_terms != nullptr ? *options.problem.effect_terms : CatalogueTerms();
+  const EffectTerms& terms = TermsOrCatalogue(options.problem.effect_terms);
   ModelConfig all = model;
   all.effects.clear();
   for (const EffectTerm& term : terms.all()) all.effects.push_back(term.name);
