@@ -127,15 +127,13 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
           }
           const bool page = i == 0 && !options->report.empty();
           if (!with.empty()) {
-            const ExtendedModel extended = AddEffects(log, model, before, with, registry);
-            DiagnosisOptions after_options = diagnosis;
-            after_options.corrected = extended.corrected;
-            const Diagnosis after = Diagnose(extended.log, extended.model, after_options);
+            const ExtendedDiagnosis extended = DiagnoseWith(log, model, before, with, diagnosis);
+            const Diagnosis& after = extended.after;
             out << "\nwith " << with.size() << " effect(s) added:\n";
             PrintDiagnosis(after, out);
             PrintComparison(before, after, out);
             j["after"] = ToJson(after);
-            if (page) report = DiagnosisReport(log, before, &extended.log, &after);
+            if (page) report = DiagnosisReport(log, before, &extended.extended.log, &after);
           } else if (page) {
             report = DiagnosisReport(log, before);
           }

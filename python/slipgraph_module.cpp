@@ -196,10 +196,7 @@ py::tuple DiagnoseRun(const LogPtr& log, const std::string& model, bool use_gps,
     const Diagnosis before = Diagnose(run.log, run.model, options);
     nlohmann::json json = ToJson(before);
     if (!with.empty()) {
-      const ExtendedModel extended = AddEffects(run.log, run.model, before, with, registry);
-      DiagnosisOptions after_options = options;
-      after_options.corrected = extended.corrected;
-      json["after"] = ToJson(Diagnose(extended.log, extended.model, after_options));
+      json["after"] = ToJson(DiagnoseWith(run.log, run.model, before, with, options).after);
     }
     json_text = json.dump();
     series = DiagnosisSeries(before);

@@ -421,4 +421,16 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
   return out;
 }
 
+ExtendedDiagnosis DiagnoseWith(const DriveLog& log, const ModelConfig& model,
+                               const Diagnosis& before, const std::vector<std::string>& effects,
+                               const DiagnosisOptions& options) {
+  const EffectRegistry& registry =
+      options.effects != nullptr ? *options.effects : EffectRegistry::Catalogue();
+  ExtendedDiagnosis out{AddEffects(log, model, before, effects, registry), {}};
+  DiagnosisOptions after = options;
+  after.corrected = out.extended.corrected;
+  out.after = Diagnose(out.extended.log, out.extended.model, after);
+  return out;
+}
+
 }  // namespace slipgraph

@@ -191,4 +191,14 @@ ExtendedModel AddEffects(const DriveLog& log, const ModelConfig& model, const Di
                          const std::vector<std::string>& effects,
                          const EffectRegistry& registry = EffectRegistry::Catalogue());
 
+// The diagnosis of the model extended by `effects` (AddEffects, with the registry of
+// `options.effects`), as `diagnose --with` and Python's diagnose(with_effects=...) report it.
+struct ExtendedDiagnosis {
+  ExtendedModel extended;
+  Diagnosis after;
+};
+ExtendedDiagnosis DiagnoseWith(const DriveLog& log, const ModelConfig& model,
+                               const Diagnosis& before, const std::vector<std::string>& effects,
+                               const DiagnosisOptions& options);
+
 }  // namespace slipgraph
