@@ -25,6 +25,12 @@ struct NumberField {
 std::vector<NumberField> TireFields(TireParams* tire, bool needed) {
   return {{"C1", &tire->C1, needed}, {"At", &tire->At, needed}, {"C2", &tire->C2, needed}};
 }
+// The model file's tire_sd: the coefficients' sd and the slope's relative sd.
+std::vector<NumberField> TireSdFields(ModelConfig* m) {
+  std::vector<NumberField> fields = TireFields(&m->tire_sd, false);
+  fields.push_back({"slip_stiffness", &m->tire_slip_stiffness_sd, false});
+  return fields;
+}
 std::vector<NumberField> RollingFields(RollingParams* rolling, bool needed) {
   return {{"R1", &rolling->R1, needed},
           {"A_roll", &rolling->A_roll, needed},
@@ -221,7 +227,7 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
   const std::vector<std::pair<std::string, std::vector<NumberField>>> sections = {
       {"tire", TireFields(&m.tire, false)},
       {"rolling", RollingFields(&m.rolling, false)},
-      {"tire_sd", TireFields(&m.tire_sd, false)},
+      {"tire_sd", TireSdFields(&m)},
       {"rolling_sd", RollingFields(&m.rolling_sd, false)},
       {"process_noise",
        {{"v_bx", &q.v_bx_mps2_per_sqrt_hz, false},
@@ -456,7 +462,10 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   };
   section("tire", {{"C1", m.tire.C1}, {"At", m.tire.At}, {"C2", m.tire.C2}});
   section("rolling", {{"R1", m.rolling.R1}, {"A_roll", m.rolling.A_roll}, {"R2", m.rolling.R2}});
-  section("tire_sd", {{"C1", m.tire_sd.C1}, {"At", m.tire_sd.At}, {"C2", m.tire_sd.C2}});
+  section("tire_sd", {{"C1", m.tire_sd.C1},
+                      {"At", m.tire_sd.At},
+                      {"C2", m.tire_sd.C2},
+                      {"slip_stiffness", m.tire_slip_stiffness_sd}});
   section("rolling_sd",
           {{"R1", m.rolling_sd.R1}, {"A_roll", m.rolling_sd.A_roll}, {"R2", m.rolling_sd.R2}});
   section("process_noise", {{"v_bx", q.v_bx_mps2_per_sqrt_hz},

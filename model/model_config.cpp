@@ -92,6 +92,10 @@ bool ModelConfig::IsValid(std::string* error) const {
       return false;
     }
   }
+  if (!(tire_slip_stiffness_sd >= 0.0 && tire_slip_stiffness_sd < 1.0)) {
+    *error = "tire_sd.slip_stiffness must lie in [0, 1) (a relative sd of the law's slope)";
+    return false;
+  }
   for (size_t i = 0; i < law_samples.size(); ++i) {
     const LawSample& soil = law_samples[i];
     if (!(soil.tire.C1 > 0.0 && soil.tire.At > 0.0 && soil.rolling.A_roll > 0.0 &&

@@ -1,5 +1,6 @@
 #include "solvers/ekf_runner.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -56,6 +57,46 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
   result->stats = filter->stats();
 }
 
+// ModelConfig::tire_slip_stiffness_sd, a consider covariance for the single front end: the run
+// again with the law's slope at small slip (At and C2) scaled by 1 - sd and by 1 + sd, each
+// state's variance increased by the mean of the two squared shifts. A slope that is off moves
+// the velocity where the law holds it (the slip the force needs) and hardly where it does not
+// (a hold-back, where the slip is the wheels' and GNSS's): the shift says which, through the
+// filter's own gains, as a fixed formula in the relative velocity could not. The filter's gains
+// and estimates are unchanged.
+void AddLawSlopeConsider(const DriveLog& log, const ModelConfig& model,
+                         const FilterRunOptions& options, FilterResult* result) {
+  const double sd = model.tire_slip_stiffness_sd;
+  std::vector<std::array<double, ward::kStateSize>> added(result->estimates.size());
+  for (double scale : {1.0 - sd, 1.0 + sd}) {
+    ModelConfig moved = model;
+    moved.tire_slip_stiffness_sd = 0.0;
+    moved.tire.At *= scale;
+    moved.tire.C2 *= scale;
+    const FilterResult other = RunEkf(log, moved, options);
+    if (other.estimates.size() != result->estimates.size()) {
+      result->notes.push_back(
+          "the tire law's slope uncertainty is not in the sd: the run with "
+          "the slope moved has other samples");
+      return;
+    }
+    for (size_t k = 0; k < added.size(); ++k) {
+      for (int i = 0; i < ward::kStateSize; ++i) {
+        const double shift = other.estimates[k].x[i] - result->estimates[k].x[i];
+        if (std::isfinite(shift)) added[k][i] += 0.5 * shift * shift;
+      }
+    }
+  }
+  for (size_t k = 0; k < added.size(); ++k) {
+    std::array<double, ward::kStateSize>& sd_k = result->estimates[k].sd;
+    for (int i = 0; i < ward::kStateSize; ++i) sd_k[i] = std::sqrt(sd_k[i] * sd_k[i] + added[k][i]);
+  }
+  std::ostringstream note;
+  note << "the sd include the tire law's slope uncertainty (tire_sd.slip_stiffness " << sd
+       << ": the estimate's shift with At and C2 moved by that share each way)";
+  result->notes.push_back(note.str());
+}
+
 }  // namespace
 
 FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
@@ -85,11 +126,12 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   for (Stream s : {Stream::kPose, Stream::kArticulation, Stream::kRange, Stream::kCommands}) {
     selection.Set(s, false);
   }
-  if (options.multiple_model && model.law_samples.size() >= 2) {
-    MultipleModelEkf bank(log.vehicle, model, options.ekf, options.multiple_model_options);
-    Feed(log, selection, &bank, &result);
+  const bool bank = options.multiple_model && model.law_samples.size() >= 2;
+  if (bank) {
+    MultipleModelEkf filters(log.vehicle, model, options.ekf, options.multiple_model_options);
+    Feed(log, selection, &filters, &result);
     result.notes.push_back(
-        "a bank of " + std::to_string(bank.size()) + " filters: the user's tire law and the " +
+        "a bank of " + std::to_string(filters.size()) + " filters: the user's tire law and the " +
         std::to_string(model.law_samples.size()) +
         " it was fitted over, weighed by their GNSS likelihood (--single-law: one filter)");
     if (options.disturbance_modes) {
@@ -105,6 +147,15 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   } else {
     WardEkf ekf(log.vehicle, model, options.ekf);
     Feed(log, selection, &ekf, &result);
+  }
+  if (model.tire_slip_stiffness_sd > 0.0) {
+    if (bank) {
+      result.notes.push_back(
+          "tire_sd.slip_stiffness is not added to the sd: the bank's spread over its soils "
+          "carries the law's uncertainty");
+    } else {
+      AddLawSlopeConsider(log, model, options, &result);
+    }
   }
   if (result.stats.gps.used == 0 && result.stats.gps.rejected > 0) {
     result.notes.push_back("every GNSS fix was rejected by the gate");

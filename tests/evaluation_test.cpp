@@ -59,6 +59,24 @@ TEST(Evaluation, HandComputedScores) {
   }
 }
 
+// A flag raised 1.2 s before the event and held into it: its samples before t_start - 0.5 are
+// false alarms, and it detects the event at -0.5 s, not at -1.2.
+TEST(Evaluation, EarlyFlagIsFalseUntilHalfASecondBeforeTheEvent) {
+  const DriveLog log = TruthLog();
+  NumericTable est;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 0.1 * k;
+    est.columns["t"].push_back(t);
+    est.columns["v_bx"].push_back(t >= 4.0 && t <= 6.0 ? 0.0 : 1.0);
+    est.columns["immobilized"].push_back(t >= 2.8 - 1e-9 && t <= 6.0 + 1e-9 ? 1.0 : 0.0);
+  }
+  const Evaluation ev = Evaluate(log, est);
+  EXPECT_EQ(ev.detected(), 1);
+  EXPECT_NEAR(ev.mean_detection_delay_s(), -0.5, 1e-9);
+  // 2.8, 2.9, ..., 3.4 s: seven samples before 3.5 s.
+  EXPECT_EQ(ev.false_immobilized_samples, 7);
+}
+
 TEST(Evaluation, MissedEventAndSuiteTotals) {
   const DriveLog log = TruthLog();
   NumericTable est;
