@@ -162,6 +162,15 @@ TEST(BatchSmoother, TheLawsStatedUncertaintyIsInTheSd) {
       sd_var += std::pow(by_sd.estimates[k].sd[ward::kVbx], 2);
     }
     EXPECT_GT(sd_var, 1.5 * plain_var);
+    // The slope's relative sd alone (tire_sd.slip_stiffness), with the law as given.
+    model.tire_sd = {0.0, 0.0, 0.0};
+    model.rolling_sd = {0.0, 0.0, 0.0};
+    model.tire_slip_stiffness_sd = 0.5;
+    const SmootherResult by_slope = SmoothBatch(log, model, options);
+    double slope_var = 0.0;
+    for (const WardEstimate& e : by_slope.estimates) slope_var += std::pow(e.sd[ward::kVbx], 2);
+    std::printf("the slope's sd alone: v variance x %.2f\n", slope_var / plain_var);
+    EXPECT_GT(slope_var, 1.2 * plain_var);
   }
 
   // fig5: the user's law is the terrain's, no sd stated: the sd are the plain ones.
