@@ -127,13 +127,14 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
           }
           const bool page = i == 0 && !options->report.empty();
           if (!with.empty()) {
-            const ExtendedDiagnosis extended = DiagnoseWith(log, model, before, with, diagnosis);
-            const Diagnosis& after = extended.after;
+            const ExtendedDiagnosis with_effects =
+                DiagnoseWith(log, model, before, with, diagnosis);
+            const Diagnosis& after = with_effects.after;
             out << "\nwith " << with.size() << " effect(s) added:\n";
             PrintDiagnosis(after, out);
             PrintComparison(before, after, out);
             j["after"] = ToJson(after);
-            if (page) report = DiagnosisReport(log, before, &extended.extended.log, &after);
+            if (page) report = DiagnosisReport(log, before, &with_effects.extended.log, &after);
           } else if (page) {
             report = DiagnosisReport(log, before);
           }

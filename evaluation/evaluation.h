@@ -17,13 +17,12 @@ namespace slipgraph {
 struct EvaluationOptions {
   // An event is detected by the first flagged sample in [t_start - early, t_end], its delay that
   // sample's time less t_start: truth marks the event from the moment the body is still, while
-  // slip is already near 1 a moment before. A flag raised earlier is a false alarm until
-  // t_start - early (and, still up then, detects the event at a delay of -early), not a longer
-  // negative delay.
+  // slip is already near 1 a moment before. A flag raised earlier and still up then detects it
+  // at a delay of -early.
   double detection_early_s = 0.5;
   // Flags within these margins around an event are transition, not false alarms: the slip is
   // near 1 a moment before the body stops, and the EMA needs a moment to fall after the robot is
-  // released.
+  // released. Flags before t_start - false_grace_before_s are false alarms.
   double false_grace_before_s = 0.5;
   double false_grace_after_s = 0.5;
   // Each field in its range; the first that is not is named in *error.

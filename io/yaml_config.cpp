@@ -28,7 +28,7 @@ std::vector<NumberField> TireFields(TireParams* tire, bool needed) {
 // The model file's tire_sd: the coefficients' sd and the slope's relative sd.
 std::vector<NumberField> TireSdFields(ModelConfig* m) {
   std::vector<NumberField> fields = TireFields(&m->tire_sd, false);
-  fields.push_back({"slip_stiffness", &m->tire_slip_stiffness_sd, false});
+  fields.push_back({"slip_stiffness", &m->tire_slip_stiffness_relative_sd, false});
   return fields;
 }
 std::vector<NumberField> RollingFields(RollingParams* rolling, bool needed) {
@@ -465,7 +465,7 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   section("tire_sd", {{"C1", m.tire_sd.C1},
                       {"At", m.tire_sd.At},
                       {"C2", m.tire_sd.C2},
-                      {"slip_stiffness", m.tire_slip_stiffness_sd}});
+                      {"slip_stiffness", m.tire_slip_stiffness_relative_sd}});
   section("rolling_sd",
           {{"R1", m.rolling_sd.R1}, {"A_roll", m.rolling_sd.A_roll}, {"R2", m.rolling_sd.R2}});
   section("process_noise", {{"v_bx", q.v_bx_mps2_per_sqrt_hz},

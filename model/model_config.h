@@ -115,11 +115,13 @@ struct ModelConfig {
   // How far the tire law's slope at small slip (At and C2 together: the slip a force needs) may
   // be off, relative, when the law is a guess for this terrain (model file `tire_sd:
   // slip_stiffness`; 0.5: within +-50 %; below 1). The single front end's sd then include how far
-  // its estimate moves with the slope so moved (RunEkf), and the batch smoother's consider
-  // covariance counts it (BatchSmootherOptions::consider_law_uncertainty). 0: exact.
-  double tire_slip_stiffness_sd = 0.0;
+  // its estimate moves with the slope so moved (RunEkf; the window adds that share to its own),
+  // and the batch smoother's consider covariance counts it with tire_sd and rolling_sd
+  // (BatchSmootherOptions::consider_law_uncertainty). 0: exact.
+  double tire_slip_stiffness_relative_sd = 0.0;
   // Or the laws of the soils it was fitted over (from vehicle.yaml `law_samples`): with two or
-  // more, their spread around the law (correlations included) replaces the sd above.
+  // more, their spread around the law (correlations included) replaces the three above in the
+  // batch's consider covariance, and the front end is a bank whose spread counts the law.
   std::vector<LawSample> law_samples;
   ProcessNoiseConfig process;
   SensorNoise measurement;  // from vehicle.yaml sensors unless the model file overrides it

@@ -26,6 +26,14 @@ struct TireParams {
   double C2 = 0.05;  // slope at large relative velocity, s/m (may be negative)
 };
 
+// The law's slope at small slip scaled: At and C2 times `scale`, so that the traction at
+// relative velocity v_rel is the unscaled law's at scale v_rel (the slip a force needs divided by
+// scale).
+inline void ScaleSlipStiffness(double scale, TireParams* tire) {
+  tire->At *= scale;
+  tire->C2 *= scale;
+}
+
 // Ward & Iagnemma eq. (9): F = -sign(v) N (R1 (1 - exp(-A_roll |v|)) + R2 |v|).
 struct RollingParams {
   double R1 = 0.03;      // static rolling-resistance coefficient, dimensionless

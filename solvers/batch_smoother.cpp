@@ -38,7 +38,7 @@ namespace {
 // with soil laws (ModelConfig::law_samples, n >= 2) each soil's deviation from the law over
 // sqrt(n - 1) (their sample covariance, correlations included); else each coefficient with a
 // stated sd, one sd off (ModelConfig::tire_sd, rolling_sd), and the slope at small slip (At and
-// C2) scaled by 1 + its relative sd (ModelConfig::tire_slip_stiffness_sd).
+// C2) scaled by 1 + its relative sd (ModelConfig::tire_slip_stiffness_relative_sd).
 std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelConfig& model) {
   std::vector<std::pair<std::string, ModelConfig>> out;
   const size_t n = model.law_samples.size();
@@ -69,10 +69,8 @@ std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelCon
   add("R1", model.rolling_sd.R1, [](ModelConfig& m, double sd) { m.rolling.R1 += sd; });
   add("A_roll", model.rolling_sd.A_roll, [](ModelConfig& m, double sd) { m.rolling.A_roll += sd; });
   add("R2", model.rolling_sd.R2, [](ModelConfig& m, double sd) { m.rolling.R2 += sd; });
-  add("the slope", model.tire_slip_stiffness_sd, [](ModelConfig& m, double sd) {
-    m.tire.At *= 1.0 + sd;
-    m.tire.C2 *= 1.0 + sd;
-  });
+  add("slip_stiffness", model.tire_slip_stiffness_relative_sd,
+      [](ModelConfig& m, double sd) { ScaleSlipStiffness(1.0 + sd, &m.tire); });
   return out;
 }
 

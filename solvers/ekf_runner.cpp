@@ -57,43 +57,77 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
   result->stats = filter->stats();
 }
 
-// ModelConfig::tire_slip_stiffness_sd, a consider covariance for the single front end: the run
-// again with the law's slope at small slip (At and C2) scaled by 1 - sd and by 1 + sd, each
-// state's variance increased by the mean of the two squared shifts. A slope that is off moves
-// the velocity where the law holds it (the slip the force needs) and hardly where it does not
-// (a hold-back, where the slip is the wheels' and GNSS's): the shift says which, through the
-// filter's own gains, as a fixed formula in the relative velocity could not. The filter's gains
-// and estimates are unchanged.
+// The filter the options and the model choose (a bank where the model lists soils, else the
+// disturbance modes or the paper's single filter) fed the selected streams.
+void RunChosenFilter(const DriveLog& log, const ModelConfig& model, const FilterRunOptions& options,
+                     const StreamSelection& selection, FilterResult* result) {
+  if (options.multiple_model && model.law_samples.size() >= 2) {
+    MultipleModelEkf filters(log.vehicle, model, options.ekf, options.multiple_model_options);
+    Feed(log, selection, &filters, result);
+    result->notes.push_back(
+        "a bank of " + std::to_string(filters.size()) + " filters: the user's tire law and the " +
+        std::to_string(model.law_samples.size()) +
+        " it was fitted over, weighed by their GNSS likelihood (--single-law: one filter)");
+    if (options.disturbance_modes) {
+      result->notes.push_back(
+          "the disturbance modes apply to the single filter: the bank ran (--single-law for them)");
+    }
+  } else if (options.disturbance_modes) {
+    DisturbanceImm imm(log.vehicle, model, options.ekf, options.disturbance_modes_options);
+    Feed(log, selection, &imm, result);
+    result->notes.push_back(
+        "three filters as disturbance modes (quiet, changing, held), mixed as an interacting "
+        "multiple model (--disturbance-modes)");
+  } else {
+    WardEkf ekf(log.vehicle, model, options.ekf);
+    Feed(log, selection, &ekf, result);
+  }
+}
+
+// ModelConfig::tire_slip_stiffness_relative_sd, a consider covariance for the single front end:
+// the same filter run again with the law's slope at small slip (At and C2) scaled by 1 - sd and
+// by 1 + sd, each state's variance increased by the mean of the two squared shifts. A slope that
+// is off moves the velocity where the law holds it (the slip the force needs) and hardly where it
+// does not (a hold-back, where the slip is the wheels' and GNSS's): the shift goes through the
+// filter's own gains. The estimates are unchanged; the shift's sd is the law's share
+// (FilterResult::law_spread_sd). Left out, with a note, when a moved run diverged.
 void AddLawSlopeConsider(const DriveLog& log, const ModelConfig& model,
-                         const FilterRunOptions& options, FilterResult* result) {
-  const double sd = model.tire_slip_stiffness_sd;
+                         const FilterRunOptions& options, const StreamSelection& selection,
+                         FilterResult* result) {
+  const double sd = model.tire_slip_stiffness_relative_sd;
   std::vector<std::array<double, ward::kStateSize>> added(result->estimates.size());
   for (double scale : {1.0 - sd, 1.0 + sd}) {
     ModelConfig moved = model;
-    moved.tire_slip_stiffness_sd = 0.0;
-    moved.tire.At *= scale;
-    moved.tire.C2 *= scale;
-    const FilterResult other = RunEkf(log, moved, options);
+    ScaleSlipStiffness(scale, &moved.tire);
+    FilterResult other;
+    RunChosenFilter(log, moved, options, selection, &other);
     if (other.estimates.size() != result->estimates.size()) {
+      throw std::logic_error("RunEkf: the run with the law's slope moved has other samples");
+    }
+    if (other.stats.divergence_resets > 0) {
       result->notes.push_back(
-          "the tire law's slope uncertainty is not in the sd: the run with "
-          "the slope moved has other samples");
+          "the tire law's slope uncertainty is not in the sd: the run with the slope moved "
+          "diverged");
       return;
     }
     for (size_t k = 0; k < added.size(); ++k) {
       for (int i = 0; i < ward::kStateSize; ++i) {
         const double shift = other.estimates[k].x[i] - result->estimates[k].x[i];
-        if (std::isfinite(shift)) added[k][i] += 0.5 * shift * shift;
+        added[k][i] += 0.5 * shift * shift;
       }
     }
   }
+  result->law_spread_sd.resize(added.size());
   for (size_t k = 0; k < added.size(); ++k) {
     std::array<double, ward::kStateSize>& sd_k = result->estimates[k].sd;
-    for (int i = 0; i < ward::kStateSize; ++i) sd_k[i] = std::sqrt(sd_k[i] * sd_k[i] + added[k][i]);
+    for (int i = 0; i < ward::kStateSize; ++i) {
+      sd_k[i] = std::sqrt(sd_k[i] * sd_k[i] + added[k][i]);
+      result->law_spread_sd[k][i] = std::sqrt(added[k][i]);
+    }
   }
   std::ostringstream note;
   note << "the sd include the tire law's slope uncertainty (tire_sd.slip_stiffness " << sd
-       << ": the estimate's shift with At and C2 moved by that share each way)";
+       << ": the estimate's mean squared shift with At and C2 moved by that share each way)";
   result->notes.push_back(note.str());
 }
 
@@ -103,6 +137,11 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
                     const FilterRunOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  const double slope_sd = model.tire_slip_stiffness_relative_sd;
+  if (!(slope_sd >= 0.0 && slope_sd < 1.0)) {
+    throw std::invalid_argument("RunEkf: tire_sd.slip_stiffness " + std::to_string(slope_sd) +
+                                " must lie in [0, 1)");
+  }
   FilterResult result;
   StreamSelection selection;
   selection.Set(Stream::kGps, options.use_gps);
@@ -126,35 +165,15 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   for (Stream s : {Stream::kPose, Stream::kArticulation, Stream::kRange, Stream::kCommands}) {
     selection.Set(s, false);
   }
+  RunChosenFilter(log, model, options, selection, &result);
   const bool bank = options.multiple_model && model.law_samples.size() >= 2;
-  if (bank) {
-    MultipleModelEkf filters(log.vehicle, model, options.ekf, options.multiple_model_options);
-    Feed(log, selection, &filters, &result);
-    result.notes.push_back(
-        "a bank of " + std::to_string(filters.size()) + " filters: the user's tire law and the " +
-        std::to_string(model.law_samples.size()) +
-        " it was fitted over, weighed by their GNSS likelihood (--single-law: one filter)");
-    if (options.disturbance_modes) {
-      result.notes.push_back(
-          "the disturbance modes apply to the single filter: the bank ran (--single-law for them)");
-    }
-  } else if (options.disturbance_modes) {
-    DisturbanceImm imm(log.vehicle, model, options.ekf, options.disturbance_modes_options);
-    Feed(log, selection, &imm, &result);
-    result.notes.push_back(
-        "three filters as disturbance modes (quiet, changing, held), mixed as an interacting "
-        "multiple model (--disturbance-modes)");
-  } else {
-    WardEkf ekf(log.vehicle, model, options.ekf);
-    Feed(log, selection, &ekf, &result);
-  }
-  if (model.tire_slip_stiffness_sd > 0.0) {
+  if (slope_sd > 0.0) {
     if (bank) {
       result.notes.push_back(
           "tire_sd.slip_stiffness is not added to the sd: the bank's spread over its soils "
           "carries the law's uncertainty");
     } else {
-      AddLawSlopeConsider(log, model, options, &result);
+      AddLawSlopeConsider(log, model, options, selection, &result);
     }
   }
   if (result.stats.gps.used == 0 && result.stats.gps.rejected > 0) {

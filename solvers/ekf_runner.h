@@ -34,9 +34,10 @@ struct FilterRunOptions {
 
 struct FilterResult {
   std::vector<WardEstimate> estimates;  // one per wheel sample, after its cycle
-  // The bank of filters (solvers/multiple_model_ekf.h): per estimate, the sd of the soils'
-  // estimates about the bank's mean, the tire law's share of the sd (the window smoother adds it
-  // to its own). Empty for one filter.
+  // Per estimate, the tire law's share of the sd (the window smoother adds it to its own): the
+  // bank's (solvers/multiple_model_ekf.h) sd of the soils' estimates about its mean, or the single
+  // front end's shift with the law's slope (ModelConfig::tire_slip_stiffness_relative_sd). Else
+  // empty.
   std::vector<std::array<double, ward::kStateSize>> law_spread_sd;
   // The bank: per estimate, its filters' laws weighed as the estimate is (MultipleModelEkf::Law),
   // the law a smoother behind it takes at that state. Empty for one filter.

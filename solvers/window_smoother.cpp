@@ -379,8 +379,8 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
       std::any_of(result.ekf.law_spread_sd.begin(), result.ekf.law_spread_sd.end(),
                   [](const std::array<double, kStateSize>& s) { return s[kVbx] > 0.0; })) {
     result.notes.push_back(
-        "the sd include the tire law's uncertainty as the front end's bank of filters sees it "
-        "(the spread of the soils' estimates)");
+        "the sd include the tire law's uncertainty as the front end sees it (the bank's spread "
+        "of the soils' estimates, or its shift with the law's slope)");
   }
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
                                        &result.estimates);

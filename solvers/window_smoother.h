@@ -42,10 +42,11 @@ struct WindowSmootherOptions {
   // (docs/smoother.md) at a fifth of the latency.
   int max_iterations = 1;
   bool covariance = true;  // marginal sd of each state as it leaves (else the EKF's sd)
-  // Add to that sd the tire law's uncertainty as the front end's bank of filters sees it (the
-  // spread of the soils' estimates, FilterResult::law_spread_sd; none without law samples). The
-  // window's own covariance takes the law as exact; the batch computes the smoother's own
-  // sensitivity to the law instead (BatchSmootherOptions::consider_law_uncertainty).
+  // Add to that sd the tire law's uncertainty as the front end sees it (the bank's spread of the
+  // soils' estimates, or the single filter's shift with the law's slope: FilterResult::
+  // law_spread_sd; none without either). The window's own covariance takes the law as exact;
+  // the batch computes the smoother's own sensitivity to the law instead
+  // (BatchSmootherOptions::consider_law_uncertainty).
   bool law_spread_in_sd = true;
   // Take at each state the law the front end's bank weighed there (FilterResult::law): the
   // window then refines the bank's estimate under the bank's own law. false, or one filter: the

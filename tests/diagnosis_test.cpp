@@ -119,11 +119,9 @@ TEST_P(SensorEffect, RankedFirstRecoveredAndRemovedByAddingIt) {
   const double truth = FindEffect(c.effect)->default_value;
   EXPECT_NEAR(top.magnitude, truth, c.relative_tolerance * truth);
 
-  const ExtendedModel extended = AddEffects(log, model, before, {c.effect});
-  ASSERT_EQ(extended.corrected.size(), 1u);
-  DiagnosisOptions options;
-  options.corrected = extended.corrected;
-  const Diagnosis after = Diagnose(extended.log, extended.model, options);
+  const ExtendedDiagnosis with = DiagnoseWith(log, model, before, {c.effect}, DiagnosisOptions{});
+  ASSERT_EQ(with.extended.corrected.size(), 1u);
+  const Diagnosis& after = with.after;
   ASSERT_EQ(after.in_model.size(), 1u);
   // What is left of the effect in the residuals is not significant (|z| < 3).
   EXPECT_LT(after.in_model[0].statistic, 9.0) << after.in_model[0].magnitude;

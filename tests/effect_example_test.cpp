@@ -50,10 +50,7 @@ TEST(EffectExample, FoundCorrectedAndQuietWhenAbsent) {
   EXPECT_NEAR(top.magnitude, 0.03, 0.006);
   EXPECT_EQ(top.added_as, "measurement correction");
 
-  const ExtendedModel extended = AddEffects(log, model, before, {"gyro_scale_error"}, registry);
-  DiagnosisOptions corrected = options;
-  corrected.corrected = extended.corrected;
-  const Diagnosis after = Diagnose(extended.log, extended.model, corrected);
+  const Diagnosis after = DiagnoseWith(log, model, before, {"gyro_scale_error"}, options).after;
   ASSERT_EQ(after.in_model.size(), 1u);
   // What is left is 3 % of it (measured 0.0293 +- 0.0002 found, 0.0009 +- 0.0002 left: the
   // fit comes out 2 % low, part of the scale going into the gyro bias estimate, and the test is

@@ -1,8 +1,8 @@
 // RunEkf: the front end over a whole log. Here the tire law's slope uncertainty in its sd
-// (ModelConfig::tire_slip_stiffness_sd, a consider covariance): on mismatch runs, whose truth has
-// a tire law of another family (docs/mismatch.md), the sd grow where the estimate leans on the
-// law and the velocity error falls inside its bound far more often; the estimates do not move;
-// a bank of filters carries the law's uncertainty in its spread and is left as it is.
+// (ModelConfig::tire_slip_stiffness_relative_sd, a consider covariance): on mismatch runs, whose
+// truth has a tire law of another family (docs/mismatch.md), the sd grow where the estimate leans
+// on the law and the velocity error falls inside its bound far more often; the estimates do not
+// move; a bank of filters carries the law's uncertainty in its spread and is left as it is.
 #include "solvers/ekf_runner.h"
 
 #include <gtest/gtest.h>
@@ -34,10 +34,14 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
     ModelConfig model = DefaultModelConfig(log.vehicle);
     ASSERT_TRUE(model.law_samples.empty());
     const FilterResult plain = RunEkf(log, model);
-    model.tire_slip_stiffness_sd = 0.7;
+    model.tire_slip_stiffness_relative_sd = 0.7;
     const FilterResult considered = RunEkf(log, model);
     EXPECT_TRUE(HasNote(considered, "slope uncertainty")) << name;
     ASSERT_EQ(plain.estimates.size(), considered.estimates.size());
+    // The law's share, for a window behind it to add to its own sd.
+    ASSERT_EQ(considered.law_spread_sd.size(), considered.estimates.size());
+    EXPECT_TRUE(std::any_of(considered.law_spread_sd.begin(), considered.law_spread_sd.end(),
+                            [](const auto& share) { return share[ward::kVbx] > 0.0; }));
     for (size_t k = 0; k < plain.estimates.size(); ++k) {
       for (int i = 0; i < ward::kStateSize; ++i) {
         ASSERT_EQ(plain.estimates[k].x[i], considered.estimates[k].x[i]) << name << " " << k;
@@ -50,8 +54,9 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
   const double before = Combine(plain_runs, "plain").nees_within_95_fraction();
   const double after = Combine(considered_runs, "considered").nees_within_95_fraction();
   std::printf("ward21m seed 1, runs 01-06: v NEES inside 95 %% %.3f -> %.3f\n", before, after);
-  EXPECT_LT(before, 0.7);
-  EXPECT_GT(after, before + 0.15);
+  // Measured: 0.445 -> 0.807.
+  EXPECT_LT(before, 0.6);
+  EXPECT_GT(after, before + 0.25);
 }
 
 // ward21/01 lists the soils its law was fitted over: the bank runs, its sd unchanged.
@@ -60,7 +65,7 @@ TEST(EkfRunner, TheBankKeepsItsOwnSpread) {
   ModelConfig model = DefaultModelConfig(log.vehicle);
   ASSERT_GE(model.law_samples.size(), 2u);
   const FilterResult plain = RunEkf(log, model);
-  model.tire_slip_stiffness_sd = 0.7;
+  model.tire_slip_stiffness_relative_sd = 0.7;
   const FilterResult considered = RunEkf(log, model);
   EXPECT_TRUE(HasNote(considered, "bank's spread"));
   ASSERT_EQ(plain.estimates.size(), considered.estimates.size());

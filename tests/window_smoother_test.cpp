@@ -217,7 +217,8 @@ TEST(WindowSmoother, TheLawsSpreadOverTheSoilsIsInTheSd) {
     }
     EXPECT_NE(std::find_if(a.notes.begin(), a.notes.end(),
                            [](const std::string& n) {
-                             return n.find("bank of filters") != std::string::npos;
+                             return n.find("uncertainty as the front end sees it") !=
+                                    std::string::npos;
                            }),
               a.notes.end());
     with.push_back(Evaluate(log, EstimateTable(a.estimates)));

@@ -210,10 +210,11 @@ TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
   EXPECT_DOUBLE_EQ(ReadModelYaml(WriteModel("rolling_sd: {R1: 0.05}\n"), v).rolling_sd.R1, 0.05);
   // The slope's relative sd (model file only), in [0, 1), and written back.
   const ModelConfig slope = ReadModelYaml(WriteModel("tire_sd: {slip_stiffness: 0.7}\n"), v);
-  EXPECT_DOUBLE_EQ(slope.tire_slip_stiffness_sd, 0.7);
+  EXPECT_DOUBLE_EQ(slope.tire_slip_stiffness_relative_sd, 0.7);
   std::ostringstream slope_out;
   WriteModelYaml(slope, slope_out);
-  EXPECT_DOUBLE_EQ(ReadModelYaml(WriteModel(slope_out.str()), v).tire_slip_stiffness_sd, 0.7);
+  EXPECT_DOUBLE_EQ(ReadModelYaml(WriteModel(slope_out.str()), v).tire_slip_stiffness_relative_sd,
+                   0.7);
   try {
     ReadModelYaml(WriteModel("tire_sd: {slip_stiffness: 1.0}\n"), v);
     FAIL() << "a slope sd of 1 was accepted";
