@@ -1,7 +1,9 @@
 // Batch smoother time and peak memory against log length, and the window smoother's update
 // latency. Prints figures (docs/benchmarks.md records them with this command):
 //
-//   build/bench/smoother_bench batch MINUTES [--no-covariance]   one length per process (peak RSS)
+//   build/bench/smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N]
+//                                                                 one length per process (peak
+//                                                                 RSS); the chain solver or Ceres
 //   build/bench/smoother_bench window [--ceres] [ITERATIONS...]    2 s window at 100 Hz (chain
 //                                                                   Gauss-Newton, or ceres::Solve)
 //   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES      chunked mode, 60 s overlap
@@ -74,26 +76,32 @@ double BlockTridiagonalCholesky(size_t n) {
   return seconds;
 }
 
-int Batch(double minutes, bool covariance) {
+int Batch(double minutes, bool covariance, int threads, BatchSolver solver) {
   const sim::SimResult sim = sim::Simulate(LongDrive(minutes), 1);
   const double rss_log = PeakRssMb();
   BatchSmootherOptions options;
   options.covariance = covariance;
   options.max_iterations = 50;
+  options.threads = threads;
+  options.solver = solver;
+  long iterations = 0;  // over both solves (the second re-gates weak constraint 2)
+  options.progress = [&](const ProgressUpdate& update) { iterations += update.done > 0; };
   const Clock::time_point start = Clock::now();
   const SmootherResult result = SmoothBatch(sim.log, DefaultModelConfig(sim.log.vehicle), options);
   const double total = Seconds(start);
-  double iteration_s = 0.0;
+  double iteration_s = 0.0;  // the last solve's mean
   for (const ceres::IterationSummary& it : result.summary.iterations) {
     iteration_s += it.iteration_time_in_seconds;
   }
-  const int iterations = std::max<int>(1, result.summary.iterations.size() - 1);
-  iteration_s /= iterations;
+  iteration_s /= std::max<size_t>(1, result.summary.iterations.size());
   const double floor_s = BlockTridiagonalCholesky(result.estimates.size());
-  std::printf("| %5.1f | %8zu | %7.2f | %3d | %7.3f | %8.4f | %6.1f | %7.0f | %7.0f | %s |\n",
-              minutes, result.estimates.size(), total, iterations, iteration_s, floor_s,
-              iteration_s / floor_s, rss_log, PeakRssMb(),
-              result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"));
+  std::printf(
+      "| %s | %d | %5.1f | %8zu | %7.2f | %3ld | %s | %7.3f | %8.4f | %6.1f | %7.0f | %7.0f | %s "
+      "|\n",
+      solver == BatchSolver::kChain ? "chain" : "Ceres", threads, minutes, result.estimates.size(),
+      total, iterations, result.summary.termination_type == ceres::CONVERGENCE ? "yes" : "no",
+      iteration_s, floor_s, iteration_s / floor_s, rss_log, PeakRssMb(),
+      result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"));
   return 0;
 }
 
@@ -153,8 +161,15 @@ int Window(const std::vector<int>& iterations, bool chain) {
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::strcmp(argv[1], "batch") == 0) {
-    const bool covariance = !(argc >= 4 && std::strcmp(argv[3], "--no-covariance") == 0);
-    return slipgraph::Batch(std::atof(argv[2]), covariance);
+    bool covariance = true;
+    int threads = 1;
+    slipgraph::BatchSolver solver = slipgraph::BatchSolver::kChain;
+    for (int i = 3; i < argc; ++i) {
+      if (std::strcmp(argv[i], "--no-covariance") == 0) covariance = false;
+      if (std::strcmp(argv[i], "--ceres") == 0) solver = slipgraph::BatchSolver::kCeres;
+      if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = std::atoi(argv[++i]);
+    }
+    return slipgraph::Batch(std::atof(argv[2]), covariance, std::max(1, threads), solver);
   }
   if (argc >= 4 && std::strcmp(argv[1], "chunked") == 0) {
     return slipgraph::Chunked(std::atof(argv[2]), std::atof(argv[3]));
@@ -174,12 +189,12 @@ int main(int argc, char** argv) {
   }
   std::fprintf(
       stderr,
-      "usage: smoother_bench batch MINUTES [--no-covariance] | window [--ceres] [ITERATIONS...] | "
-      "chunked MINUTES CHUNK_MINUTES\n"
+      "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] | "
+      "window [--ceres] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"
-      "batch prints: | minutes | states | total s | iterations | s/iteration | "
-      "block-tridiagonal Cholesky s | ratio | RSS after simulation MB | peak RSS MB | "
-      "covariance |\n");
+      "batch prints: | solver | threads | minutes | states | total s | iterations (both solves) | "
+      "converged | s/iteration | block-tridiagonal Cholesky s | ratio | RSS after simulation MB | "
+      "peak RSS MB | covariance |\n");
   return 2;
 }

@@ -9,6 +9,7 @@
 #include "factors/catalogue_terms.h"
 #include "model/option_check.h"
 #include "solvers/chain_covariance.h"
+#include "solvers/chain_solver.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
@@ -17,6 +18,7 @@ bool BatchSmootherOptions::IsValid(std::string* error) const {
   return OptionCheck("BatchSmootherOptions", error)
              .AtLeast("max_iterations", max_iterations, 1)
              .Positive("function_tolerance", function_tolerance)
+             .NonNegative("step_sd_tolerance", step_sd_tolerance)
              .AtLeast("threads", threads, 1)
              .Positive("initial_trust_region_radius", initial_trust_region_radius)
              .NonNegative("min_immobilized_s", min_immobilized_s) &&
@@ -184,7 +186,28 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   ProgressReporter reporter(options.progress);
   if (options.progress) solver_options.callbacks.push_back(&reporter);
   const std::map<std::string, double> initial_costs = CostByKind(*problem);
-  ceres::Solve(solver_options, problem->problem.get(), &result.summary);
+  const size_t n = problem->states.size();
+  std::vector<double*> states;
+  states.reserve(n);
+  for (size_t k = 0; k < n; ++k) states.push_back(problem->states[k].data());
+  std::vector<double*> globals = {problem->offsets.data()};
+  if (!problem->effects.empty()) globals.push_back(problem->effects.data());
+  for (double& node : problem->stiffness) globals.push_back(&node);
+  bool solved = false;
+  if (options.solver == BatchSolver::kChain) {
+    ChainSolverOptions chain;
+    chain.max_iterations = options.max_iterations;
+    chain.function_tolerance = options.function_tolerance;
+    chain.gradient_tolerance = solver_options.gradient_tolerance;
+    chain.parameter_tolerance = solver_options.parameter_tolerance;
+    chain.step_sd_tolerance = options.step_sd_tolerance;
+    chain.initial_trust_region_radius = options.initial_trust_region_radius;
+    chain.progress = options.progress;
+    chain.threads = options.threads;
+    solved = SolveOnChain(problem->problem.get(), states, globals, chain, &result.summary);
+    if (!solved) result.notes.push_back(result.summary.message + ": solved by Ceres instead");
+  }
+  if (!solved) ceres::Solve(solver_options, problem->problem.get(), &result.summary);
   std::ostringstream breakdown;
   breakdown << "cost by factor (" << (options.start != nullptr ? "given start" : "EKF start")
             << " -> solution):";
@@ -222,7 +245,6 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
                            "): the terrain wants a far flatter tire law than the model's; the "
                            "law does not fit this log");
   }
-  const size_t n = problem->states.size();
   for (size_t k = 0; k < n; ++k) {
     WardEstimate& e = result.estimates[k];
     for (int i = 0; i < kStateSize; ++i) e.x[i] = problem->states[k][i];
@@ -230,14 +252,8 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     e.gyro_offset_radps = problem->offsets[1];
   }
   if (options.covariance) {
-    std::vector<double*> states;
-    states.reserve(n);
-    for (size_t k = 0; k < n; ++k) states.push_back(problem->states[k].data());
-    std::vector<double*> globals = {problem->offsets.data()};
-    if (!problem->effects.empty()) globals.push_back(problem->effects.data());
-    for (double& node : problem->stiffness) globals.push_back(&node);
     const ChainCovariance covariance =
-        ComputeChainCovariance(problem->problem.get(), states, globals);
+        ComputeChainCovariance(problem->problem.get(), states, globals, options.threads);
     result.covariance_ok = covariance.ok;
     if (covariance.ok) {
       for (size_t j = 0; j < problem->stiffness.size(); ++j) {

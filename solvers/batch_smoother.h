@@ -1,7 +1,7 @@
-// Post-processing: the whole-log Ward factor graph (problems/ward_batch_problem) solved with
-// sparse Cholesky (SuiteSparse), initialised from the EKF, with a standard deviation for every
-// estimate from the marginal covariance. A failed or unusable solve falls back to the EKF's
-// estimates and says so; nothing is dropped.
+// Post-processing: the whole-log Ward factor graph (problems/ward_batch_problem) solved on its
+// chain structure (or by Ceres with sparse Cholesky), initialised from the EKF, with a standard
+// deviation for every estimate from the marginal covariance. A failed or unusable solve falls back
+// to the EKF's estimates and says so; nothing is dropped.
 #pragma once
 
 #include <ceres/solver.h>
@@ -28,7 +28,13 @@ WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRu
 // disturbance unchanged; where the law is exact (fig5) it costs 0.0031 -> 0.0048 m/s.
 constexpr double kPostProcessingStiffnessPriorSd = 0.15;
 
+// How the batch is solved. The chain (solvers/chain_solver): Levenberg-Marquardt on the
+// block-tridiagonal information with the globals as its border, Ceres where the problem is not a
+// chain (a note says so). Ceres: its trust region with sparse Cholesky (SuiteSparse).
+enum class BatchSolver { kChain, kCeres };
+
 struct BatchSmootherOptions {
+  BatchSolver solver = BatchSolver::kChain;
   int max_iterations = 200;
   // Told after each solver iteration (its number and cost; no total, max_iterations is only a
   // bound).
@@ -36,6 +42,10 @@ struct BatchSmootherOptions {
   // Ceres's relative cost change at convergence. 1e-12 for post-processing; a likelihood-ratio
   // fit needs the cost to a few thousandths only.
   double function_tolerance = 1e-12;
+  // The chain solver's convergence (ChainSolverOptions::step_sd_tolerance): a step that would
+  // move the solution by less than this in its own sd ends the solve. Long logs with robust
+  // losses converge linearly, and reach 1e-12 in the cost only after tens of such steps.
+  double step_sd_tolerance = 0.01;
   int threads = 1;
   // Ceres's initial trust-region radius (its default, 1e4, here). A solve that starts at a
   // solution of a nearby problem (`start`) can take Gauss-Newton-sized steps at once: the

@@ -2,12 +2,19 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/crs_matrix.h>
+#include <ceres/loss_function.h>
+#include <ceres/manifold.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
+#include <deque>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
+
+#include "solvers/run_concurrently.h"
 
 namespace slipgraph {
 
@@ -43,22 +50,39 @@ std::vector<Rhs> SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& 
 // H = J'J in flat column-major buffers: D[k] = T_kk (upper triangle), U[k] = T_{k,k+1},
 // B[k] = H_{k,globals}, C (upper triangle); filled one residual block at a time.
 struct Information {
-  Information(int n, int m, int g)
-      : n(n),
-        m(m),
-        g(g),
-        D(static_cast<size_t>(n) * m * m, 0.0),
-        U(D.size(), 0.0),
-        B(static_cast<size_t>(n) * m * g, 0.0),
-        C(static_cast<size_t>(g) * g, 0.0) {}
+  Information(int n, int m, int g) { Reset(n, m, g); }
+
+  // Zero, for n states of size m and g globals (the buffers' memory kept where it suffices).
+  void Reset(int states, int size, int global_size) {
+    n = states, m = size, g = global_size;
+    D.assign(static_cast<size_t>(n) * m * m, 0.0);
+    U.assign(D.size(), 0.0);
+    B.assign(static_cast<size_t>(n) * m * g, 0.0);
+    C.assign(static_cast<size_t>(g) * g, 0.0);
+    error.clear();
+  }
+
+  struct Segment {
+    int k, index, position, length;  // state (-1: the globals), first index, first column
+  };
+  // One caller's part of an assembly: where its globals' block C goes (threads add to their own
+  // and sum them after), its scratch, its error.
+  struct Part {
+    double* C = nullptr;
+    std::vector<Segment> segments;
+    std::string error;
+  };
 
   // Adds one residual block's Jb' Jb (hb: its upper triangle, row-major, count x count) whose
-  // column a is index[a] of state block[a] (-1: of the globals, stacked). False (with error) when
-  // the block links states that are not neighbours.
+  // column a is index[a] of state block[a] (-1: of the globals, stacked), the globals' part to
+  // part->C. False (with part->error) when the block links states that are not neighbours.
+  // Parts that touch different states may add at once.
   bool Add(const std::vector<int>& block, const std::vector<int>& index,
-           const std::vector<double>& hb) {
+           const std::vector<double>& hb, Part* part) {
     const int count = static_cast<int>(block.size());
     const int mm = m * m;
+    std::vector<Segment>& segments_ = part->segments;
+    std::string& error = part->error;
     // Runs of columns of one parameter block with consecutive indices; each pair of runs adds
     // its part of hb to one destination, at origin + ia * sa + ib * sb (no branch per element).
     segments_.clear();
@@ -79,7 +103,7 @@ struct Information {
         double* origin = nullptr;
         int sa = 1, sb = 1;
         if (s.k < 0 && t.k < 0) {  // C, upper triangle
-          origin = C.data();
+          origin = part->C;
           sa = s.index <= t.index ? 1 : g;
           sb = s.index <= t.index ? g : 1;
         } else if (s.k < 0) {  // a state's border B
@@ -114,15 +138,9 @@ struct Information {
     return true;
   }
 
-  int n, m, g;
+  int n = 0, m = 0, g = 0;
   std::vector<double> D, U, B, C;
   std::string error;
-
- private:
-  struct Segment {
-    int k, index, position, length;  // state (-1: the globals), first index, first column
-  };
-  std::vector<Segment> segments_;
 };
 
 // The upper triangle of Jb' Jb, row-major, for `rows` rows of `count` columns (row-major): a
@@ -145,6 +163,8 @@ bool AssembleFromJacobian(const ceres::CRSMatrix& J, Information* info) {
   const int m = info->m, state_columns = info->n * m;
   std::vector<int> block, index;
   std::vector<double> hb;
+  Information::Part part;
+  part.C = info->C.data();
   for (int row = 0; row < J.num_rows;) {
     // Rows of one residual block share their columns: take them together.
     const int begin = J.rows[row], count = J.rows[row + 1] - begin;
@@ -163,103 +183,288 @@ bool AssembleFromJacobian(const ceres::CRSMatrix& J, Information* info) {
       block[a] = c >= state_columns ? -1 : c / m;
       index[a] = c >= state_columns ? c - state_columns : c % m;
     }
-    if (!info->Add(block, index, hb)) return false;
+    if (!info->Add(block, index, hb, &part)) {
+      info->error = part.error;
+      return false;
+    }
   }
   return true;
 }
 
-// H, the gradient J'r (states, then globals) and the cost from each residual block's own
-// evaluation (Problem::EvaluateResidualBlock, loss-corrected as Problem::Evaluate is): no program
-// and no sparse Jacobian built per call. A block's parameters that are neither a state nor a
-// global are held constant, as Problem::Evaluate holds the blocks it is not given.
-bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& states,
-                        const std::vector<double*>& globals, Information* info, double* cost,
-                        std::vector<double>* gradient) {
-  const int m = info->m, state_columns = info->n * m;
+// Where each free parameter block sits: a state (its index) or the globals (its first column
+// among theirs), and, for a block with a manifold, its Plus Jacobian at the current values.
+struct Layout {
   struct Place {
-    int state, first, size;  // state -1: a global, its first index among the globals'
+    int state, first, size, ambient;       // state -1: a global, first: its first index among them
+    const Eigen::MatrixXd* plus_jacobian;  // ambient x tangent; null without a manifold
   };
-  std::unordered_map<const double*, Place> where;
-  where.reserve(states.size() + globals.size());
-  for (size_t k = 0; k < states.size(); ++k) where[states[k]] = {static_cast<int>(k), 0, m};
-  int offset = 0;
-  for (double* p : globals) {
-    const int size = problem->ParameterBlockTangentSize(p);
-    where[p] = {-1, offset, size};
-    offset += size;
+  Layout(const ceres::Problem& problem, const std::vector<double*>& states,
+         const std::vector<double*>& globals) {
+    where.reserve(states.size() + globals.size());
+    const auto add = [&](double* p, int state, int first) {
+      Place place{state, first, problem.ParameterBlockTangentSize(p), problem.ParameterBlockSize(p),
+                  nullptr};
+      if (const ceres::Manifold* manifold = problem.GetManifold(p)) {
+        // Ceres' Jacobians are row-major.
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> j(place.ambient,
+                                                                                 place.size);
+        manifold->PlusJacobian(p, j.data());
+        plus_jacobians.emplace_back(j);
+        place.plus_jacobian = &plus_jacobians.back();
+      }
+      where[p] = place;
+      return place.size;
+    };
+    for (size_t k = 0; k < states.size(); ++k) add(states[k], static_cast<int>(k), 0);
+    int offset = 0;
+    for (double* p : globals) offset += add(p, -1, offset);
   }
-  gradient->assign(static_cast<size_t>(state_columns + info->g), 0.0);
-  *cost = 0.0;
-  std::vector<ceres::ResidualBlockId> ids;
-  problem->GetResidualBlocks(&ids);
-  std::vector<double*> blocks;
-  std::vector<int> block, index, sizes;
-  std::vector<double> residuals, jb, hb;
-  std::vector<std::vector<double>> jacobians;
-  std::vector<double*> jacobian_pointers;
-  for (const ceres::ResidualBlockId id : ids) {
-    problem->GetParameterBlocksForResidualBlock(id, &blocks);
-    const int rows = problem->GetCostFunctionForResidualBlock(id)->num_residuals();
-    jacobians.resize(blocks.size());
-    jacobian_pointers.assign(blocks.size(), nullptr);
-    sizes.assign(blocks.size(), 0);
+  std::unordered_map<const double*, Place> where;
+  std::deque<Eigen::MatrixXd> plus_jacobians;  // stable addresses
+};
+
+// One residual block evaluated as Ceres' solver sees it, with scratch of its own so that threads
+// may evaluate different blocks at once: the cost function called on the parameters' values (no
+// Ceres state touched), its Jacobian taken to each manifold's tangent space, and residuals and
+// Jacobian corrected for the block's loss as Ceres' Corrector does (Triggs et al., "Bundle
+// Adjustment - A Modern Synthesis", 2000, sec. 4.3): with s = |r|^2 and rho', rho'' at s, the
+// residuals are scaled by sqrt(rho') / (1 - alpha) and the Jacobian becomes
+// sqrt(rho') (I - alpha r r' / s) J, alpha = 1 - sqrt(1 + 2 s rho'' / rho'); where rho'' <= 0
+// (a loss past its bend) both are only scaled by sqrt(rho'). Checked against
+// Problem::Evaluate's cost and gradient in a test.
+class BlockEvaluation {
+ public:
+  // False when the cost function fails or returns a value that is not finite.
+  bool Evaluate(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
+    problem.GetParameterBlocksForResidualBlock(id, &blocks_);
+    const ceres::CostFunction* function = problem.GetCostFunctionForResidualBlock(id);
+    rows = function->num_residuals();
+    const size_t count_blocks = blocks_.size();
+    ambient_.resize(count_blocks);
+    pointers_.assign(count_blocks, nullptr);
+    places_.assign(count_blocks, nullptr);
     block.clear();
     index.clear();
-    for (size_t i = 0; i < blocks.size(); ++i) {
-      const auto it = where.find(blocks[i]);
-      if (it == where.end()) continue;
-      const Place& place = it->second;
-      sizes[i] = place.size;
-      jacobians[i].resize(static_cast<size_t>(rows) * sizes[i]);
-      jacobian_pointers[i] = jacobians[i].data();
-      for (int j = 0; j < sizes[i]; ++j) {
+    for (size_t i = 0; i < count_blocks; ++i) {
+      const auto it = layout.where.find(blocks_[i]);
+      if (it == layout.where.end()) continue;  // held constant
+      const Layout::Place& place = it->second;
+      places_[i] = &place;
+      ambient_[i].resize(static_cast<size_t>(rows) * place.ambient);
+      pointers_[i] = ambient_[i].data();
+      for (int j = 0; j < place.size; ++j) {
         block.push_back(place.state);
         index.push_back(place.first + j);
       }
     }
     residuals.resize(rows);
-    double block_cost = 0.0;
-    if (!problem->EvaluateResidualBlock(id, true, &block_cost, residuals.data(),
-                                        jacobian_pointers.data())) {
-      info->error = "a residual block could not be evaluated";
-      return false;
-    }
-    *cost += block_cost;
-    const int count = static_cast<int>(block.size());
-    if (count == 0) continue;
-    // The block's Jacobian, row-major over its free columns.
+    if (!function->Evaluate(blocks_.data(), residuals.data(), pointers_.data())) return false;
+    count = static_cast<int>(block.size());
     jb.resize(static_cast<size_t>(rows) * count);
     int column = 0;
-    for (size_t i = 0; i < blocks.size(); ++i) {
-      if (jacobian_pointers[i] == nullptr) continue;
+    for (size_t i = 0; i < count_blocks; ++i) {
+      const Layout::Place* place = places_[i];
+      if (place == nullptr) continue;
       for (int r = 0; r < rows; ++r) {
-        std::copy_n(jacobians[i].data() + static_cast<size_t>(r) * sizes[i], sizes[i],
-                    jb.data() + static_cast<size_t>(r) * count + column);
+        const double* ambient = ambient_[i].data() + static_cast<size_t>(r) * place->ambient;
+        double* out = jb.data() + static_cast<size_t>(r) * count + column;
+        if (place->plus_jacobian == nullptr) {
+          std::copy_n(ambient, place->size, out);
+        } else {
+          for (int c = 0; c < place->size; ++c) {
+            double sum = 0.0;
+            for (int a = 0; a < place->ambient; ++a) {
+              sum += ambient[a] * (*place->plus_jacobian)(a, c);
+            }
+            out[c] = sum;
+          }
+        }
       }
-      column += sizes[i];
+      column += place->size;
     }
-    for (int a = 0; a < count; ++a) {
-      double sum = 0.0;
-      for (int r = 0; r < rows; ++r) sum += jb[static_cast<size_t>(r) * count + a] * residuals[r];
-      const int c = block[a] < 0 ? state_columns + index[a] : block[a] * m + index[a];
-      (*gradient)[c] += sum;
+    double squared = 0.0;
+    for (const double r : residuals) squared += r * r;
+    if (!std::isfinite(squared) ||
+        !std::all_of(jb.begin(), jb.end(), [](double j) { return std::isfinite(j); })) {
+      return false;
     }
-    AddOuterProducts(jb.data(), rows, count, &hb);
-    if (!info->Add(block, index, hb)) return false;
+    CorrectForLoss(problem.GetLossFunctionForResidualBlock(id), squared);
+    return std::isfinite(cost);
   }
+
+  int rows = 0, count = 0;            // residuals, free columns
+  std::vector<int> block, index;      // each free column's state (-1: globals) and index in it
+  std::vector<double> residuals, jb;  // loss-corrected; jb row-major, rows x count
+  double cost = 0.0;
+
+ private:
+  void CorrectForLoss(const ceres::LossFunction* loss, double squared) {
+    if (loss == nullptr) {
+      cost = 0.5 * squared;
+      return;
+    }
+    double rho[3];
+    loss->Evaluate(squared, rho);
+    cost = 0.5 * rho[0];
+    const double sqrt_rho1 = std::sqrt(rho[1]);
+    if (squared == 0.0 || rho[2] <= 0.0) {
+      for (double& r : residuals) r *= sqrt_rho1;
+      for (double& j : jb) j *= sqrt_rho1;
+      return;
+    }
+    const double alpha = 1.0 - std::sqrt(1.0 + 2.0 * squared * rho[2] / rho[1]);
+    const double alpha_over_s = alpha / squared;
+    for (int c = 0; c < count; ++c) {
+      double rj = 0.0;  // r' J, column c
+      for (int r = 0; r < rows; ++r) rj += residuals[r] * jb[static_cast<size_t>(r) * count + c];
+      for (int r = 0; r < rows; ++r) {
+        double& j = jb[static_cast<size_t>(r) * count + c];
+        j = sqrt_rho1 * (j - alpha_over_s * residuals[r] * rj);
+      }
+    }
+    const double scale = sqrt_rho1 / (1.0 - alpha);
+    for (double& r : residuals) r *= scale;
+  }
+
+  std::vector<double*> blocks_;
+  std::vector<std::vector<double>> ambient_;
+  std::vector<double*> pointers_;
+  std::vector<const Layout::Place*> places_;
+};
+
+// H, the gradient J'r (states, then globals) and the cost from each residual block's own
+// evaluation (BlockEvaluation): no program and no sparse Jacobian built per call. A block's
+// parameters that are neither a state nor a global are held constant, as Problem::Evaluate holds
+// the blocks it is not given. On `threads` threads, each takes the blocks within its own run of
+// states (the globals' block of H and of the gradient summed after); the blocks that cross from
+// one run to the next, and those on the globals alone, are added after them.
+// `partition` (may be null): the blocks each thread takes, from an earlier call on the same
+// problem with the same threads; filled when empty.
+using Partition = std::vector<std::vector<ceres::ResidualBlockId>>;
+bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& states,
+                        const std::vector<double*>& globals, Information* info, double* cost,
+                        std::vector<double>* gradient, int threads = 1,
+                        Partition* partition = nullptr) {
+  const int m = info->m, g = info->g, n = info->n, state_columns = n * m;
+  const Layout layout(*problem, states, globals);
+  gradient->assign(static_cast<size_t>(state_columns + g), 0.0);
+  // Each thread's run of states, and the blocks each takes (the last list: after them).
+  const int parts = std::max(1, std::min(threads, n / 64));
+  Partition own;
+  Partition& taken = partition != nullptr ? *partition : own;
+  if (taken.size() == static_cast<size_t>(parts) + 1) {
+    // the partition of an earlier call
+  } else if (parts == 1) {
+    taken.assign(2, {});
+    problem->GetResidualBlocks(&taken[0]);
+  } else {
+    taken.assign(parts + 1, {});
+    std::vector<ceres::ResidualBlockId> ids;
+    problem->GetResidualBlocks(&ids);
+    std::vector<double*> blocks;
+    for (const ceres::ResidualBlockId id : ids) {
+      problem->GetParameterBlocksForResidualBlock(id, &blocks);
+      int lowest = n, highest = -1;
+      for (double* p : blocks) {
+        const auto it = layout.where.find(p);
+        if (it == layout.where.end() || it->second.state < 0) continue;
+        lowest = std::min(lowest, it->second.state);
+        highest = std::max(highest, it->second.state);
+      }
+      const int part =
+          highest < 0 ? parts : static_cast<int>(static_cast<long>(lowest) * parts / n);
+      const int end = static_cast<int>(static_cast<long>(n) * (part + 1) / parts);
+      taken[highest < end ? part : parts].push_back(id);
+    }
+  }
+  std::vector<double> Cs(static_cast<size_t>(parts) * g * g, 0.0);
+  std::vector<double> globals_gradient(static_cast<size_t>(parts) * g, 0.0);
+  std::vector<double> costs(parts, 0.0);
+  std::vector<std::string> errors(parts);
+  const auto assemble = [&](const std::vector<ceres::ResidualBlockId>& list, double* C,
+                            double* gradient_globals, double* part_cost, std::string* error) {
+    BlockEvaluation e;
+    Information::Part part;
+    part.C = C;
+    std::vector<double> hb;
+    for (const ceres::ResidualBlockId id : list) {
+      if (!e.Evaluate(*problem, id, layout)) {
+        *error = "a residual block could not be evaluated";
+        return;
+      }
+      *part_cost += e.cost;
+      if (e.count == 0) continue;
+      for (int a = 0; a < e.count; ++a) {
+        double sum = 0.0;
+        for (int r = 0; r < e.rows; ++r) {
+          sum += e.jb[static_cast<size_t>(r) * e.count + a] * e.residuals[r];
+        }
+        if (e.block[a] < 0) {
+          gradient_globals[e.index[a]] += sum;
+        } else {
+          (*gradient)[static_cast<size_t>(e.block[a]) * m + e.index[a]] += sum;
+        }
+      }
+      AddOuterProducts(e.jb.data(), e.rows, e.count, &hb);
+      if (!info->Add(e.block, e.index, hb, &part)) {
+        *error = part.error;
+        return;
+      }
+    }
+  };
+  RunConcurrently(parts, parts, [&](size_t p) {
+    assemble(taken[p], Cs.data() + p * g * g, globals_gradient.data() + p * g, &costs[p],
+             &errors[p]);
+  });
+  std::string last_error;
+  double last_cost = 0.0;
+  std::vector<double> last_gradient(g, 0.0);
+  assemble(taken[parts], info->C.data(), last_gradient.data(), &last_cost, &last_error);
+  *cost = last_cost;
+  for (int p = 0; p < parts; ++p) {
+    if (!errors[p].empty()) {
+      info->error = errors[p];
+      return false;
+    }
+    *cost += costs[p];
+    for (int i = 0; i < g * g; ++i) info->C[i] += Cs[static_cast<size_t>(p) * g * g + i];
+    for (int i = 0; i < g; ++i)
+      last_gradient[i] += globals_gradient[static_cast<size_t>(p) * g + i];
+  }
+  if (!last_error.empty()) {
+    info->error = last_error;
+    return false;
+  }
+  std::copy(last_gradient.begin(), last_gradient.end(), gradient->begin() + state_columns);
   return true;
 }
 
-// Factors an assembled H; false (with f->error) when it is not positive definite.
+// The Levenberg-Marquardt damping of one diagonal element: mu times the element, kept within
+// Ceres' bounds for it (min_lm_diagonal, max_lm_diagonal) so a direction no residual reaches is
+// damped too.
+double Damping(double mu, double diagonal) { return mu * std::clamp(diagonal, 1e-6, 1e32); }
+
+// Factors an assembled H (plus mu diag(H) when mu > 0, a Levenberg-Marquardt step); false (with
+// f->error) when it is not positive definite.
 template <int M>
-bool Factor(const Information& info, ChainFactorization<M>* f) {
+bool Factor(const Information& info, ChainFactorization<M>* f, double mu = 0.0,
+            const std::vector<char>* held = nullptr) {
   using Block = typename ChainFactorization<M>::Block;
   const int n = info.n, m = info.m, g = info.g, mm = m * m;
   f->n = n, f->m = m, f->g = g;
   const std::vector<double>&Dbuf = info.D, &Ubuf = info.U, &Bbuf = info.B, &Cbuf = info.C;
+  // A held column (held[column] != 0) is cut from H and gets a unit diagonal: its step is 0.
+  const auto is_held = [&](int column) { return held != nullptr && (*held)[column] != 0; };
   f->B.resize(n);
   for (int k = 0; k < n; ++k) {
     f->B[k] = Eigen::Map<const MatrixXd>(Bbuf.data() + static_cast<size_t>(k) * m * g, m, g);
+    if (held == nullptr) continue;
+    for (int i = 0; i < m; ++i) {
+      if (is_held(k * m + i)) f->B[k].row(i).setZero();
+    }
+    for (int j = 0; j < g; ++j) {
+      if (is_held(n * m + j)) f->B[k].col(j).setZero();
+    }
   }
   // Block LDL' of T: D_k <- pivots, N_k = T_{k+1,k} D_k^-1.
   f->N.resize(n);
@@ -268,6 +473,15 @@ bool Factor(const Information& info, ChainFactorization<M>* f) {
   for (int k = 0; k < n; ++k) {
     D = Eigen::Map<const MatrixXd>(Dbuf.data() + static_cast<size_t>(k) * mm, m, m)
             .template selfadjointView<Eigen::Upper>();
+    if (mu > 0.0) {
+      for (int i = 0; i < m; ++i) D(i, i) += Damping(mu, D(i, i));
+    }
+    for (int i = 0; held != nullptr && i < m; ++i) {
+      if (!is_held(k * m + i)) continue;
+      D.row(i).setZero();
+      D.col(i).setZero();
+      D(i, i) = 1.0;
+    }
     if (k > 0) D -= f->N[k - 1] * U_previous;
     Eigen::LLT<Block> llt(D);
     if (llt.info() != Eigen::Success) {
@@ -277,12 +491,25 @@ bool Factor(const Information& info, ChainFactorization<M>* f) {
     }
     f->D_inv[k] = llt.solve(Block::Identity(m, m));
     U_previous = Eigen::Map<const MatrixXd>(Ubuf.data() + static_cast<size_t>(k) * mm, m, m);
+    for (int i = 0; held != nullptr && k + 1 < n && i < m; ++i) {
+      if (is_held(k * m + i)) U_previous.row(i).setZero();
+      if (is_held((k + 1) * m + i)) U_previous.col(i).setZero();
+    }
     if (k + 1 < n) f->N[k] = U_previous.transpose() * f->D_inv[k];
   }
   if (g == 0) return true;
   // The border: X = T^-1 B, S = C - B' X.
   f->X = SolveT(*f, f->B);
   MatrixXd S = Eigen::Map<const MatrixXd>(Cbuf.data(), g, g).selfadjointView<Eigen::Upper>();
+  if (mu > 0.0) {
+    for (int i = 0; i < g; ++i) S(i, i) += Damping(mu, S(i, i));
+  }
+  for (int j = 0; held != nullptr && j < g; ++j) {
+    if (!is_held(n * m + j)) continue;
+    S.row(j).setZero();
+    S.col(j).setZero();
+    S(j, j) = 1.0;
+  }
   for (int k = 0; k < n; ++k) S -= f->B[k].transpose() * f->X[k];
   f->S.compute(S);
   if (f->S.info() != Eigen::Success) {
@@ -349,9 +576,10 @@ bool Sizes(ceres::Problem* problem, const std::vector<double*>& states,
 template <int M>
 bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                const std::vector<double*>& globals, int m, int g, double* cost,
-               std::vector<double>* gradient, ChainFactorization<M>* f, std::string* error) {
+               std::vector<double>* gradient, ChainFactorization<M>* f, std::string* error,
+               int threads = 1) {
   Information info(static_cast<int>(states.size()), m, g);
-  if (!AssembleFromBlocks(problem, states, globals, &info, cost, gradient)) {
+  if (!AssembleFromBlocks(problem, states, globals, &info, cost, gradient, threads)) {
     *error = info.error;
     return false;
   }
@@ -454,12 +682,14 @@ namespace {
 
 template <int M>
 ChainCovariance CovarianceAt(ceres::Problem* problem, const std::vector<double*>& states,
-                             const std::vector<double*>& globals, int m, int g) {
+                             const std::vector<double*>& globals, int m, int g, int threads) {
   ChainCovariance out;
   ChainFactorization<M> f;
   double cost = 0.0;
   std::vector<double> gradient;
-  if (!Linearize(problem, states, globals, m, g, &cost, &gradient, &f, &out.error)) return out;
+  if (!Linearize(problem, states, globals, m, g, &cost, &gradient, &f, &out.error, threads)) {
+    return out;
+  }
   return Marginals(f);
 }
 
@@ -481,29 +711,160 @@ ChainStep StepAt(ceres::Problem* problem, const std::vector<double*>& states,
 
 }  // namespace
 
-bool ChainCost(const ceres::Problem& problem, double* cost) {
-  std::vector<ceres::ResidualBlockId> ids;
-  problem.GetResidualBlocks(&ids);
-  std::vector<double> residuals;
-  *cost = 0.0;
-  for (const ceres::ResidualBlockId id : ids) {
-    residuals.resize(problem.GetCostFunctionForResidualBlock(id)->num_residuals());
-    double block_cost = 0.0;
-    if (!problem.EvaluateResidualBlock(id, true, &block_cost, residuals.data(), nullptr)) {
-      return false;
-    }
-    *cost += block_cost;
+struct ChainLinearization::Impl {
+  Information info{0, 0, 0};
+  std::vector<double> gradient;
+  double cost = 0.0;
+  // Which blocks each thread takes, kept while the problem's shape is the same.
+  Partition partition;
+  std::tuple<const ceres::Problem*, size_t, size_t, int, int> partition_of{};
+};
+
+ChainLinearization::ChainLinearization() : impl_(std::make_unique<Impl>()) {}
+ChainLinearization::~ChainLinearization() = default;
+ChainLinearization::ChainLinearization(ChainLinearization&&) noexcept = default;
+ChainLinearization& ChainLinearization::operator=(ChainLinearization&&) noexcept = default;
+
+bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<double*>& states,
+                                   const std::vector<double*>& globals, std::string* error,
+                                   int threads) {
+  int m = 0, g = 0;
+  if (!Sizes(problem, states, globals, &m, &g, error)) return false;
+  impl_->info.Reset(static_cast<int>(states.size()), m, g);
+  const auto shape = std::make_tuple(static_cast<const ceres::Problem*>(problem), states.size(),
+                                     globals.size(), problem->NumResidualBlocks(), threads);
+  if (shape != impl_->partition_of) impl_->partition.clear();
+  impl_->partition_of = shape;
+  if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
+                          threads, &impl_->partition)) {
+    *error = impl_->info.error;
+    return false;
   }
   return true;
 }
 
+double ChainLinearization::cost() const { return impl_->cost; }
+
+const std::vector<double>& ChainLinearization::gradient() const { return impl_->gradient; }
+
+namespace {
+
+template <int M>
+bool DampedStep(const Information& info, const std::vector<double>& gradient, double mu,
+                const std::vector<char>* held, ChainStep* step) {
+  ChainFactorization<M> f;
+  if (!Factor(info, &f, mu, held)) {
+    step->error = f.error;
+    return false;
+  }
+  if (held == nullptr) {
+    Solve(f, gradient, &step->states, &step->globals);
+    return true;
+  }
+  std::vector<double> free_gradient = gradient;
+  for (size_t i = 0; i < free_gradient.size(); ++i) {
+    if ((*held)[i] != 0) free_gradient[i] = 0.0;
+  }
+  Solve(f, free_gradient, &step->states, &step->globals);
+  return true;
+}
+
+}  // namespace
+
+bool ChainLinearization::Step(double mu, ChainStep* step, const std::vector<char>* held) const {
+  step->cost = impl_->cost;
+  if (held != nullptr && held->size() != impl_->gradient.size()) held = nullptr;
+  step->ok = impl_->info.m == 7
+                 ? DampedStep<7>(impl_->info, impl_->gradient, mu, held, step)
+                 : DampedStep<Eigen::Dynamic>(impl_->info, impl_->gradient, mu, held, step);
+  return step->ok;
+}
+
+double ChainLinearization::Slope(const std::vector<Eigen::VectorXd>& states,
+                                 const Eigen::VectorXd& globals) const {
+  const int n = impl_->info.n, m = impl_->info.m, g = impl_->info.g;
+  using Eigen::Map;
+  using Eigen::VectorXd;
+  double slope = 0.0;
+  for (int k = 0; k < n; ++k) {
+    slope +=
+        Map<const VectorXd>(impl_->gradient.data() + static_cast<size_t>(k) * m, m).dot(states[k]);
+  }
+  if (g > 0) {
+    slope +=
+        Map<const VectorXd>(impl_->gradient.data() + static_cast<size_t>(n) * m, g).dot(globals);
+  }
+  return slope;
+}
+
+double ChainLinearization::PredictedDecrease(const std::vector<Eigen::VectorXd>& states,
+                                             const Eigen::VectorXd& globals) const {
+  const Information& info = impl_->info;
+  const int n = info.n, m = info.m, g = info.g, mm = m * m;
+  using Eigen::Map;
+  using Eigen::VectorXd;
+  const double linear = Slope(states, globals);
+  double quadratic = 0.0;  // d'H d
+  for (int k = 0; k < n; ++k) {
+    const VectorXd& d = states[k];
+    const Map<const MatrixXd> D(info.D.data() + static_cast<size_t>(k) * mm, m, m);
+    quadratic += d.dot(D.selfadjointView<Eigen::Upper>() * d);
+    if (k + 1 < n) {
+      const Map<const MatrixXd> U(info.U.data() + static_cast<size_t>(k) * mm, m, m);
+      quadratic += 2.0 * d.dot(U * states[k + 1]);
+    }
+    if (g > 0) {
+      const Map<const MatrixXd> B(info.B.data() + static_cast<size_t>(k) * m * g, m, g);
+      quadratic += 2.0 * d.dot(B * globals);
+    }
+  }
+  if (g > 0) {
+    const Map<const MatrixXd> C(info.C.data(), g, g);
+    quadratic += globals.dot(C.selfadjointView<Eigen::Upper>() * globals);
+  }
+  return -(linear + 0.5 * quadratic);
+}
+
+bool ChainCost(const ceres::Problem& problem, double* cost, int threads) {
+  std::vector<ceres::ResidualBlockId> ids;
+  problem.GetResidualBlocks(&ids);
+  const size_t parts = static_cast<size_t>(std::max(1, std::min<int>(threads, ids.size() / 256)));
+  std::vector<double> costs(parts, 0.0);
+  std::vector<char> ok(parts, 1);
+  RunConcurrently(parts, static_cast<int>(parts), [&](size_t p) {
+    std::vector<double*> blocks;
+    std::vector<double> residuals;
+    for (size_t i = ids.size() * p / parts; i < ids.size() * (p + 1) / parts; ++i) {
+      problem.GetParameterBlocksForResidualBlock(ids[i], &blocks);
+      const ceres::CostFunction* function = problem.GetCostFunctionForResidualBlock(ids[i]);
+      residuals.resize(function->num_residuals());
+      if (!function->Evaluate(blocks.data(), residuals.data(), nullptr)) {
+        ok[p] = 0;
+        return;
+      }
+      double squared = 0.0;
+      for (const double r : residuals) squared += r * r;
+      const ceres::LossFunction* loss = problem.GetLossFunctionForResidualBlock(ids[i]);
+      double rho[3] = {squared, 1.0, 0.0};
+      if (loss != nullptr) loss->Evaluate(squared, rho);
+      costs[p] += 0.5 * rho[0];
+    }
+  });
+  *cost = 0.0;
+  for (size_t p = 0; p < parts; ++p) {
+    if (!ok[p]) return false;
+    *cost += costs[p];
+  }
+  return std::isfinite(*cost);
+}
+
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
-                                       const std::vector<double*>& globals) {
+                                       const std::vector<double*>& globals, int threads) {
   int m = 0, g = 0;
   ChainCovariance out;
   if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
-  return m == 7 ? CovarianceAt<7>(problem, states, globals, m, g)
-                : CovarianceAt<Eigen::Dynamic>(problem, states, globals, m, g);
+  return m == 7 ? CovarianceAt<7>(problem, states, globals, m, g, threads)
+                : CovarianceAt<Eigen::Dynamic>(problem, states, globals, m, g, threads);
 }
 
 ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,

@@ -20,6 +20,7 @@
 #include <ceres/problem.h>
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,8 +35,9 @@ struct ChainCovariance {
 };
 
 // `states` in chain order; `globals` may be empty. All blocks must be in `problem`, not constant.
+// The residual blocks are evaluated on `threads` threads (ChainLinearization::Linearize).
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
-                                       const std::vector<double*>& globals);
+                                       const std::vector<double*>& globals, int threads = 1);
 
 // One Gauss-Newton step on the same structure: the same factorization of H = J'J solves
 // H dx = -J'r (the residuals and Jacobian loss-corrected, as Ceres' own step sees them), and the
@@ -57,9 +59,45 @@ ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& 
                            const std::vector<double*>& globals, bool with_covariance,
                            int covariance_states = -1);
 
+// The chain's Gauss-Newton model at the problem's current values, kept so that it can be solved
+// with several dampings: Levenberg-Marquardt (solvers/chain_solver) retries a rejected step with
+// more damping without evaluating the Jacobian again.
+class ChainLinearization {
+ public:
+  ChainLinearization();
+  ~ChainLinearization();
+  ChainLinearization(ChainLinearization&&) noexcept;
+  ChainLinearization& operator=(ChainLinearization&&) noexcept;
+
+  // Evaluates every residual block at the current values (on `threads` threads, each over its
+  // own run of states); false with *error when a block cannot be evaluated or links states that
+  // are not neighbours. The cost functions must be callable from several threads at once, as
+  // Ceres' own multi-threaded evaluation requires.
+  bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
+                 const std::vector<double*>& globals, std::string* error, int threads = 1);
+  double cost() const;  // 0.5 |r|^2, loss-corrected
+  // J'r: each state's tangent coordinates in turn, then the globals', stacked.
+  const std::vector<double>& gradient() const;
+  // The step of (H + mu diag(H)) d = -J'r (mu = 0: Gauss-Newton); false with step->error when
+  // that matrix is not positive definite. `held` (one flag per column, in gradient()'s order;
+  // may be null) holds columns where they are: a parameter at a bound that the gradient pushes
+  // against, whose step is 0 and whose coupling is left out of the others'.
+  bool Step(double mu, ChainStep* step, const std::vector<char>* held = nullptr) const;
+  // -(J'r . d + d'H d / 2): the cost decrease the linear model predicts for the step d.
+  double PredictedDecrease(const std::vector<Eigen::VectorXd>& states,
+                           const Eigen::VectorXd& globals) const;
+  // J'r . d: the cost's slope along the step d.
+  double Slope(const std::vector<Eigen::VectorXd>& states, const Eigen::VectorXd& globals) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 // The problem's cost, 0.5 |r|^2 loss-corrected, as Problem::Evaluate gives it, summed block by
-// block (no program built); false when a block cannot be evaluated.
-bool ChainCost(const ceres::Problem& problem, double* cost);
+// block (no program built; the cost functions called directly, on `threads` threads, each over
+// its share of the blocks); false when a block cannot be evaluated or the cost is not finite.
+bool ChainCost(const ceres::Problem& problem, double* cost, int threads = 1);
 
 // How the solution would move if the residuals moved by t (one column per perturbation, over all
 // the problem's residuals in the order Problem::Evaluate returns them): at a minimum, where

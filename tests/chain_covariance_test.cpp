@@ -4,9 +4,12 @@
 
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/covariance.h>
+#include <ceres/crs_matrix.h>
+#include <ceres/loss_function.h>
 #include <ceres/solver.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 
@@ -81,6 +84,46 @@ TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
   covariance.GetCovarianceBlock(problem->offsets.data(), problem->offsets.data(), offsets.data());
   EXPECT_NEAR(chain.globals(0, 0), offsets(0, 0), 1e-6 * offsets(0, 0));
   EXPECT_NEAR(chain.globals(1, 1), offsets(1, 1), 1e-6 * offsets(1, 1));
+}
+
+// The linearization's cost and gradient are Problem::Evaluate's: the residual blocks evaluated
+// without Ceres, their robust losses (Huber, Cauchy) corrected as Ceres' solver corrects them,
+// on one thread and on two (each over its own run of states, the blocks between them after).
+TEST(ChainCovariance, LinearizationIsCeresEvaluationOnOneThreadOrTwo) {
+  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
+  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult ekf = RunEkf(log, model);
+  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf.estimates);
+  std::vector<double*> states;
+  for (auto& x : problem->states) states.push_back(x.data());
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = states;
+  options.parameter_blocks.push_back(problem->offsets.data());
+  double cost = 0.0;
+  std::vector<double> gradient;
+  ASSERT_TRUE(problem->problem->Evaluate(options, &cost, nullptr, &gradient, nullptr));
+  double largest = 0.0;
+  for (const double g : gradient) largest = std::max(largest, std::abs(g));
+  int robust = 0;  // residual blocks with a loss
+  std::vector<ceres::ResidualBlockId> ids;
+  problem->problem->GetResidualBlocks(&ids);
+  for (const ceres::ResidualBlockId id : ids) {
+    if (problem->problem->GetLossFunctionForResidualBlock(id) != nullptr) ++robust;
+  }
+  ASSERT_GT(robust, 1000);
+  for (const int threads : {1, 2}) {
+    ChainLinearization linearization;
+    std::string error;
+    ASSERT_TRUE(linearization.Linearize(problem->problem.get(), states, {problem->offsets.data()},
+                                        &error, threads))
+        << error;
+    EXPECT_NEAR(linearization.cost(), cost, 1e-12 * cost) << threads;
+    ASSERT_EQ(linearization.gradient().size(), gradient.size());
+    for (size_t i = 0; i < gradient.size(); ++i) {
+      ASSERT_NEAR(linearization.gradient()[i], gradient[i], 1e-9 * largest) << threads << " " << i;
+    }
+  }
 }
 
 struct Link {
@@ -203,6 +246,94 @@ TEST(ChainCovariance, GaussNewtonStepSolvesALinearChainWithABorder) {
   ASSERT_TRUE(step.covariance.ok);
   for (int k = 0; k < n; ++k) {
     EXPECT_LT((step.covariance.states[k] - covariance.states[k]).norm(), 1e-12);
+  }
+}
+
+// Ceres' loss correction where the loss curves up (rho'' > 0: TolerantLoss), the one case that
+// changes the Jacobian's direction as well as its scale: the Gauss-Newton step from the
+// linearization is the one from Problem::Evaluate's loss-corrected Jacobian.
+struct Bend {
+  double z;
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* r) const {
+    r[0] = a[0] * b[0] - z;
+    r[1] = a[0] - 2.0 * b[0] + z;
+    return true;
+  }
+};
+
+TEST(ChainCovariance, LossCorrectionIsCeresWhereTheLossCurvesUp) {
+  std::array<double, 3> x = {0.7, -0.4, 1.3};
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Anchor, 1, 1>(new Anchor), nullptr,
+                           &x[0]);
+  for (int k = 0; k < 2; ++k) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Bend, 2, 1, 1>(new Bend{0.5 + k}),
+                             new ceres::TolerantLoss(0.5, 0.3), &x[k], &x[k + 1]);
+  }
+  std::vector<double*> states = {&x[0], &x[1], &x[2]};
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = states;
+  double cost = 0.0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix crs;
+  ASSERT_TRUE(problem.Evaluate(options, &cost, &residuals, nullptr, &crs));
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row) {
+    for (int e = crs.rows[row]; e < crs.rows[row + 1]; ++e) J(row, crs.cols[e]) = crs.values[e];
+  }
+  const Eigen::VectorXd r = Eigen::Map<Eigen::VectorXd>(residuals.data(), residuals.size());
+  const Eigen::VectorXd expected = -(J.transpose() * J).ldlt().solve(J.transpose() * r);
+  ChainLinearization linearization;
+  std::string error;
+  ASSERT_TRUE(linearization.Linearize(&problem, states, {}, &error)) << error;
+  EXPECT_NEAR(linearization.cost(), cost, 1e-14);
+  ChainStep step;
+  ASSERT_TRUE(linearization.Step(0.0, &step)) << step.error;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(step.states[k][0], expected[k], 1e-10) << k;
+}
+
+// The linearization's model of the cost: on a linear chain with a border the cost is exactly
+// quadratic, so the predicted decrease of any step (here the damped ones too) is the decrease
+// the step makes, which checks J'r and every block of H (diagonal, off-diagonal, border).
+TEST(ChainCovariance, PredictedDecreaseIsTheDecreaseOnALinearChain) {
+  const int n = 5;
+  std::vector<std::array<double, 2>> x(n, {1.0, -1.0});
+  double c = 0.0;
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairAnchor, 2, 2>(new PairAnchor),
+                           nullptr, x[0].data());
+  for (int k = 0; k < n; ++k) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetMeasurement, 2, 2, 1>(
+                                 new OffsetMeasurement{0.3 * k, 0.1 * k * k}),
+                             nullptr, x[k].data(), &c);
+    if (k > 0) {
+      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairLink, 2, 2, 2>(new PairLink),
+                               nullptr, x[k - 1].data(), x[k].data());
+    }
+  }
+  std::vector<double*> states;
+  for (auto& s : x) states.push_back(s.data());
+  ChainLinearization linearization;
+  std::string error;
+  ASSERT_TRUE(linearization.Linearize(&problem, states, {&c}, &error)) << error;
+  for (const double mu : {0.0, 0.1, 10.0}) {
+    ChainStep step;
+    ASSERT_TRUE(linearization.Step(mu, &step)) << step.error;
+    const std::vector<std::array<double, 2>> x0 = x;
+    const double c0 = c;
+    for (int k = 0; k < n; ++k) {
+      for (int i = 0; i < 2; ++i) x[k][i] += step.states[k][i];
+    }
+    c += step.globals[0];
+    double cost = 0.0;
+    ASSERT_TRUE(ChainCost(problem, &cost));
+    EXPECT_NEAR(linearization.PredictedDecrease(step.states, step.globals),
+                linearization.cost() - cost, 1e-9 * linearization.cost())
+        << "mu " << mu;
+    EXPECT_LT(linearization.Slope(step.states, step.globals), 0.0);
+    x = x0;
+    c = c0;
   }
 }
 
