@@ -194,6 +194,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   if (!problem->effects.empty()) globals.push_back(problem->effects.data());
   for (double& node : problem->stiffness) globals.push_back(&node);
   bool solved = false;
+  result.solver = "chain Levenberg-Marquardt";
   if (options.solver == BatchSolver::kChain) {
     ChainSolverOptions chain;
     chain.max_iterations = options.max_iterations;
@@ -207,7 +208,10 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     solved = SolveOnChain(problem->problem.get(), states, globals, chain, &result.summary);
     if (!solved) result.notes.push_back(result.summary.message + ": solved by Ceres instead");
   }
-  if (!solved) ceres::Solve(solver_options, problem->problem.get(), &result.summary);
+  if (!solved) {
+    ceres::Solve(solver_options, problem->problem.get(), &result.summary);
+    result.solver = "Ceres trust region";
+  }
   std::ostringstream breakdown;
   breakdown << "cost by factor (" << (options.start != nullptr ? "given start" : "EKF start")
             << " -> solution):";
@@ -355,7 +359,14 @@ std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, c
 
 std::string DescribeSmootherRun(const SmootherResult& result) {
   std::ostringstream out;
-  out << "smoother: " << result.summary.BriefReport() << "\n";
+  const ceres::Solver::Summary& s = result.summary;
+  if (result.solver.empty()) {
+    out << "smoother: no solve\n";
+  } else {
+    out << "smoother: " << result.solver << ", " << s.iterations.size() << " iterations, cost "
+        << s.initial_cost << " -> " << s.final_cost << ", "
+        << ceres::TerminationTypeToString(s.termination_type) << " (" << s.message << ")\n";
+  }
   out << "  " << (result.used_fallback ? "FALLBACK to the EKF" : "smoothed estimates")
       << ", covariance " << (result.covariance_ok ? "recovered" : "not recovered") << "\n";
   for (const EffectEstimate& e : result.effects) {

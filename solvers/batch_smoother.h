@@ -95,8 +95,9 @@ struct SmootherResult {
   FilterResult ekf;                     // the initialising filter run
   std::vector<EffectEstimate> effects;  // the model's effects that have a model term
   double final_cost = 0.0;              // the solution's cost (for likelihood-ratio tests)
-  ceres::Solver::Summary summary;
-  bool used_fallback = false;  // true: estimates are the EKF's (see notes)
+  ceres::Solver::Summary summary;       // from either solver (BatchSolver)
+  std::string solver;                   // the one that solved it (empty: none ran)
+  bool used_fallback = false;           // true: estimates are the EKF's (see notes)
   bool covariance_ok = false;
   // corr(v_bx error at k, at k+1) from the chain covariance (empty without it): how long the
   // solution's own velocity error persists.

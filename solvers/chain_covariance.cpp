@@ -36,15 +36,22 @@ struct ChainFactorization {
   std::string error;
 };
 
-// T^-1 rhs (one block of rows per state) by forward and back substitution through the LDL'.
+// T^-1 rhs (one block of rows per state) by forward and back substitution through the LDL',
+// into *x (its blocks' storage kept where their sizes match).
 template <int M, typename Rhs>
-std::vector<Rhs> SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& rhs) {
+void SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& rhs, std::vector<Rhs>* x) {
   const int n = f.n;
-  std::vector<Rhs> x(n);
-  for (int k = 0; k < n; ++k) x[k] = k > 0 ? Rhs(rhs[k] - f.N[k - 1] * x[k - 1]) : rhs[0];
-  for (int k = 0; k < n; ++k) x[k] = f.D_inv[k] * x[k];
-  for (int k = n - 2; k >= 0; --k) x[k] -= f.N[k].transpose() * x[k + 1];
-  return x;
+  x->resize(n);
+  std::vector<Rhs>& out = *x;
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) {
+      out[k] = rhs[k] - f.N[k - 1] * out[k - 1];
+    } else {
+      out[0] = rhs[0];
+    }
+  }
+  for (int k = 0; k < n; ++k) out[k] = f.D_inv[k] * out[k];
+  for (int k = n - 2; k >= 0; --k) out[k] -= f.N[k].transpose() * out[k + 1];
 }
 
 // H = J'J in flat column-major buffers: D[k] = T_kk (upper triangle), U[k] = T_{k,k+1},
@@ -499,7 +506,7 @@ bool Factor(const Information& info, ChainFactorization<M>* f, double mu = 0.0,
   }
   if (g == 0) return true;
   // The border: X = T^-1 B, S = C - B' X.
-  f->X = SolveT(*f, f->B);
+  SolveT(*f, f->B, &f->X);
   MatrixXd S = Eigen::Map<const MatrixXd>(Cbuf.data(), g, g).selfadjointView<Eigen::Upper>();
   if (mu > 0.0) {
     for (int i = 0; i < g; ++i) S(i, i) += Damping(mu, S(i, i));
@@ -597,12 +604,12 @@ void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
            std::vector<Eigen::VectorXd>* dx, Eigen::VectorXd* dg) {
   using Vector = Eigen::Matrix<double, M, 1>;
   const int n = f.n, m = f.m, g = f.g;
-  std::vector<Vector> minus_gx(n);
+  std::vector<Vector> minus_gx(n), y;
   for (int k = 0; k < n; ++k) {
     minus_gx[k] = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + k * m, m);
   }
-  const std::vector<Vector> y = SolveT(f, minus_gx);
-  dx->assign(n, Eigen::VectorXd());
+  SolveT(f, minus_gx, &y);
+  dx->resize(n);  // a previous step's vectors are reused
   if (g > 0) {
     Eigen::VectorXd rhs = -Eigen::Map<const Eigen::VectorXd>(gradient.data() + n * m, g);
     for (int k = 0; k < n; ++k) rhs -= f.B[k].transpose() * y[k];
@@ -718,6 +725,9 @@ struct ChainLinearization::Impl {
   // Which blocks each thread takes, kept while the problem's shape is the same.
   Partition partition;
   std::tuple<const ceres::Problem*, size_t, size_t, int, int> partition_of{};
+  // The last step's factorization, its storage reused by the next (7: the Ward state).
+  ChainFactorization<7> factorization7;
+  ChainFactorization<Eigen::Dynamic> factorization;
 };
 
 ChainLinearization::ChainLinearization() : impl_(std::make_unique<Impl>()) {}
@@ -751,8 +761,9 @@ namespace {
 
 template <int M>
 bool DampedStep(const Information& info, const std::vector<double>& gradient, double mu,
-                const std::vector<char>* held, ChainStep* step) {
-  ChainFactorization<M> f;
+                const std::vector<char>* held, ChainFactorization<M>* factorization,
+                ChainStep* step) {
+  ChainFactorization<M>& f = *factorization;
   if (!Factor(info, &f, mu, held)) {
     step->error = f.error;
     return false;
@@ -774,9 +785,10 @@ bool DampedStep(const Information& info, const std::vector<double>& gradient, do
 bool ChainLinearization::Step(double mu, ChainStep* step, const std::vector<char>* held) const {
   step->cost = impl_->cost;
   if (held != nullptr && held->size() != impl_->gradient.size()) held = nullptr;
-  step->ok = impl_->info.m == 7
-                 ? DampedStep<7>(impl_->info, impl_->gradient, mu, held, step)
-                 : DampedStep<Eigen::Dynamic>(impl_->info, impl_->gradient, mu, held, step);
+  step->ok = impl_->info.m == 7 ? DampedStep<7>(impl_->info, impl_->gradient, mu, held,
+                                                &impl_->factorization7, step)
+                                : DampedStep<Eigen::Dynamic>(impl_->info, impl_->gradient, mu, held,
+                                                             &impl_->factorization, step);
   return step->ok;
 }
 

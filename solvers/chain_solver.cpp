@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "solvers/chain_covariance.h"
 
@@ -286,12 +287,14 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
         1.0 / radius <= 1e-6 && -slope <= options.step_sd_tolerance * options.step_sd_tolerance;
     radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
     decrease_factor = 2.0;
-    if (within_sd) {  // the next linearization is the caller's (its covariance)
+    if (within_sd) {
+      // Not linearized again: the next linearization is the caller's (its covariance). The
+      // iteration's gradient is the one before the step.
       cost = summary->final_cost = new_cost;
       record(iteration, true, cost_change, step_norm, rho);
-      return finish(ceres::CONVERGENCE, "the step is within " +
-                                            std::to_string(options.step_sd_tolerance) +
-                                            " sd of the solution");
+      std::ostringstream message;
+      message << "the step is within " << options.step_sd_tolerance << " sd of the solution";
+      return finish(ceres::CONVERGENCE, message.str());
     }
     const bool linearized =
         linearization.Linearize(problem, states, globals, &error, options.threads);

@@ -12,6 +12,7 @@
 
 #include "model/option_check.h"
 #include "solvers/chain_covariance.h"
+#include "solvers/chain_solver.h"
 #include "solvers/marginalization.h"
 #include "solvers/smoothed_detection.h"
 
@@ -22,6 +23,7 @@ bool WindowSmootherOptions::IsValid(std::string* error) const {
              .Positive("window_s", window_s)
              .AtLeast("update_every", update_every, 1)
              .AtLeast("max_iterations", max_iterations, 1)
+             .AtLeast("threads", threads, 1)
              .NonNegative("stiffness_prior_sd", stiffness_prior_sd)
              .NonNegative("min_immobilized_s", min_immobilized_s) &&
          filter.IsValid(error) && problem.IsValid(error);
@@ -107,6 +109,21 @@ class Window {
         have_sd = false;
         ++result_->chain_fallbacks;
       }
+    } else if (options_.solver == WindowSolver::kChainLevenbergMarquardt) {
+      std::vector<double*> states;
+      for (auto& x : states_) states.push_back(x.data());
+      ChainSolverOptions chain;
+      chain.max_iterations = options_.max_iterations;
+      chain.step_sd_tolerance = BatchSmootherOptions().step_sd_tolerance;
+      chain.threads = options_.threads;
+      ceres::Solver::Summary summary;
+      solved = SolveOnChain(&problem_, states, Globals(), chain, &summary);
+      if (!solved) {
+        restore();
+        if (result_->chain_fallbacks++ == 0) Note(summary.message + ": Ceres");
+      } else if (summary.termination_type == ceres::NO_CONVERGENCE) {
+        ++result_->unconverged_updates;
+      }
     }
     if (!solved) {
       ceres::Solver::Summary summary;
@@ -122,7 +139,7 @@ class Window {
       }
     }
     double update_ms = MillisecondsSince(start);
-    if (!solved) {
+    if (!have_sd) {  // the Gauss-Newton step's factorization gives them; the others do not
       have_sd = !failed && leaving > 0 && options_.covariance && Covariance(leaving, &sd);
     }
 
@@ -396,7 +413,8 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.window_s = overlap_s;
   options.update_every = std::max(1, static_cast<int>(chunk_min * 60.0 * wheel_rate_hz));
   options.max_iterations = batch.max_iterations;
-  options.solver = WindowSolver::kCeres;  // chunks of minutes from the EKF: Levenberg-Marquardt
+  options.solver = WindowSolver::kChainLevenbergMarquardt;  // minutes from the EKF
+  options.threads = batch.threads;
   options.covariance = batch.covariance;
   options.law_spread_in_sd = batch.consider_law_uncertainty;
   options.filter = batch.filter;

@@ -32,7 +32,10 @@ namespace slipgraph {
 // states with the IMU offsets as a border, solvers/chain_covariance.h), the residuals and
 // Jacobians still Ceres' (Problem::Evaluate); the marginal covariances come from the same
 // factorization. A step that raises the cost is undone and that update falls back to Ceres.
-enum class WindowSolver { kCeres, kChainGaussNewton };
+// kChainLevenbergMarquardt: the batch's solver on the same structure (solvers/chain_solver.h),
+// to convergence within max_iterations, Ceres where it fails; for chunks of minutes, which start
+// from the front end and need more than a step.
+enum class WindowSolver { kCeres, kChainGaussNewton, kChainLevenbergMarquardt };
 
 struct WindowSmootherOptions {
   double window_s = 2.0;  // states further than this behind the newest are marginalized
@@ -59,6 +62,7 @@ struct WindowSmootherOptions {
   // problem.stiffness_prior_sd.
   double stiffness_prior_sd = 0.15;
   WindowSolver solver = WindowSolver::kChainGaussNewton;
+  int threads = 1;  // kChainLevenbergMarquardt's residual evaluation
   FilterRunOptions filter;
   WardProblemOptions problem;
   double min_immobilized_s = 0.1;  // as the batch smoother's post-processing detection
@@ -77,7 +81,7 @@ struct WindowSmootherResult {
   FilterResult ekf;               // the streaming front end, at every sample
   long updates = 0, failed_updates = 0, unconverged_updates = 0, failed_marginalizations = 0;
   long covariance_failures = 0;
-  long chain_fallbacks = 0;  // kChainGaussNewton updates that Ceres had to solve
+  long chain_fallbacks = 0;  // chain-solver updates that Ceres had to solve
   // Per update: solve and marginalization, wall time (with kChainGaussNewton the leaving states'
   // covariance too: it comes from the solve's factorization).
   std::vector<double> update_ms;

@@ -17,23 +17,14 @@
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
 #include "solvers/ekf_runner.h"
+#include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
 
 TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
-  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
-  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  // 4 s around the start of motion: 400 states, small enough for SPARSE_QR.
-  const auto cut = [](auto* samples) {
-    samples->erase(std::remove_if(samples->begin(), samples->end(),
-                                  [](const auto& s) { return s.t < 2.0 || s.t > 6.0; }),
-                   samples->end());
-  };
-  cut(&log.wheels);
-  cut(&log.imu);
-  cut(&log.gps);
-  cut(&log.attitude);
+  DriveLog log = testing::SimulatedScenario("fig5");
+  testing::CutLog(&log, 2.0, 6.0);  // around the start of motion: 400 states, for SPARSE_QR
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   const FilterResult ekf = RunEkf(log, model);
   std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf.estimates);

@@ -16,6 +16,7 @@
 #include "sim/simulation.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/ekf_runner.h"
+#include "tests/sim_test_util.h"
 
 namespace slipgraph {
 namespace {
@@ -27,17 +28,8 @@ struct WardCase {
   FilterResult ekf;
 
   WardCase() {
-    const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
-    log = sim::Simulate(run.scenario, run.seed).log;
-    const auto cut = [](auto* samples) {
-      samples->erase(std::remove_if(samples->begin(), samples->end(),
-                                    [](const auto& s) { return s.t < 2.0 || s.t > 6.0; }),
-                     samples->end());
-    };
-    cut(&log.wheels);
-    cut(&log.imu);
-    cut(&log.gps);
-    cut(&log.attitude);
+    log = testing::SimulatedScenario("fig5");
+    testing::CutLog(&log, 2.0, 6.0);
     model = DefaultModelConfig(log.vehicle);
     ekf = RunEkf(log, model);
   }

@@ -2,6 +2,7 @@
 // scenario, truth lookups and feeding a log to a filter.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -31,6 +32,21 @@ inline DriveLog SimulatedScenario(const std::string& scenario, uint64_t seed = 1
   DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   log.directory = scenario;
   return log;
+}
+
+// The log's samples (wheels, IMU, GNSS, attitude, truth) within [t0, t1] only; its events are
+// the caller's.
+inline void CutLog(DriveLog* log, double t0, double t1) {
+  const auto cut = [t0, t1](auto* samples) {
+    samples->erase(std::remove_if(samples->begin(), samples->end(),
+                                  [t0, t1](const auto& s) { return s.t < t0 || s.t > t1; }),
+                   samples->end());
+  };
+  cut(&log->wheels);
+  cut(&log->imu);
+  cut(&log->gps);
+  cut(&log->attitude);
+  cut(&log->truth);
 }
 
 // Mean of f(truth sample) over t in [t0, t1].
