@@ -6,7 +6,8 @@
 //                                                                 RSS); the chain solver or Ceres
 //   build/bench/smoother_bench window [--ceres] [ITERATIONS...]    2 s window at 100 Hz (chain
 //                                                                   Gauss-Newton, or ceres::Solve)
-//   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES      chunked mode, 60 s overlap
+//   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES [--threads N]
+//                                                                 chunked mode, 60 s overlap
 //
 // For the batch it also times a hand-written block-tridiagonal Cholesky of a system with the
 // same number of 7-dimensional states: the floor one Gauss-Newton step could reach.
@@ -106,14 +107,15 @@ int Batch(double minutes, bool covariance, int threads, BatchSolver solver) {
 }
 
 // Chunked mode on a long log: chunks of chunk_min minutes, 60 s of look-ahead.
-int Chunked(double minutes, double chunk_min) {
+int Chunked(double minutes, double chunk_min, int threads) {
   const Clock::time_point sim_start = Clock::now();
   const sim::SimResult sim = sim::Simulate(LongDrive(minutes), 1);
   const double sim_s = Seconds(sim_start);
   const Clock::time_point start = Clock::now();
-  const WindowSmootherResult result =
-      SmoothWindowed(sim.log, DefaultModelConfig(sim.log.vehicle),
-                     ChunkedOptions(chunk_min, 60.0, 100.0, BatchSmootherOptions()));
+  BatchSmootherOptions batch;
+  batch.threads = threads;
+  const WindowSmootherResult result = SmoothWindowed(sim.log, DefaultModelConfig(sim.log.vehicle),
+                                                     ChunkedOptions(chunk_min, 60.0, 100.0, batch));
   const double total = Seconds(start);
   const long from_filter = std::count(result.from_filter.begin(), result.from_filter.end(), true);
   std::printf("| %.0f | %zu | %.1f | %ld | %.0f | %.0f | %.0f | %ld | %ld |\n", minutes,
@@ -172,7 +174,9 @@ int main(int argc, char** argv) {
     return slipgraph::Batch(std::atof(argv[2]), covariance, std::max(1, threads), solver);
   }
   if (argc >= 4 && std::strcmp(argv[1], "chunked") == 0) {
-    return slipgraph::Chunked(std::atof(argv[2]), std::atof(argv[3]));
+    const int threads =
+        argc >= 6 && std::strcmp(argv[4], "--threads") == 0 ? std::atoi(argv[5]) : 1;
+    return slipgraph::Chunked(std::atof(argv[2]), std::atof(argv[3]), std::max(1, threads));
   }
   if (argc >= 2 && std::strcmp(argv[1], "window") == 0) {
     std::vector<int> iterations;
@@ -190,7 +194,7 @@ int main(int argc, char** argv) {
   std::fprintf(
       stderr,
       "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] | "
-      "window [--ceres] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES\n"
+      "window [--ceres] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES [--threads N]\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"
       "batch prints: | solver | threads | minutes | states | total s | iterations (both solves) | "

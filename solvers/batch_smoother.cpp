@@ -204,6 +204,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     chain.step_sd_tolerance = options.step_sd_tolerance;
     chain.initial_trust_region_radius = options.initial_trust_region_radius;
     chain.progress = options.progress;
+    chain.progress_stage = "batch smoother: iteration";
     chain.threads = options.threads;
     solved = SolveOnChain(problem->problem.get(), states, globals, chain, &result.summary);
     if (!solved) result.notes.push_back(result.summary.message + ": solved by Ceres instead");

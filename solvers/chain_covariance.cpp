@@ -88,25 +88,25 @@ struct Information {
            const std::vector<double>& hb, Part* part) {
     const int count = static_cast<int>(block.size());
     const int mm = m * m;
-    std::vector<Segment>& segments_ = part->segments;
+    std::vector<Segment>& segments = part->segments;
     std::string& error = part->error;
     // Runs of columns of one parameter block with consecutive indices; each pair of runs adds
     // its part of hb to one destination, at origin + ia * sa + ib * sb (no branch per element).
-    segments_.clear();
+    segments.clear();
     for (int a = 0; a < count; ++a) {
-      if (!segments_.empty()) {
-        Segment& s = segments_.back();
+      if (!segments.empty()) {
+        Segment& s = segments.back();
         if (s.k == block[a] && s.index + s.length == index[a] && s.position + s.length == a) {
           ++s.length;
           continue;
         }
       }
-      segments_.push_back({block[a], index[a], a, 1});
+      segments.push_back({block[a], index[a], a, 1});
     }
-    for (size_t si = 0; si < segments_.size(); ++si) {
-      for (size_t ti = si; ti < segments_.size(); ++ti) {
-        const Segment& s = segments_[si];
-        const Segment& t = segments_[ti];
+    for (size_t si = 0; si < segments.size(); ++si) {
+      for (size_t ti = si; ti < segments.size(); ++ti) {
+        const Segment& s = segments[si];
+        const Segment& t = segments[ti];
         double* origin = nullptr;
         int sa = 1, sb = 1;
         if (s.k < 0 && t.k < 0) {  // C, upper triangle
@@ -198,16 +198,26 @@ bool AssembleFromJacobian(const ceres::CRSMatrix& J, Information* info) {
   return true;
 }
 
+// A residual block's cost, rho(|r|^2) / 2, with rho and its derivatives at |r|^2 in rho[3]
+// (rho(s) = s without a loss).
+double LossCost(const ceres::LossFunction* loss, double squared, double rho[3]) {
+  rho[0] = squared, rho[1] = 1.0, rho[2] = 0.0;
+  if (loss != nullptr) loss->Evaluate(squared, rho);
+  return 0.5 * rho[0];
+}
+
 // Where each free parameter block sits: a state (its index) or the globals (its first column
 // among theirs), and, for a block with a manifold, its Plus Jacobian at the current values.
 struct Layout {
   struct Place {
-    int state, first, size, ambient;       // state -1: a global, first: its first index among them
-    const Eigen::MatrixXd* plus_jacobian;  // ambient x tangent; null without a manifold
+    int state, first, size, ambient;  // state -1: a global, first: its first index among them
+    const Eigen::MatrixXd* plus_jacobian = nullptr;  // ambient x tangent; null: no manifold
   };
+  // The states are m-vectors without a manifold (Sizes checks it).
   Layout(const ceres::Problem& problem, const std::vector<double*>& states,
-         const std::vector<double*>& globals) {
+         const std::vector<double*>& globals, int m) {
     where.reserve(states.size() + globals.size());
+    for (size_t k = 0; k < states.size(); ++k) where[states[k]] = {static_cast<int>(k), 0, m, m};
     const auto add = [&](double* p, int state, int first) {
       Place place{state, first, problem.ParameterBlockTangentSize(p), problem.ParameterBlockSize(p),
                   nullptr};
@@ -222,7 +232,6 @@ struct Layout {
       where[p] = place;
       return place.size;
     };
-    for (size_t k = 0; k < states.size(); ++k) add(states[k], static_cast<int>(k), 0);
     int offset = 0;
     for (double* p : globals) offset += add(p, -1, offset);
   }
@@ -291,12 +300,11 @@ class BlockEvaluation {
     }
     double squared = 0.0;
     for (const double r : residuals) squared += r * r;
-    if (!std::isfinite(squared) ||
-        !std::all_of(jb.begin(), jb.end(), [](double j) { return std::isfinite(j); })) {
-      return false;
-    }
+    if (!std::isfinite(squared)) return false;
     CorrectForLoss(problem.GetLossFunctionForResidualBlock(id), squared);
-    return std::isfinite(cost);
+    const auto finite = [](double v) { return std::isfinite(v); };
+    return std::isfinite(cost) && std::all_of(jb.begin(), jb.end(), finite) &&
+           std::all_of(residuals.begin(), residuals.end(), finite);
   }
 
   int rows = 0, count = 0;            // residuals, free columns
@@ -306,13 +314,9 @@ class BlockEvaluation {
 
  private:
   void CorrectForLoss(const ceres::LossFunction* loss, double squared) {
-    if (loss == nullptr) {
-      cost = 0.5 * squared;
-      return;
-    }
     double rho[3];
-    loss->Evaluate(squared, rho);
-    cost = 0.5 * rho[0];
+    cost = LossCost(loss, squared, rho);
+    if (loss == nullptr) return;
     const double sqrt_rho1 = std::sqrt(rho[1]);
     if (squared == 0.0 || rho[2] <= 0.0) {
       for (double& r : residuals) r *= sqrt_rho1;
@@ -353,18 +357,16 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
                         std::vector<double>* gradient, int threads = 1,
                         Partition* partition = nullptr) {
   const int m = info->m, g = info->g, n = info->n, state_columns = n * m;
-  const Layout layout(*problem, states, globals);
+  const Layout layout(*problem, states, globals, m);
   gradient->assign(static_cast<size_t>(state_columns + g), 0.0);
   // Each thread's run of states, and the blocks each takes (the last list: after them).
   const int parts = std::max(1, std::min(threads, n / 64));
   Partition own;
   Partition& taken = partition != nullptr ? *partition : own;
-  if (taken.size() == static_cast<size_t>(parts) + 1) {
-    // the partition of an earlier call
-  } else if (parts == 1) {
+  if (taken.size() != static_cast<size_t>(parts) + 1 && parts == 1) {
     taken.assign(2, {});
     problem->GetResidualBlocks(&taken[0]);
-  } else {
+  } else if (taken.size() != static_cast<size_t>(parts) + 1) {
     taken.assign(parts + 1, {});
     std::vector<ceres::ResidualBlockId> ids;
     problem->GetResidualBlocks(&ids);
@@ -575,6 +577,10 @@ bool Sizes(ceres::Problem* problem, const std::vector<double*>& states,
       *error = "the states differ in size";
       return false;
     }
+    if (problem->GetManifold(x) != nullptr) {
+      *error = "a state has a manifold (only the globals may)";
+      return false;
+    }
   }
   return true;
 }
@@ -724,7 +730,7 @@ struct ChainLinearization::Impl {
   double cost = 0.0;
   // Which blocks each thread takes, kept while the problem's shape is the same.
   Partition partition;
-  std::tuple<const ceres::Problem*, size_t, size_t, int, int> partition_of{};
+  std::tuple<const ceres::Problem*, const double*, const double*, size_t, int, int> partition_of{};
   // The last step's factorization, its storage reused by the next (7: the Ward state).
   ChainFactorization<7> factorization7;
   ChainFactorization<Eigen::Dynamic> factorization;
@@ -741,8 +747,10 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
   int m = 0, g = 0;
   if (!Sizes(problem, states, globals, &m, &g, error)) return false;
   impl_->info.Reset(static_cast<int>(states.size()), m, g);
-  const auto shape = std::make_tuple(static_cast<const ceres::Problem*>(problem), states.size(),
-                                     globals.size(), problem->NumResidualBlocks(), threads);
+  const auto shape = std::make_tuple(static_cast<const ceres::Problem*>(problem),
+                                     static_cast<const double*>(states.front()),
+                                     static_cast<const double*>(states.back()), globals.size(),
+                                     problem->NumResidualBlocks(), threads);
   if (shape != impl_->partition_of) impl_->partition.clear();
   impl_->partition_of = shape;
   if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
@@ -784,7 +792,10 @@ bool DampedStep(const Information& info, const std::vector<double>& gradient, do
 
 bool ChainLinearization::Step(double mu, ChainStep* step, const std::vector<char>* held) const {
   step->cost = impl_->cost;
-  if (held != nullptr && held->size() != impl_->gradient.size()) held = nullptr;
+  if (held != nullptr && held->size() != impl_->gradient.size()) {
+    step->error = "the held columns are not the gradient's";
+    return step->ok = false;
+  }
   step->ok = impl_->info.m == 7 ? DampedStep<7>(impl_->info, impl_->gradient, mu, held,
                                                 &impl_->factorization7, step)
                                 : DampedStep<Eigen::Dynamic>(impl_->info, impl_->gradient, mu, held,
@@ -856,10 +867,8 @@ bool ChainCost(const ceres::Problem& problem, double* cost, int threads) {
       }
       double squared = 0.0;
       for (const double r : residuals) squared += r * r;
-      const ceres::LossFunction* loss = problem.GetLossFunctionForResidualBlock(ids[i]);
-      double rho[3] = {squared, 1.0, 0.0};
-      if (loss != nullptr) loss->Evaluate(squared, rho);
-      costs[p] += 0.5 * rho[0];
+      double rho[3];
+      costs[p] += LossCost(problem.GetLossFunctionForResidualBlock(ids[i]), squared, rho);
     }
   });
   *cost = 0.0;

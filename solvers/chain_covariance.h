@@ -72,16 +72,19 @@ class ChainLinearization {
   // Evaluates every residual block at the current values (on `threads` threads, each over its
   // own run of states); false with *error when a block cannot be evaluated or links states that
   // are not neighbours. The cost functions must be callable from several threads at once, as
-  // Ceres' own multi-threaded evaluation requires.
+  // Ceres' own multi-threaded evaluation requires. Which blocks each thread takes is kept for
+  // the next call with the same problem, states and number of blocks: a problem whose blocks
+  // change between calls needs a new ChainLinearization.
   bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                  const std::vector<double*>& globals, std::string* error, int threads = 1);
   double cost() const;  // 0.5 |r|^2, loss-corrected
   // J'r: each state's tangent coordinates in turn, then the globals', stacked.
   const std::vector<double>& gradient() const;
   // The step of (H + mu diag(H)) d = -J'r (mu = 0: Gauss-Newton); false with step->error when
-  // that matrix is not positive definite. `held` (one flag per column, in gradient()'s order;
-  // may be null) holds columns where they are: a parameter at a bound that the gradient pushes
-  // against, whose step is 0 and whose coupling is left out of the others'.
+  // that matrix is not positive definite. Keeps its factorization's storage for the next step.
+  // `held` (one flag per column, in gradient()'s order; may be null) holds columns where they are:
+  // a parameter at a bound that the gradient pushes against, whose step is 0 and whose coupling is
+  // left out of the others'.
   bool Step(double mu, ChainStep* step, const std::vector<char>* held = nullptr) const;
   // -(J'r . d + d'H d / 2): the cost decrease the linear model predicts for the step d.
   double PredictedDecrease(const std::vector<Eigen::VectorXd>& states,

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
+#include "model/option_check.h"
 #include "solvers/chain_covariance.h"
 
 namespace slipgraph {
@@ -15,6 +17,14 @@ namespace slipgraph {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A damping mu = 1 / radius at most this (relative to diag(H)) leaves the step Gauss-Newton's.
+constexpr double kUndampedMu = 1e-6;
+// An extension shorter than this many steps is not worth a cost evaluation.
+constexpr double kMinExtrapolationLength = 1.5;
+// The radius's bounds: Ceres' max_trust_region_radius, and below min_trust_region_radius (1e-32)
+// the solve ends.
+constexpr double kMaxRadius = 1e16, kMinRadius = 1e-32;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -162,11 +172,27 @@ double StepNorm(const std::vector<Eigen::VectorXd>& states, const Eigen::VectorX
 
 }  // namespace
 
+bool ChainSolverOptions::IsValid(std::string* error) const {
+  return OptionCheck("ChainSolverOptions", error)
+      .AtLeast("max_iterations", max_iterations, 1)
+      .NonNegative("function_tolerance", function_tolerance)
+      .NonNegative("gradient_tolerance", gradient_tolerance)
+      .NonNegative("parameter_tolerance", parameter_tolerance)
+      .NonNegative("step_sd_tolerance", step_sd_tolerance)
+      .Positive("initial_trust_region_radius", initial_trust_region_radius)
+      .Within("min_relative_decrease", min_relative_decrease, 0.0, 1.0)
+      .AtLeast("extrapolation_rho", extrapolation_rho, 1.0)
+      .AtLeast("max_extrapolation_length", max_extrapolation_length, 1.0)
+      .AtLeast("threads", threads, 1);
+}
+
 bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
                   const std::vector<double*>& globals, const ChainSolverOptions& options,
                   ceres::Solver::Summary* summary) {
   const Clock::time_point start = Clock::now();
   *summary = ceres::Solver::Summary();
+  std::string invalid;
+  if (!options.IsValid(&invalid)) throw std::invalid_argument(invalid);
   summary->minimizer_type = ceres::TRUST_REGION;
   summary->trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   summary->num_parameter_blocks = static_cast<int>(states.size() + globals.size());
@@ -213,7 +239,7 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
     it.cumulative_time_in_seconds = SecondsSince(start);
     summary->iterations.push_back(it);
     iteration_start = Clock::now();
-    if (options.progress) options.progress({"batch smoother: iteration", iteration, 0, cost});
+    if (options.progress) options.progress({options.progress_stage, iteration, 0, cost});
     return it.gradient_max_norm;
   };
   if (record(0, true, 0.0, 0.0, 0.0) <= options.gradient_tolerance) {
@@ -230,9 +256,13 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
       radius /= decrease_factor;
       decrease_factor *= 2.0;
       record(iteration, false, 0.0, 0.0, 0.0);
-      if (radius < 1e-32) return finish(ceres::FAILURE, "chain Levenberg-Marquardt: " + step.error);
+      if (radius < kMinRadius)
+        return finish(ceres::FAILURE, "chain Levenberg-Marquardt: " + step.error);
       continue;
     }
+    // -J'r . d = d'(H + mu D) d, the step's squared length in the solution's own sd while the
+    // damping is negligible; before a bound shortens it.
+    const double decrement = -linearization.Slope(step.states, step.globals);
     const std::vector<double> before = parameters.Values();
     const double x_norm = parameters.Norm();
     parameters.Apply(&step.states, &step.globals);
@@ -252,19 +282,20 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
       radius /= decrease_factor;
       decrease_factor *= 2.0;
       record(iteration, false, 0.0, step_norm, rho);
-      if (radius < 1e-32) return finish(ceres::CONVERGENCE, "the trust region vanished");
+      if (radius < kMinRadius) return finish(ceres::CONVERGENCE, "the trust region vanished");
       continue;
     }
     // The step kept more than the decrease the model predicted: the cost's true curvature
     // along it is smaller than J'J says (a robust loss in its linear part is one cause), and a
     // longer step along the same direction does better. The parabola through the cost at 0 and 1
     // with the slope at 0 gives its length; it is taken when it lowers the cost further.
-    const double slope = linearization.Slope(step.states, step.globals);
+    const double slope = linearization.Slope(step.states, step.globals);  // as taken
+    bool extended = false;
     if (rho > options.extrapolation_rho) {
       const double curvature = 2.0 * (new_cost - cost - slope);
       const double length =
-          curvature > 0.0 ? std::min(options.max_extrapolation, -slope / curvature) : 0.0;
-      if (length > 1.5) {
+          curvature > 0.0 ? std::min(options.max_extrapolation_length, -slope / curvature) : 0.0;
+      if (length > kMinExtrapolationLength) {
         std::vector<Eigen::VectorXd> longer = step.states;
         Eigen::VectorXd longer_globals = step.globals * length;
         for (Eigen::VectorXd& d : longer) d *= length;
@@ -274,6 +305,7 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
         double longer_cost = 0.0;
         if (ChainCost(*problem, &longer_cost, options.threads) && longer_cost < new_cost) {
           new_cost = longer_cost;
+          extended = true;
           ++summary->num_line_search_steps;
         } else {
           parameters.SetValues(unit);
@@ -281,11 +313,12 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
       }
     }
     const double cost_change = cost - new_cost;
-    // -J'r . d = d'H d when the step is Gauss-Newton's (the damping negligible): the step's
-    // length in the solution's own sd.
-    const bool within_sd =
-        1.0 / radius <= 1e-6 && -slope <= options.step_sd_tolerance * options.step_sd_tolerance;
-    radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
+    // The rule needs a Gauss-Newton step whose model held: not one the damping shortened, nor one
+    // extended along a cost that is not quadratic.
+    const bool within_sd = options.step_sd_tolerance > 0.0 && !extended &&
+                           1.0 / radius <= kUndampedMu &&
+                           decrement <= options.step_sd_tolerance * options.step_sd_tolerance;
+    radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
     decrease_factor = 2.0;
     if (within_sd) {
       // Not linearized again: the next linearization is the caller's (its covariance). The

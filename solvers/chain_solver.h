@@ -23,26 +23,32 @@
 namespace slipgraph {
 
 struct ChainSolverOptions {
-  int max_iterations = 50;
+  int max_iterations = 50;  // iterations, kept steps and rejected ones
   // Convergence, as Ceres' own tests: the cost's relative decrease of an accepted step, the
   // largest projected gradient component, the step's size relative to the parameters'.
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-8;
-  // Converged when an undamped step's length in the solution's own sd, sqrt(d'H d), is below
-  // this: no estimate would move by more than this fraction of its sd (0: off).
+  // Converged when a kept Gauss-Newton step's length in the solution's own sd, sqrt(d'H d), is
+  // below this (0: off): the last step moved every estimate by less than this fraction of its
+  // sd. Where the solve converges linearly the optimum is a few such steps further (a 0.01
+  // tolerance left a Ward problem within 0.05 sd of it; tests/chain_solver_test.cpp).
   double step_sd_tolerance = 0.0;
+  // The first damping is 1 / this (Ceres' initial_trust_region_radius).
   double initial_trust_region_radius = 1e4;
-  int threads = 1;  // residual blocks evaluated on this many threads
   // A step is kept when the cost falls by at least this fraction of the predicted decrease.
   double min_relative_decrease = 1e-3;
   // A kept step whose cost fell by more than this multiple of the predicted decrease is tried
-  // again longer (at most max_extrapolation times), as far as the parabola through the cost at
-  // both ends and the slope at the start puts the minimum.
+  // once more, longer, as far as the parabola through the cost at both ends and the slope at the
+  // start puts the minimum (at most max_extrapolation_length times the step).
   double extrapolation_rho = 1.2;
-  double max_extrapolation = 16.0;
-  // Told after each iteration (its number and cost).
+  double max_extrapolation_length = 16.0;
+  // Told after each iteration (its number and cost), as this stage.
   ProgressCallback progress;
+  std::string progress_stage = "chain solver: iteration";
+  int threads = 1;  // residual blocks evaluated on this many threads
+
+  bool IsValid(std::string* error) const;
 };
 
 // Solves the problem in place, starting from its current values. The summary is Ceres' type

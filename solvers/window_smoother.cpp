@@ -24,6 +24,8 @@ bool WindowSmootherOptions::IsValid(std::string* error) const {
              .AtLeast("update_every", update_every, 1)
              .AtLeast("max_iterations", max_iterations, 1)
              .AtLeast("threads", threads, 1)
+             .NonNegative("step_sd_tolerance", step_sd_tolerance)
+             .NonNegative("function_tolerance", function_tolerance)
              .NonNegative("stiffness_prior_sd", stiffness_prior_sd)
              .NonNegative("min_immobilized_s", min_immobilized_s) &&
          filter.IsValid(error) && problem.IsValid(error);
@@ -114,7 +116,8 @@ class Window {
       for (auto& x : states_) states.push_back(x.data());
       ChainSolverOptions chain;
       chain.max_iterations = options_.max_iterations;
-      chain.step_sd_tolerance = BatchSmootherOptions().step_sd_tolerance;
+      chain.step_sd_tolerance = options_.step_sd_tolerance;
+      chain.function_tolerance = options_.function_tolerance;
       chain.threads = options_.threads;
       ceres::Solver::Summary summary;
       solved = SolveOnChain(&problem_, states, Globals(), chain, &summary);
@@ -415,6 +418,8 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.max_iterations = batch.max_iterations;
   options.solver = WindowSolver::kChainLevenbergMarquardt;  // minutes from the EKF
   options.threads = batch.threads;
+  options.step_sd_tolerance = batch.step_sd_tolerance;
+  options.function_tolerance = batch.function_tolerance;
   options.covariance = batch.covariance;
   options.law_spread_in_sd = batch.consider_law_uncertainty;
   options.filter = batch.filter;

@@ -29,8 +29,8 @@ namespace slipgraph {
 
 // How each window update is solved. kCeres: ceres::Solve (Levenberg-Marquardt, sparse normal
 // Cholesky). kChainGaussNewton: Gauss-Newton steps on the window's own structure (a chain of
-// states with the IMU offsets as a border, solvers/chain_covariance.h), the residuals and
-// Jacobians still Ceres' (Problem::Evaluate); the marginal covariances come from the same
+// states with the IMU offsets as a border, solvers/chain_covariance.h), each residual block's
+// cost function called once a step; the marginal covariances come from the same
 // factorization. A step that raises the cost is undone and that update falls back to Ceres.
 // kChainLevenbergMarquardt: the batch's solver on the same structure (solvers/chain_solver.h),
 // to convergence within max_iterations, Ceres where it fails; for chunks of minutes, which start
@@ -62,7 +62,11 @@ struct WindowSmootherOptions {
   // problem.stiffness_prior_sd.
   double stiffness_prior_sd = 0.15;
   WindowSolver solver = WindowSolver::kChainGaussNewton;
-  int threads = 1;  // kChainLevenbergMarquardt's residual evaluation
+  // kChainLevenbergMarquardt's: its residual evaluation's threads and its stopping rules
+  // (ChainSolverOptions: a step within this of the solution's sd, the cost's relative change).
+  int threads = 1;
+  double step_sd_tolerance = 0.01;
+  double function_tolerance = 1e-10;
   FilterRunOptions filter;
   WardProblemOptions problem;
   double min_immobilized_s = 0.1;  // as the batch smoother's post-processing detection

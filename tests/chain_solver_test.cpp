@@ -5,11 +5,13 @@
 #include "solvers/chain_solver.h"
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/loss_function.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "problems/ward_batch_problem.h"
 #include "sim/scenarios.h"
@@ -52,7 +54,9 @@ ceres::Solver::Options TightCeres() {
   return options;
 }
 
-TEST(ChainSolver, ReachesCeresSolutionOnAWardProblem) {
+class ChainSolverThreads : public ::testing::TestWithParam<int> {};
+
+TEST_P(ChainSolverThreads, ReachesCeresSolutionOnAWardProblem) {
   const WardCase c;
   std::unique_ptr<WardProblem> chain = c.Problem(), reference = c.Problem();
   ceres::Solver::Summary ceres_summary;
@@ -60,6 +64,7 @@ TEST(ChainSolver, ReachesCeresSolutionOnAWardProblem) {
   ASSERT_TRUE(ceres_summary.IsSolutionUsable()) << ceres_summary.FullReport();
 
   ChainSolverOptions options;
+  options.threads = GetParam();
   options.max_iterations = 500;
   options.function_tolerance = 1e-14;
   options.gradient_tolerance = 1e-12;
@@ -90,6 +95,8 @@ TEST(ChainSolver, ReachesCeresSolutionOnAWardProblem) {
                 1e-4 * std::sqrt(covariance.globals(i, i)));
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(OneAndTwo, ChainSolverThreads, ::testing::Values(1, 2));
 
 TEST(ChainSolver, StopsWithinTheToleranceInSd) {
   const WardCase c;
@@ -204,6 +211,59 @@ TEST(ChainSolver, KeepsABoundWhereTheGradientPushesAgainstIt) {
   for (int k = 0; k < 5; ++k) EXPECT_NEAR(x[k], x_held[k], 1e-7) << k;
   // By hand, the left pair: 5 x0 - 4 x1 = 1, -4 x0 + 9 x1 = 0.5 + 4 * 0.1.
   EXPECT_NEAR(x[1], 1.7 / 5.8, 1e-8);
+}
+
+// A robust loss past its bend: Huber on x - 10 (its bend at 0.1) and a weak prior at 0. From 0
+// the weighted J'J overstates the curvature (rho 1.5), and the step extended along the parabola
+// of its two costs reaches the minimum (the prior's pull equals the residual's: x / 100 = 10 - x)
+// in fewer iterations than without the extension.
+struct Pull {
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    r[0] = x[0] - 10.0;
+    return true;
+  }
+};
+struct WeakPrior {
+  template <typename T>
+  bool operator()(const T* x, T* r) const {
+    r[0] = x[0] / 10.0;
+    return true;
+  }
+};
+
+TEST(ChainSolver, ExtendsAStepThatGainedMoreThanPredicted) {
+  int iterations[2] = {0, 0};
+  for (const bool extend : {true, false}) {
+    double x = 0.0;
+    ceres::Problem problem;
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Pull, 1, 1>(new Pull),
+                             new ceres::HuberLoss(0.1), &x);
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<WeakPrior, 1, 1>(new WeakPrior),
+                             nullptr, &x);
+    ChainSolverOptions options;
+    options.max_iterations = 200;
+    options.function_tolerance = 1e-16;
+    options.gradient_tolerance = 1e-12;
+    if (!extend) options.extrapolation_rho = 1e9;
+    ceres::Solver::Summary summary;
+    ASSERT_TRUE(SolveOnChain(&problem, {&x}, {}, options, &summary)) << summary.message;
+    EXPECT_EQ(summary.termination_type, ceres::CONVERGENCE) << summary.message;
+    EXPECT_NEAR(x, 10.0 / 1.01, 1e-8);
+    EXPECT_EQ(summary.num_line_search_steps > 0, extend);
+    iterations[extend ? 0 : 1] = static_cast<int>(summary.iterations.size());
+  }
+  EXPECT_LT(iterations[0], iterations[1]);
+}
+
+TEST(ChainSolver, InvalidOptionsAreRefused) {
+  double x = 0.0;
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<Pull, 1, 1>(new Pull), nullptr, &x);
+  ChainSolverOptions options;
+  options.threads = 0;
+  ceres::Solver::Summary summary;
+  EXPECT_THROW(SolveOnChain(&problem, {&x}, {}, options, &summary), std::invalid_argument);
 }
 
 TEST(ChainSolver, RefusesALinkThatSkipsAState) {
