@@ -290,7 +290,7 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
     // longer step along the same direction does better. The parabola through the cost at 0 and 1
     // with the slope at 0 gives its length; it is taken when it lowers the cost further.
     const double slope = linearization.Slope(step.states, step.globals);  // as taken
-    bool extended = false;
+    double taken_length = 1.0;  // the step taken, in steps d
     if (rho > options.extrapolation_rho) {
       const double curvature = 2.0 * (new_cost - cost - slope);
       const double length =
@@ -305,7 +305,7 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
         double longer_cost = 0.0;
         if (ChainCost(*problem, &longer_cost, options.threads) && longer_cost < new_cost) {
           new_cost = longer_cost;
-          extended = true;
+          taken_length = length;
           ++summary->num_line_search_steps;
         } else {
           parameters.SetValues(unit);
@@ -313,11 +313,11 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
       }
     }
     const double cost_change = cost - new_cost;
-    // The rule needs a Gauss-Newton step whose model held: not one the damping shortened, nor one
-    // extended along a cost that is not quadratic.
-    const bool within_sd = options.step_sd_tolerance > 0.0 && !extended &&
-                           1.0 / radius <= kUndampedMu &&
-                           decrement <= options.step_sd_tolerance * options.step_sd_tolerance;
+    // The rule needs a Gauss-Newton step (not one the damping shortened); an extended one moved
+    // the solution taken_length times as far.
+    const bool within_sd = options.step_sd_tolerance > 0.0 && 1.0 / radius <= kUndampedMu &&
+                           taken_length * taken_length * decrement <=
+                               options.step_sd_tolerance * options.step_sd_tolerance;
     radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
     decrease_factor = 2.0;
     if (within_sd) {
