@@ -1,6 +1,7 @@
 // IPD calibration figures on simulated tracked-vehicle logs (docs/ipd.md records them):
 //
-//   build/bench/ipd_report [--seed N]      ipd35: the three methods, recovery after terrain changes
+//   build/bench/ipd_report [--scenario ipd35|ipd35m] [--seed N]
+//                                          the three methods, recovery after terrain changes
 //   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration
 //   time
 //
@@ -84,6 +85,57 @@ IpdCalibrationResult TrueAlphaPredictions(const sim::Scenario& sc, const DriveLo
   return r;
 }
 
+// Predictions with the best fixed slip model of each patch in hindsight (ipd35m, whose truth has
+// no slip model): per patch, alpha by least squares over the patch's own segments (Gauss-Newton
+// on the segments' end-pose residuals, heading weighted as 1 m per rad). What the 13-parameter
+// model can do at best with the terrain known; q is not fitted (no covariance is reported).
+IpdCalibrationResult HindsightAlphaPredictions(const sim::Scenario& sc, const DriveLog& log) {
+  const std::vector<double> s = SignedTravel(log);
+  std::vector<double> t;
+  for (const TruthSample& sample : log.truth) t.push_back(sample.t);
+  const IpdOptions options;
+  IpdCalibrationResult r;
+  r.segments = BuildIpdSegments(log, options);
+  std::vector<size_t> patch_of(r.segments.size());
+  for (size_t i = 0; i < r.segments.size(); ++i) {
+    const size_t k = std::min<size_t>(
+        std::lower_bound(t.begin(), t.end(), r.segments[i].t_start) - t.begin(), t.size() - 1);
+    size_t patch = 0;
+    while (patch + 1 < sc.course.patches.size() && sc.course.patches[patch + 1].s_start_m <= s[k])
+      ++patch;
+    patch_of[i] = patch;
+  }
+  std::vector<std::array<double, ipd::kAlphaSize>> alpha(sc.course.patches.size());
+  for (size_t patch = 0; patch < alpha.size(); ++patch) {
+    alpha[patch].fill(0.0);
+    for (int iteration = 0; iteration < 5; ++iteration) {
+      Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize> normal =
+          1e-6 * Eigen::Matrix<double, ipd::kAlphaSize, ipd::kAlphaSize>::Identity();
+      Eigen::Matrix<double, ipd::kAlphaSize, 1> gradient =
+          Eigen::Matrix<double, ipd::kAlphaSize, 1>::Zero();
+      for (size_t i = 0; i < r.segments.size(); ++i) {
+        if (patch_of[i] != patch) continue;
+        const SegmentLinearization lin =
+            LinearizeSegment(r.segments[i], alpha[patch].data(), options);
+        normal += lin.H.transpose() * lin.H;
+        gradient += lin.H.transpose() * lin.residual;
+      }
+      const Eigen::Matrix<double, ipd::kAlphaSize, 1> step = normal.ldlt().solve(gradient);
+      for (int j = 0; j < ipd::kAlphaSize; ++j) alpha[patch][j] += step[j];
+    }
+  }
+  const std::array<double, ipd::kAlphaSize> zero{};
+  for (size_t i = 0; i < r.segments.size(); ++i) {
+    const IpdSegment& seg = r.segments[i];
+    r.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, Eigen::Vector3d::Zero()));
+    r.calibrated.push_back(
+        EvaluatePrediction(seg, alpha[patch_of[i]].data(), options, Eigen::Vector3d::Zero()));
+    r.update_t.push_back(seg.t_start);
+    r.alpha.push_back(alpha[patch_of[i]]);
+  }
+  return r;
+}
+
 // The first moment after t_b from which the mean position error of the next 5 s of predictions
 // is within 1.2 x `level(k, m)`, the reference over the same predictions k..m-1; 30 s when not
 // within 30 s.
@@ -100,8 +152,9 @@ double RecoveryTime(const IpdCalibrationResult& r, const std::vector<double>& er
   return 30.0;
 }
 
+// `covariance`: whether r's predicted covariance is the method's own (else "-" is printed).
 void Report(const char* name, const IpdCalibrationResult& r, const std::vector<double>& boundaries,
-            double seconds) {
+            double seconds, bool covariance = true) {
   const PredictionStats a = Summarize(r.no_slip), b = Summarize(r.calibrated);
   // The same ratio without the first minute, when alpha's prior (sd 0.5) makes a few predictions
   // metres uncertain and their variance dominates the mean.
@@ -155,30 +208,41 @@ void Report(const char* name, const IpdCalibrationResult& r, const std::vector<d
   for (double x : recovery)
     mean_recovery += x / recovery.size(), max_recovery = std::max(max_recovery, x);
   for (double x : own_recovery) mean_own += x / own_recovery.size(), max_own = std::max(max_own, x);
+  const auto reduction = [](double value, double reference) {
+    return 100.0 * (1.0 - value / reference);
+  };
+  char ratios[96] = "- | -";
+  if (covariance) {
+    std::snprintf(ratios, sizeof(ratios), "%.2f %.2f %.2f | %.2f %.2f %.2f",
+                  b.predicted_over_sample[0], b.predicted_over_sample[1],
+                  b.predicted_over_sample[2], late[0], late[1], late[2]);
+  }
   std::printf(
-      "| %s | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.2f %.2f %.2f | "
-      "%.2f %.2f %.2f | %.1f / %.1f | %.1f / %.1f | %.2f |\n",
-      name, b.mean_position_error_m,
-      100.0 * (1.0 - b.mean_position_error_m / a.mean_position_error_m), b.sd_along_m,
-      100.0 * (1.0 - b.sd_along_m / a.sd_along_m), b.sd_cross_m,
-      100.0 * (1.0 - b.sd_cross_m / a.sd_cross_m), b.mean_heading_error_rad,
-      100.0 * (1.0 - b.mean_heading_error_rad / a.mean_heading_error_rad),
-      b.predicted_over_sample[0], b.predicted_over_sample[1], b.predicted_over_sample[2], late[0],
-      late[1], late[2], mean_recovery, max_recovery, mean_own, max_own, seconds);
+      "| %s | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | %.4f (%.0f %%) | "
+      "%s | %.1f / %.1f | %.1f / %.1f | %.2f |\n",
+      name, b.mean_position_error_m, reduction(b.mean_position_error_m, a.mean_position_error_m),
+      b.sd_along_m, reduction(b.sd_along_m, a.sd_along_m), b.sd_cross_m,
+      reduction(b.sd_cross_m, a.sd_cross_m), b.mean_heading_error_rad,
+      reduction(b.mean_heading_error_rad, a.mean_heading_error_rad), b.sd_heading_rad,
+      reduction(b.sd_heading_rad, a.sd_heading_rad), ratios, mean_recovery, max_recovery, mean_own,
+      max_own, seconds);
 }
 
-int Ipd35(uint64_t seed) {
-  const sim::ScenarioRun run = sim::ExpandScenario("ipd35", seed).at(0);
+// `scenario`: ipd35 (its floor: the simulator's own slip model) or ipd35m (the best fixed
+// 13-parameter model per patch in hindsight).
+int Ipd35(const std::string& scenario, uint64_t seed) {
+  const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
   const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   const std::vector<double> boundaries = BoundaryTimes(run.scenario, log);
-  std::printf("ipd35 seed %llu: %zu terrain boundaries\n\n", static_cast<unsigned long long>(seed),
-              boundaries.size());
+  const bool has_slip_model = scenario == "ipd35";
+  std::printf("%s seed %llu: %zu terrain boundaries\n\n", scenario.c_str(),
+              static_cast<unsigned long long>(seed), boundaries.size());
   std::printf(
       "| method | mean position error m (reduction) | sd along m | sd cross m | mean heading "
-      "error rad | predicted / sample variance (along, cross, heading) | the same after the "
-      "first minute | recovery after a boundary, mean / max s | recovery against its own settled "
-      "model, mean / max s | time s |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n");
+      "error rad | sd heading rad | predicted / sample variance (along, cross, heading) | the "
+      "same after the first minute | recovery after a boundary, mean / max s | recovery against "
+      "its own settled model, mean / max s | time s |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   const IpdCalibrationResult* no_slip = nullptr;
   const std::vector<std::pair<const char*, std::function<IpdCalibrationResult()>>> methods = {
       {"ekf", [&] { return CalibrateIpdEkf(log); }},
@@ -190,9 +254,15 @@ int Ipd35(uint64_t seed) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (no_slip == nullptr) {
       const PredictionStats a = Summarize(r.no_slip);
-      std::printf("| no slip | %.4f | %.4f | %.4f | %.4f | | | | | |\n", a.mean_position_error_m,
-                  a.sd_along_m, a.sd_cross_m, a.mean_heading_error_rad);
-      Report("true alpha (floor)", TrueAlphaPredictions(run.scenario, log), boundaries, 0.0);
+      std::printf("| no slip | %.4f | %.4f | %.4f | %.4f | %.4f | | | | | |\n",
+                  a.mean_position_error_m, a.sd_along_m, a.sd_cross_m, a.mean_heading_error_rad,
+                  a.sd_heading_rad);
+      if (has_slip_model) {
+        Report("true alpha (floor)", TrueAlphaPredictions(run.scenario, log), boundaries, 0.0);
+      } else {
+        Report("best alpha per patch in hindsight", HindsightAlphaPredictions(run.scenario, log),
+               boundaries, 0.0, false);
+      }
       no_slip = &r;
     }
     Report(name, r, boundaries, seconds);
@@ -238,7 +308,24 @@ int Holdout() {
 }  // namespace slipgraph
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::strcmp(argv[1], "--holdout") == 0) return slipgraph::Holdout();
-  if (argc > 2 && std::strcmp(argv[1], "--seed") == 0) return slipgraph::Ipd35(std::atoll(argv[2]));
-  return slipgraph::Ipd35(1);
+  std::string scenario = "ipd35";
+  uint64_t seed = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--holdout") return slipgraph::Holdout();
+    if (arg == "--seed" && i + 1 < argc) {
+      seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (arg == "--scenario" && i + 1 < argc) {
+      scenario = argv[++i];
+      if (scenario != "ipd35" && scenario != "ipd35m") {
+        std::fprintf(stderr, "ipd_report: --scenario is ipd35 or ipd35m, not '%s'\n",
+                     scenario.c_str());
+        return 2;
+      }
+    } else {
+      std::fprintf(stderr, "usage: ipd_report [--scenario ipd35|ipd35m] [--seed N] | --holdout\n");
+      return 2;
+    }
+  }
+  return slipgraph::Ipd35(scenario, seed);
 }

@@ -82,11 +82,18 @@ struct SensorSpec {
 };
 
 // Vehicle-side truth of the mismatch suites (docs/mismatch.md; the soils are the patches'
-// TerrainType::peaked): how far the tires roll before their slip settles, and how their rolling
-// radius shrinks with load. Inert when the patches have no peaked soil.
+// TerrainType::peaked or track_soil): how far the tires roll before their slip settles, and how
+// their rolling radius shrinks with load; the tracks' contact and the soil's variation under
+// them. Inert when the patches have no such soil.
 struct VehicleMismatch {
   double relaxation_length_m = 0.2;
   double radius_load_sensitivity = 0.0;  // r_eff = r (1 - k (N / N_static - 1))
+  // The tracked robot (TerrainType::track_soil): its contact, and the soil's variation along
+  // the path under each track (each track's strength and shear modulus scaled by exp(sd z), z a
+  // unit Gauss-Markov process in distance with this correlation length).
+  TrackGeometry tracks;
+  double track_soil_variation_sd = 0.0;
+  double track_soil_correlation_m = 2.0;
 };
 
 // The articulated 6-wheel rover of Wilcox: per-side terrain profiles, sinkage, slip, and the

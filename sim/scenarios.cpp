@@ -20,6 +20,7 @@ TerrainType NominalTerrain(const Vehicle& vehicle, bool soft) {
           vehicle.rolling,
           soft,
           IpdSlip{},
+          std::nullopt,
           std::nullopt};
 }
 
@@ -238,6 +239,35 @@ void ApplyMismatch(uint64_t stream_seed, double course_m, Scenario* sc) {
   sensors.mismatch.gps_velocity_interval_mean = true;
 }
 
+// ipd35m (docs/mismatch.md): ipd35's drive, course and sensors with the tracks' slip from a
+// track-soil model (sim/track_soil.h) instead of the 13-parameter slip model IPD identifies; each
+// patch's soil drawn from ranges fixed before any estimator ran on the suite, the soil varying
+// under each track along the path. Its own random stream: ipd35's draws are unchanged.
+Scenario Ipd35Mismatched(uint64_t seed) {
+  Scenario sc = Ipd35(seed);
+  sc.name = "ipd35m";
+  std::mt19937_64 rng(RunSeed(seed, 35) ^ 0x6970643335736f6cULL);
+  UniformReal u(0.0, 1.0);
+  const auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+  int index = 0;
+  for (TerrainPatch& patch : sc.course.patches) {
+    TrackSoil soil;
+    soil.cohesion_pa = in(0.0, 6000.0);
+    soil.friction_angle_rad = in(20.0, 38.0) * M_PI / 180.0;
+    soil.shear_modulus_m = in(0.01, 0.04);
+    soil.roll_c0 = in(0.02, 0.10);
+    soil.roll_c1_spm = in(0.0, 0.03);
+    patch.terrain.name = "track_soil_" + std::to_string(++index);
+    patch.terrain.ipd = IpdSlip{};  // unused: the track-soil model acts
+    patch.terrain.soft = soil.roll_c0 > 0.06;
+    patch.terrain.track_soil = soil;
+  }
+  sc.mismatch.tracks = {0.7, 0.2};
+  sc.mismatch.track_soil_variation_sd = in(0.1, 0.3);
+  sc.mismatch.track_soil_correlation_m = in(1.0, 5.0);
+  return sc;
+}
+
 // The path length a scenario covers at its commanded speeds (the mismatch patches cover it).
 double CommandedDistanceM(const Scenario& sc) {
   double distance = 0.0;
@@ -337,6 +367,8 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
     runs.push_back({"", Mismatched(sc, seed), seed});
   } else if (name == "ipd35") {
     runs.push_back({"", Ipd35(seed), RunSeed(seed, 35)});
+  } else if (name == "ipd35m") {
+    runs.push_back({"", Ipd35Mismatched(seed), RunSeed(seed, 35)});
   } else if (name == "wilcox") {
     for (double roughness_cm : kWilcoxRoughnessCm) {
       for (int run = 1; run <= kWilcoxRunsPerRoughness; ++run) {
@@ -401,7 +433,7 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
 std::string ScenarioHelp() {
   return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, wilcox, wilcox/ROUGHNESS_CM, "
          "wilcox_lr, wilcox_slope, hidden, hidden/EFFECT, hidden/none; mismatch suites (truth "
-         "the model lacks): ward21m, ward21m/NN, fig5m, hiddenm, hiddenm/EFFECT";
+         "the model lacks): ward21m, ward21m/NN, fig5m, hiddenm, hiddenm/EFFECT, ipd35m";
 }
 
 }  // namespace sim

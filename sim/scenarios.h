@@ -15,6 +15,8 @@
 //                     the mismatch suites: the same drives with truth the estimators do not
 //                     contain (peaked traction law, soils per 10-40 m patch, AHRS error,
 //                     vibration, averaged GNSS velocity; docs/mismatch.md)
+//   ipd35m            ipd35's drive with the tracks' slip from a track-soil model (shear
+//                     against soils drawn per patch) instead of the 13-parameter slip model
 // Every scenario is a pure function of (name, seed): the same inputs give the same bytes.
 #pragma once
 

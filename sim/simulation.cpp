@@ -96,6 +96,15 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
       e << YAML::Key << "roll_c0" << YAML::Value << p.roll_c0;
       e << YAML::Key << "roll_c1_spm" << YAML::Value << p.roll_c1_spm;
       e << YAML::EndMap;
+    } else if (patch.terrain.track_soil) {
+      const TrackSoil& t = *patch.terrain.track_soil;
+      e << YAML::Key << "track_soil" << YAML::Value << YAML::Flow << YAML::BeginMap;
+      e << YAML::Key << "cohesion_pa" << YAML::Value << t.cohesion_pa;
+      e << YAML::Key << "friction_angle_rad" << YAML::Value << t.friction_angle_rad;
+      e << YAML::Key << "shear_modulus_m" << YAML::Value << t.shear_modulus_m;
+      e << YAML::Key << "roll_c0" << YAML::Value << t.roll_c0;
+      e << YAML::Key << "roll_c1_spm" << YAML::Value << t.roll_c1_spm;
+      e << YAML::EndMap;
     } else {
       e << YAML::Key << "tire" << YAML::Value;
       EmitTire(e, patch.terrain.tire);
@@ -175,6 +184,21 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
         {"vibration_hz", sm.vibration_hz},
         {"vibration_damping", sm.vibration_damping},
         {"gps_velocity_interval_mean", sm.gps_velocity_interval_mean ? 1.0 : 0.0},
+    };
+    for (const auto& [key, value] : fields) e << YAML::Key << key << YAML::Value << value;
+    e << YAML::EndMap;
+  }
+  const bool tracks =
+      std::any_of(scenario.course.patches.begin(), scenario.course.patches.end(),
+                  [](const TerrainPatch& p) { return p.terrain.track_soil.has_value(); });
+  if (tracks) {
+    const VehicleMismatch& m = scenario.mismatch;
+    e << YAML::Key << "mismatch" << YAML::Value << YAML::BeginMap;
+    const std::pair<const char*, double> fields[] = {
+        {"track_contact_length_m", m.tracks.contact_length_m},
+        {"track_belt_width_m", m.tracks.belt_width_m},
+        {"track_soil_variation_sd", m.track_soil_variation_sd},
+        {"track_soil_correlation_m", m.track_soil_correlation_m},
     };
     for (const auto& [key, value] : fields) e << YAML::Key << key << YAML::Value << value;
     e << YAML::EndMap;

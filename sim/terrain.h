@@ -10,6 +10,7 @@
 
 #include "model/vehicle.h"
 #include "sim/peaked_tire.h"
+#include "sim/track_soil.h"
 
 namespace slipgraph {
 namespace sim {
@@ -30,6 +31,8 @@ struct TerrainType {
   // Set in the mismatch suites: the true traction and rolling resistance follow this law
   // (sim/peaked_tire.h), not eq. (8) and (9); `tire` and `rolling` are then unused.
   std::optional<PeakedSoil> peaked;
+  // Set in ipd35m: the tracked robot's slip follows this soil (sim/track_soil.h), not `ipd`.
+  std::optional<TrackSoil> track_soil;
 };
 
 // grass, mulch, gravel (loose gravel over hard soil), mud, asphalt, soft_dirt, loose_rock.
