@@ -4,12 +4,13 @@
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
 // Run: build/bench/wilcox_report [--runs N]
 //          [--method baseline|graph|graph_shared[_learned],...|all] [--roughness CM]
-//          [--prior FRACTION] [--suite wilcox|wilcox_slope] [--svg FILE]
+//          [--prior FRACTION] [--suite wilcox|wilcoxm|wilcox_slope] [--svg FILE]
 // (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
 // sides sharing the advance, WilcoxGraphOptions::shared_advance; *_learned: the prior learning
 // its slip law from the paper's no-slip start, WilcoxOptions::learn_slip; --roughness 1 and
 // --prior 0.1 keep one roughness and one prior; --method takes a comma-separated list; --svg
 // writes the mean odometry error per method and prior against roughness as a plot).
+// --suite wilcoxm: the same table on the mismatch suite (docs/mismatch.md).
 // --suite wilcox_slope: the hill runs (slip 20 % + the slope), each method with the prior's
 // slip law as the paper has it (0), constant at the true level (0.2), slope-dependent with the
 // true law (0.2, 1) and learned from 0; odometry error and the largest error along the way.
@@ -80,7 +81,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: wilcox_report [--runs N] [--method baseline|graph|graph_shared"
                    "[_learned]|all] [--roughness CM] [--prior FRACTION] "
-                   "[--suite wilcox|wilcox_slope] [--svg FILE]\n");
+                   "[--suite wilcox|wilcoxm|wilcox_slope] [--svg FILE]\n");
       return 2;
     }
   }
@@ -138,7 +139,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::map<std::string, std::vector<DriveLog>> by_roughness;
-  for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox", 1)) {
+  for (const sim::ScenarioRun& run : sim::ExpandScenario(suite, 1)) {
     const std::string roughness =
         run.relative_directory.substr(1, run.relative_directory.find("cm") - 1);
     if (!only_roughness.empty() && roughness != only_roughness) continue;

@@ -19,15 +19,24 @@ double RaisedCosine(double u) {
   return (u <= 0.0 || u >= 1.0) ? 0.0 : 0.5 * (1.0 - std::cos(2.0 * M_PI * u));
 }
 
+// How soft the ground is at x: 0 outside the soft patches, 1 at their centres.
+double Softness(const RockerSpec& spec, double x_m) {
+  if (x_m <= 0.0) return 0.0;
+  return RaisedCosine(std::fmod(x_m, spec.soft_patch_every_m) / kSoftPatchLengthM);
+}
+
 // Sinkage of the front wheel's rut at x on one side.
 double Sinkage(const RockerSpec& spec, double x_m, bool left) {
-  double soft = 0.0;
-  if (x_m > 0.0) {
-    const double u = std::fmod(x_m, spec.soft_patch_every_m) / kSoftPatchLengthM;
-    soft = RaisedCosine(u);
-  }
+  const double soft = Softness(spec, x_m);
   return spec.base_sinkage_m + spec.soft_sinkage_m * soft +
          (left ? spec.left_extra_sinkage_m * soft : 0.0);
+}
+
+// Sinkage of wheel w (0 rear, 1 middle, 2 front) at x: the following wheels deepen the rut.
+double WheelSinkage(const RockerSpec& spec, double x_m, bool left, int w) {
+  const double deepening =
+      w == 0 ? spec.rear_extra_sinkage : (w == 1 ? spec.middle_extra_sinkage : 0.0);
+  return Sinkage(spec, x_m, left) * (1.0 + deepening);
 }
 
 // The course's hills as an elevation along the path, z(x) = integral of tan(grade): a table at
@@ -75,7 +84,7 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
   const double r_true = r_nominal * (1.0 + EffectValue(sc.effects, "wheel_radius_error"));
   result.true_wheel_radius_m = r_true;
   const double axle = veh.axle_spacing_m;
-  const double patch = r_true / 3.0;
+  const double patch = r_true / spec.contact_divisor;
   const double dt = sc.sim_step_s;
   const double duration = sc.duration_s();
   double top_speed = 0.0;
@@ -88,8 +97,9 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
   const HillElevation hills(sc.course, course_length);
   // Terrain elevation (profile and hills) at x, and the surface a wheel rides on (y - s).
   const auto terrain = [&](int side, double x) { return sides[side]->Elevation(x) + hills.At(x); };
-  const auto ride = [&](int side, double x) {
-    return sides[side]->WheelElevation(x, patch) + hills.At(x) - Sinkage(spec, x, side == 0);
+  const auto ride = [&](int side, double x, int w) {
+    return sides[side]->WheelElevation(x, patch) + hills.At(x) -
+           WheelSinkage(spec, x, side == 0, w);
   };
 
   SensorSimulator sensors(sc.sensors, sc.effects, 6, dt, &rng, &log);
@@ -103,12 +113,21 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
   KinematicState state;
   double x_rear = 0.0;  // rear wheel contact, along the straight path
   double slip = spec.slip_mean;
+  // The correlated slip's variation (wilcoxm), drawn from its stationary spread at the start.
+  double slip_state = 0.0, x_last_cycle = -1e9;
   for (int64_t k = 0; k <= steps; ++k) {
     const double t = k / steps_per_s;
     commands.Step(t, dt);
     if (k % cycle_period == 0) {
+      double variation = unit(rng);
+      if (spec.slip_correlation_m > 0.0) {  // Gauss-Markov in the distance since the last cycle
+        const double decay = std::exp(-(x_rear - x_last_cycle) / spec.slip_correlation_m);
+        variation = slip_state = slip_state * decay + std::sqrt(1.0 - decay * decay) * variation;
+        x_last_cycle = x_rear;
+      }
       slip = std::clamp(spec.slip_mean + spec.slip_per_slope * hills.Slope(x_rear + axle) +
-                            spec.slip_sd * unit(rng),
+                            spec.slip_sd * variation +
+                            spec.soft_extra_slip * Softness(spec, x_rear + axle),
                         0.0, 0.9);
     }
     const double omega = commands.v_mps() / r_nominal;
@@ -116,7 +135,7 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
     // Wheel contact elevations, [side][rear, middle, front].
     double z[2][3];
     for (int side = 0; side < 2; ++side) {
-      for (int w = 0; w < 3; ++w) z[side][w] = ride(side, x_rear + w * axle);
+      for (int w = 0; w < 3; ++w) z[side][w] = ride(side, x_rear + w * axle, w);
     }
     state.t = t;
     state.x = x_rear;
@@ -140,8 +159,10 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
         const Side label = side == 0 ? Side::kLeft : Side::kRight;
         for (int i = 0; i < spec.range_points; ++i) {
           const double d = 2.0 * axle + spec.range_first_m + i * spec.range_spacing_m;
-          log.range.push_back(
-              {t, label, d, terrain(side, x_rear + d) - z[side][0] + spec.range_sd_m * unit(rng)});
+          log.range.push_back({t, label, d,
+                               terrain(side, x_rear + d) - z[side][0] +
+                                   d * std::tan(spec.range_pitch_error_rad) +
+                                   spec.range_sd_m * unit(rng)});
         }
       }
     }
@@ -160,7 +181,7 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
         for (int w = 0; w < 3; ++w) {
           const int column = side * 3 + (2 - w);
           truth.slip[column] = SlipRatio(r_true * omega, v);
-          truth.sinkage[column] = Sinkage(spec, x_rear + w * axle, side == 0);
+          truth.sinkage[column] = WheelSinkage(spec, x_rear + w * axle, side == 0, w);
         }
       }
       log.truth.push_back(truth);

@@ -116,6 +116,17 @@ struct RockerSpec {
   double soft_sinkage_m = 0.015;       // extra sinkage at the centre of soft patches
   double soft_patch_every_m = 2.0;     // a soft patch (raised cosine, 0.6 m long) this often
   double left_extra_sinkage_m = 0.0;   // > 0: the left side sinks more (breaks the L/R check)
+  double contact_divisor = 3.0;        // each wheel averages the terrain over radius / this
+  // The mismatch suite wilcoxm (docs/mismatch.md); inert at these values. slip_correlation_m > 0:
+  // the slip's variation (slip_sd) is a Gauss-Markov process in distance, else i.i.d. per cycle;
+  // the wheels dig in at a soft patch (more slip at its centre); the middle and rear wheels
+  // deepen the front's rut by a share of its sinkage; the ranging sensor's pitch is off its
+  // calibration (each point's elevation off by its distance x tan(error)).
+  double slip_correlation_m = 0.0;
+  double soft_extra_slip = 0.0;
+  double middle_extra_sinkage = 0.0;
+  double rear_extra_sinkage = 0.0;
+  double range_pitch_error_rad = 0.0;
 };
 
 // What a user-supplied extra force may depend on (Scenario::extra_force_n).

@@ -268,6 +268,29 @@ Scenario Ipd35Mismatched(uint64_t seed) {
   return sc;
 }
 
+// wilcoxm (docs/mismatch.md): a wilcox run whose truth breaks the estimators' assumptions: slip
+// correlated over distance around a mean that is not the prior's, more slip on soft ground, the
+// following wheels deepening the front's rut, a wider or narrower wheel contact, a ranging
+// sensor pitched off its calibration. Ranges fixed before any estimator ran on the suite; its own
+// random stream (wilcox's draws are unchanged).
+Scenario WilcoxMismatched(Scenario sc, uint64_t stream_seed) {
+  std::mt19937_64 rng(stream_seed ^ 0x77696c636f786dULL);
+  UniformReal u(0.0, 1.0);
+  const auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+  const size_t slash = sc.name.find('/');  // wilcox/r1cm_run01 -> wilcoxm/r1cm_run01
+  sc.name.insert(slash == std::string::npos ? sc.name.size() : slash, "m");
+  RockerSpec& r = sc.rocker;
+  r.slip_mean = in(0.15, 0.30);
+  r.slip_sd = in(0.03, 0.06);
+  r.slip_correlation_m = in(0.2, 1.0);
+  r.soft_extra_slip = in(0.05, 0.15);
+  r.middle_extra_sinkage = in(0.0, 0.3);
+  r.rear_extra_sinkage = r.middle_extra_sinkage + in(0.0, 0.3);
+  r.contact_divisor = in(2.0, 5.0);
+  r.range_pitch_error_rad = (u(rng) < 0.5 ? -1.0 : 1.0) * in(0.0, 0.3) * M_PI / 180.0;
+  return sc;
+}
+
 // The path length a scenario covers at its commanded speeds (the mismatch patches cover it).
 double CommandedDistanceM(const Scenario& sc) {
   double distance = 0.0;
@@ -380,6 +403,20 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
             {dir, WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir), run_seed});
       }
     }
+  } else if (name == "wilcoxm") {
+    for (double roughness_cm : kWilcoxRoughnessCm) {
+      for (int run = 1; run <= kWilcoxRunsPerRoughness; ++run) {
+        char dir[48];
+        std::snprintf(dir, sizeof(dir), "r%gcm_run%02d", roughness_cm, run);
+        const uint64_t run_seed =
+            RunSeed(seed, static_cast<uint64_t>(roughness_cm * 100) * 100 + run);
+        runs.push_back(
+            {dir,
+             WilcoxMismatched(WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir),
+                              run_seed),
+             run_seed});
+      }
+    }
   } else if (name == "wilcox_lr") {
     // Left/right consistency: 2 cm roughness, half the runs with 1 cm more sinkage on the left
     // in the soft patches (the same-ruts assumption then fails on one side).
@@ -433,7 +470,7 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
 std::string ScenarioHelp() {
   return "scenarios: ward21, ward21/NN (01..21), fig5, ipd35, wilcox, wilcox/ROUGHNESS_CM, "
          "wilcox_lr, wilcox_slope, hidden, hidden/EFFECT, hidden/none; mismatch suites (truth "
-         "the model lacks): ward21m, ward21m/NN, fig5m, hiddenm, hiddenm/EFFECT, ipd35m";
+         "the model lacks): ward21m, ward21m/NN, fig5m, hiddenm, hiddenm/EFFECT, ipd35m, wilcoxm";
 }
 
 }  // namespace sim

@@ -17,6 +17,9 @@
 //                     vibration, averaged GNSS velocity; docs/mismatch.md)
 //   ipd35m            ipd35's drive with the tracks' slip from a track-soil model (shear
 //                     against soils drawn per patch) instead of the 13-parameter slip model
+//   wilcoxm           the wilcox runs with slip correlated over distance around another mean,
+//                     more slip on soft ground, deeper ruts under the following wheels, a
+//                     tilted ranging sensor
 // Every scenario is a pure function of (name, seed): the same inputs give the same bytes.
 #pragma once
 

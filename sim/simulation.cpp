@@ -146,6 +146,12 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
         {"soft_sinkage_m", r.soft_sinkage_m},
         {"soft_patch_every_m", r.soft_patch_every_m},
         {"left_extra_sinkage_m", r.left_extra_sinkage_m},
+        {"contact_divisor", r.contact_divisor},
+        {"slip_correlation_m", r.slip_correlation_m},
+        {"soft_extra_slip", r.soft_extra_slip},
+        {"middle_extra_sinkage", r.middle_extra_sinkage},
+        {"rear_extra_sinkage", r.rear_extra_sinkage},
+        {"range_pitch_error_rad", r.range_pitch_error_rad},
     };
     for (const auto& [key, value] : rocker_fields) e << YAML::Key << key << YAML::Value << value;
     const char* const side_names[] = {"left_profile", "right_profile"};

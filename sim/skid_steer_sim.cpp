@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "factors/ipd_kinematics.h"
 #include "factors/slip_ratio.h"
@@ -95,6 +96,9 @@ void StepTrackSoil(const Vehicle& veh, const TrackSoil& soil, const VehicleMisma
                                    .partialPivLu()
                                    .solve(dt * Eigen::Vector3d(f[0], f[1], f[2]));
   for (int i = 0; i < 3; ++i) x[i] += step[i];
+  if (!step.allFinite() || std::abs(x[0]) > 100.0 || std::abs(x[1]) > 100.0) {
+    throw std::runtime_error("the track-soil model diverged (a simulator defect)");
+  }
 }
 
 }  // namespace

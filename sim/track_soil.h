@@ -42,6 +42,8 @@ struct TrackGeometry {
 
 // Below this speed the belt's time in the contact is regularized (m/s).
 constexpr double kTrackSpeedFloorMps = 0.05;
+// Sliding speeds below this turn the shear's direction smoothly (m/s).
+constexpr double kTrackSlideFloorMps = 0.005;
 // Points along each contact at which the shear is integrated (midpoint rule).
 constexpr int kTrackContactPoints = 12;
 
@@ -82,9 +84,10 @@ inline TrackForce TrackShear(double tread_mps, double ground_mps, double v_y_mps
     const double j_y = (v_y_mps * (entry - x) + 0.5 * yaw_rate_radps * (entry * entry - x * x)) /
                        (tread_mps >= 0.0 ? belt : -belt);
     const double j = std::hypot(j_x, j_y);
-    const double s_x = slip, s_y = v_y_mps + yaw_rate_radps * x;  // sliding, track over ground
-    const double s = std::hypot(s_x, s_y);
-    if (s < 1e-12) continue;
+    // Sliding of the track over the ground; its direction regularized near rest (a point whose
+    // sliding reverses turns its shear over a few mm/s, not at once).
+    const double s_x = slip, s_y = v_y_mps + yaw_rate_radps * x;
+    const double s = std::sqrt(s_x * s_x + s_y * s_y + kTrackSlideFloorMps * kTrackSlideFloorMps);
     const double tau = strength_pa * -std::expm1(-j / shear_modulus_m) * track.belt_width_m * dx;
     // The ground pushes the track against its sliding: thrust forward when the belt runs ahead.
     force.x_n += tau * s_x / s;

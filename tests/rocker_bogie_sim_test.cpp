@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "sim/scenarios.h"
 
@@ -100,6 +102,63 @@ TEST(RockerBogieSim, SoftPatchesSinkAndTheLeftSideCanSinkMore) {
   EXPECT_NEAR(min_right, sc.rocker.base_sinkage_m, 1e-9);
   EXPECT_NEAR(max_right, sc.rocker.base_sinkage_m + sc.rocker.soft_sinkage_m, 1e-4);
   EXPECT_NEAR(max_left - max_right, 0.01, 1e-4);
+}
+
+// The mismatch suite (docs/mismatch.md): the slip's variation correlated over distance around
+// a mean that is not 0.2, the following wheels in a deeper rut, every value in its range.
+TEST(RockerBogieSim, WilcoxmSlipIsCorrelatedAndTheFollowingWheelsSinkDeeper) {
+  const std::vector<sim::ScenarioRun> runs = sim::ExpandScenario("wilcoxm", 1);
+  const std::vector<sim::ScenarioRun> matched = sim::ExpandScenario("wilcox", 1);
+  ASSERT_EQ(runs.size(), matched.size());
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const sim::RockerSpec& r = runs[i].scenario.rocker;
+    EXPECT_EQ(runs[i].relative_directory, matched[i].relative_directory);
+    EXPECT_EQ(r.roughness_rms_m, matched[i].scenario.rocker.roughness_rms_m);
+    EXPECT_GE(r.slip_mean, 0.15);
+    EXPECT_LE(r.slip_mean, 0.30);
+    EXPECT_GE(r.slip_correlation_m, 0.2);
+    EXPECT_LE(r.slip_correlation_m, 1.0);
+    EXPECT_GE(r.rear_extra_sinkage, r.middle_extra_sinkage);
+    EXPECT_LE(r.rear_extra_sinkage, 0.6);
+    EXPECT_GE(r.contact_divisor, 2.0);
+    EXPECT_LE(r.contact_divisor, 5.0);
+    EXPECT_LE(std::abs(r.range_pitch_error_rad), 0.3 * M_PI / 180.0);
+  }
+  // One run: consecutive cycles' slips are alike (the matched suite's are independent draws),
+  // and the rear wheel's sinkage where the front wheel was one axle pair earlier is deeper.
+  const sim::ScenarioRun& run = runs[10];
+  const sim::SimResult sim = sim::SimulateRockerBogie(run.scenario, run.seed);
+  const sim::SimResult independent =
+      sim::SimulateRockerBogie(matched[10].scenario, matched[10].seed);
+  const auto lag_one_correlation = [](const DriveLog& log) {
+    std::vector<double> slips;  // one per 1 Hz cycle (truth at 10 Hz), after the start's ramp
+    for (size_t k = 0; k < log.truth.size(); k += 10) {
+      if (log.truth[k].t >= 10.0) slips.push_back(log.truth[k].slip[0]);
+    }
+    double mean = 0.0;
+    for (double x : slips) mean += x / slips.size();
+    double num = 0.0, den = 0.0;
+    for (size_t k = 0; k + 1 < slips.size(); ++k) {
+      num += (slips[k] - mean) * (slips[k + 1] - mean);
+      den += (slips[k] - mean) * (slips[k] - mean);
+    }
+    return num / den;
+  };
+  EXPECT_GT(lag_one_correlation(sim.log), 0.5);
+  EXPECT_LT(std::abs(lag_one_correlation(independent.log)), 0.3);
+  // Wheel order fl, ml, rl: off the soft patches every wheel sits at the base sinkage, the
+  // middle and rear wheels deeper by their shares.
+  const sim::RockerSpec& r = run.scenario.rocker;
+  double front = 1.0, middle = 1.0, rear = 1.0;
+  for (const TruthSample& s : sim.log.truth) {
+    front = std::min(front, s.sinkage[0]);
+    middle = std::min(middle, s.sinkage[1]);
+    rear = std::min(rear, s.sinkage[2]);
+  }
+  EXPECT_NEAR(front, r.base_sinkage_m, 1e-12);
+  EXPECT_NEAR(middle, r.base_sinkage_m * (1.0 + r.middle_extra_sinkage), 1e-12);
+  EXPECT_NEAR(rear, r.base_sinkage_m * (1.0 + r.rear_extra_sinkage), 1e-12);
+  EXPECT_GT(r.rear_extra_sinkage, 0.0);
 }
 
 }  // namespace

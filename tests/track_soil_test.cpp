@@ -131,5 +131,23 @@ TEST(TrackSoil, TheRobotTurnsLessThanItsTracksAndSlipsSideways) {
   EXPECT_LT(lateral.back(), 0.5);
 }
 
+// A sliding direction that reversed at once made the implicit step blow up on this seed (the
+// velocity at 25-38 m/s at t = 1599.7 s); the whole drive stays within what its tracks allow.
+TEST(TrackSoil, Ipd35mSeedSevenStaysNearItsTracksToTheEnd) {
+  const sim::ScenarioRun run = sim::ExpandScenario("ipd35m", 7).at(0);
+  const sim::SimResult r = sim::Simulate(run.scenario, run.seed);
+  const DriveLog& log = r.log;
+  double worst = 0.0;
+  size_t wheel = 0;
+  for (const TruthSample& truth : log.truth) {
+    while (wheel + 1 < log.wheels.size() && log.wheels[wheel + 1].t <= truth.t) ++wheel;
+    const WheelSample& w = log.wheels[wheel];
+    const double nominal = 0.5 * r.true_wheel_radius_m * (w.omega_radps[0] + w.omega_radps[1]);
+    worst = std::max(worst, std::abs(truth.vx - nominal));
+  }
+  EXPECT_LT(worst, 1.0);  // measured 0.35 m/s
+  EXPECT_GT(log.truth.back().t, 2000.0);
+}
+
 }  // namespace
 }  // namespace slipgraph
