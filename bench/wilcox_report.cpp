@@ -4,7 +4,7 @@
 // left/right check on wilcox_lr. Prints a table (docs/wilcox.md).
 // Run: build/bench/wilcox_report [--runs N]
 //          [--method baseline|graph|graph_shared[_learned],...|all] [--roughness CM]
-//          [--prior FRACTION] [--suite wilcox|wilcoxm|wilcox_slope] [--svg FILE]
+//          [--prior FRACTION] [--suite wilcox|wilcoxm|wilcox_slope] [--seed N] [--svg FILE]
 // (N runs per roughness, default all 8; the graph takes about 8 s per run; graph_shared: both
 // sides sharing the advance, WilcoxGraphOptions::shared_advance; *_learned: the prior learning
 // its slip law from the paper's no-slip start, WilcoxOptions::learn_slip; --roughness 1 and
@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> methods = {"baseline",      "baseline_learned", "graph",
                                       "graph_learned", "graph_shared",     "graph_shared_learned"};
   std::string suite = "wilcox", only_roughness;
+  uint64_t seed = 1;
   double only_prior = 0.0;
   std::string svg_path;  // Fig. 4 as a plot: mean odometry error per method and prior
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -67,6 +68,8 @@ int main(int argc, char** argv) {
       only_roughness = argv[i + 1];
     } else if (std::strcmp(argv[i], "--prior") == 0) {
       only_prior = std::atof(argv[i + 1]);
+    } else if (std::strcmp(argv[i], "--seed") == 0) {
+      seed = std::strtoull(argv[i + 1], nullptr, 10);
     } else if (std::strcmp(argv[i], "--suite") == 0) {
       suite = argv[i + 1];
     } else if (std::strcmp(argv[i], "--method") == 0) {
@@ -81,7 +84,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: wilcox_report [--runs N] [--method baseline|graph|graph_shared"
                    "[_learned]|all] [--roughness CM] [--prior FRACTION] "
-                   "[--suite wilcox|wilcoxm|wilcox_slope] [--svg FILE]\n");
+                   "[--suite wilcox|wilcoxm|wilcox_slope] [--seed N] [--svg FILE]\n");
       return 2;
     }
   }
@@ -96,7 +99,7 @@ int main(int argc, char** argv) {
                         {"0.2 + slope (the truth)", 0.2, 1.0, false},
                         {"learned from 0", 0.0, 0.0, true}};
     std::map<std::string, std::vector<DriveLog>> logs_by_roughness;
-    for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox_slope", 1)) {
+    for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcox_slope", seed)) {
       logs_by_roughness[run.relative_directory.substr(1, run.relative_directory.find("cm") - 1)]
           .push_back(sim::Simulate(run.scenario, run.seed).log);
     }
@@ -139,7 +142,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::map<std::string, std::vector<DriveLog>> by_roughness;
-  for (const sim::ScenarioRun& run : sim::ExpandScenario(suite, 1)) {
+  for (const sim::ScenarioRun& run : sim::ExpandScenario(suite, seed)) {
     const std::string roughness =
         run.relative_directory.substr(1, run.relative_directory.find("cm") - 1);
     if (!only_roughness.empty() && roughness != only_roughness) continue;
