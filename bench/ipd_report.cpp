@@ -1,7 +1,8 @@
 // IPD calibration figures on simulated tracked-vehicle logs (docs/ipd.md records them):
 //
-//   build/bench/ipd_report [--scenario ipd35|ipd35m] [--seed N]
-//                                          the three methods, recovery after terrain changes
+//   build/bench/ipd_report [--scenario ipd35|ipd35m] [--seed N] [--methods ekf,window,batch]
+//                                          the three methods (or those listed), recovery after
+//                                          terrain changes
 //   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration
 //   time
 //
@@ -230,7 +231,8 @@ void Report(const char* name, const IpdCalibrationResult& r, const std::vector<d
 
 // `scenario`: ipd35 (its floor: the simulator's own slip model) or ipd35m (the best fixed
 // 13-parameter model per patch in hindsight).
-int Ipd35(const std::string& scenario, uint64_t seed) {
+// `methods_wanted`: the methods to run, by name (ekf, window, batch).
+int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods_wanted) {
   const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
   const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   const std::vector<double> boundaries = BoundaryTimes(run.scenario, log);
@@ -249,6 +251,7 @@ int Ipd35(const std::string& scenario, uint64_t seed) {
       {"window", [&] { return CalibrateIpdWindow(log); }},
       {"batch", [&] { return CalibrateIpdBatch(log); }}};
   for (const auto& [name, calibrate] : methods) {
+    if (methods_wanted.find(name) == std::string::npos) continue;
     const Clock::time_point start = Clock::now();
     const IpdCalibrationResult r = calibrate();
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -282,7 +285,7 @@ int Holdout() {
   sc.commands.resize(keep);
   const DriveLog log = sim::Simulate(sc, 3).log;
   const IpdOptions options;
-  const IpdCalibrationResult full = CalibrateIpdEkf(log, options);
+  const IpdCalibrationResult full = CalibrateIpdEkf(log);
   std::printf(
       "| calibration time s | holdout mean position error m | holdout mean heading error rad "
       "|\n|---|---|---|\n");
@@ -308,13 +311,15 @@ int Holdout() {
 }  // namespace slipgraph
 
 int main(int argc, char** argv) {
-  std::string scenario = "ipd35";
+  std::string scenario = "ipd35", methods = "ekf,window,batch";
   uint64_t seed = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--holdout") return slipgraph::Holdout();
     if (arg == "--seed" && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (arg == "--methods" && i + 1 < argc) {
+      methods = argv[++i];
     } else if (arg == "--scenario" && i + 1 < argc) {
       scenario = argv[++i];
       if (scenario != "ipd35" && scenario != "ipd35m") {
@@ -323,9 +328,11 @@ int main(int argc, char** argv) {
         return 2;
       }
     } else {
-      std::fprintf(stderr, "usage: ipd_report [--scenario ipd35|ipd35m] [--seed N] | --holdout\n");
+      std::fprintf(stderr,
+                   "usage: ipd_report [--scenario ipd35|ipd35m] [--seed N] [--methods "
+                   "ekf,window,batch] | --holdout\n");
       return 2;
     }
   }
-  return slipgraph::Ipd35(scenario, seed);
+  return slipgraph::Ipd35(scenario, seed, methods);
 }
