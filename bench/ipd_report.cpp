@@ -1,8 +1,10 @@
 // IPD calibration figures on simulated tracked-vehicle logs (docs/ipd.md records them):
 //
 //   build/bench/ipd_report [--scenario ipd35|ipd35m] [--seed N] [--methods ekf,window,batch]
+//                          [--errors PREFIX]
 //                                          the three methods (or those listed), recovery after
-//                                          terrain changes
+//                                          terrain changes; each prediction's errors and
+//                                          predicted variances to PREFIX<method>.csv
 //   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration
 //   time
 //
@@ -153,6 +155,22 @@ double RecoveryTime(const IpdCalibrationResult& r, const std::vector<double>& er
   return 30.0;
 }
 
+// One row per 2 s prediction: its start, errors (along, cross, heading) and predicted variances.
+void WriteErrors(const std::string& path, const IpdCalibrationResult& r) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (out == nullptr) {
+    std::fprintf(stderr, "ipd_report: cannot write %s\n", path.c_str());
+    return;
+  }
+  std::fprintf(out, "t_start,along_m,cross_m,heading_rad,var_along,var_cross,var_heading\n");
+  for (const PredictionError& e : r.calibrated) {
+    std::fprintf(out, "%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", e.t_start, e.along_m, e.cross_m,
+                 e.heading_rad, e.predicted_covariance(0, 0), e.predicted_covariance(1, 1),
+                 e.predicted_covariance(2, 2));
+  }
+  std::fclose(out);
+}
+
 // `covariance`: whether r's predicted covariance is the method's own (else "-" is printed).
 void Report(const char* name, const IpdCalibrationResult& r, const std::vector<double>& boundaries,
             double seconds, bool covariance = true) {
@@ -231,8 +249,10 @@ void Report(const char* name, const IpdCalibrationResult& r, const std::vector<d
 
 // `scenario`: ipd35 (its floor: the simulator's own slip model) or ipd35m (the best fixed
 // 13-parameter model per patch in hindsight).
-// `methods_wanted`: the methods to run, by name (ekf, window, batch).
-int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods_wanted) {
+// `methods_wanted`: the methods to run, by name (ekf, window, batch); `errors_prefix`: when
+// not empty, each method's predictions are written to PREFIX<method>.csv.
+int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods_wanted,
+          const std::string& errors_prefix) {
   const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
   const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   const std::vector<double> boundaries = BoundaryTimes(run.scenario, log);
@@ -269,6 +289,7 @@ int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods
       no_slip = &r;
     }
     Report(name, r, boundaries, seconds);
+    if (!errors_prefix.empty()) WriteErrors(errors_prefix + name + ".csv", r);
   }
   return 0;
 }
@@ -311,13 +332,15 @@ int Holdout() {
 }  // namespace slipgraph
 
 int main(int argc, char** argv) {
-  std::string scenario = "ipd35", methods = "ekf,window,batch";
+  std::string scenario = "ipd35", methods = "ekf,window,batch", errors_prefix;
   uint64_t seed = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--holdout") return slipgraph::Holdout();
     if (arg == "--seed" && i + 1 < argc) {
       seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (arg == "--errors" && i + 1 < argc) {
+      errors_prefix = argv[++i];
     } else if (arg == "--methods" && i + 1 < argc) {
       methods = argv[++i];
     } else if (arg == "--scenario" && i + 1 < argc) {
@@ -330,9 +353,9 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: ipd_report [--scenario ipd35|ipd35m] [--seed N] [--methods "
-                   "ekf,window,batch] | --holdout\n");
+                   "ekf,window,batch] [--errors PREFIX] | --holdout\n");
       return 2;
     }
   }
-  return slipgraph::Ipd35(scenario, seed, methods);
+  return slipgraph::Ipd35(scenario, seed, methods, errors_prefix);
 }
