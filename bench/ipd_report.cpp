@@ -66,19 +66,32 @@ std::vector<double> BoundaryTimes(const sim::Scenario& sc, const DriveLog& log) 
   return times;
 }
 
-// Predictions with the simulator's slip model of the terrain under each segment's start.
-IpdCalibrationResult TrueAlphaPredictions(const sim::Scenario& sc, const DriveLog& log) {
+// The course patch under each segment's start (by the signed travel at the truth sample then).
+std::vector<size_t> SegmentPatches(const sim::Scenario& sc, const DriveLog& log,
+                                   const std::vector<IpdSegment>& segments) {
   const std::vector<double> s = SignedTravel(log);
   std::vector<double> t;
   for (const TruthSample& sample : log.truth) t.push_back(sample.t);
+  std::vector<size_t> patches;
+  for (const IpdSegment& seg : segments) {
+    const size_t k = std::min<size_t>(std::lower_bound(t.begin(), t.end(), seg.t_start) - t.begin(),
+                                      t.size() - 1);
+    const sim::TerrainPatch& patch = sc.course.PatchAt(s[k]);
+    patches.push_back(static_cast<size_t>(&patch - sc.course.patches.data()));
+  }
+  return patches;
+}
+
+// Predictions with the simulator's slip model of the terrain under each segment's start.
+IpdCalibrationResult TrueAlphaPredictions(const sim::Scenario& sc, const DriveLog& log) {
   const IpdOptions options;
   IpdCalibrationResult r;
   r.segments = BuildIpdSegments(log, options);
+  const std::vector<size_t> patch_of = SegmentPatches(sc, log, r.segments);
   const std::array<double, ipd::kAlphaSize> zero{};
-  for (const IpdSegment& seg : r.segments) {
-    const size_t k = std::min<size_t>(std::lower_bound(t.begin(), t.end(), seg.t_start) - t.begin(),
-                                      t.size() - 1);
-    const sim::IpdSlip& slip = sc.course.PatchAt(s[k]).terrain.ipd;
+  for (size_t i = 0; i < r.segments.size(); ++i) {
+    const IpdSegment& seg = r.segments[i];
+    const sim::IpdSlip& slip = sc.course.patches[patch_of[i]].terrain.ipd;
     const Eigen::Vector3d q(slip.q_density[0], slip.q_density[1], slip.q_density[2]);
     r.no_slip.push_back(EvaluatePrediction(seg, zero.data(), options, q));
     r.calibrated.push_back(EvaluatePrediction(seg, slip.alpha.data(), options, q));
@@ -93,21 +106,10 @@ IpdCalibrationResult TrueAlphaPredictions(const sim::Scenario& sc, const DriveLo
 // on the segments' end-pose residuals, heading weighted as 1 m per rad). What the 13-parameter
 // model can do at best with the terrain known; q is not fitted (no covariance is reported).
 IpdCalibrationResult HindsightAlphaPredictions(const sim::Scenario& sc, const DriveLog& log) {
-  const std::vector<double> s = SignedTravel(log);
-  std::vector<double> t;
-  for (const TruthSample& sample : log.truth) t.push_back(sample.t);
   const IpdOptions options;
   IpdCalibrationResult r;
   r.segments = BuildIpdSegments(log, options);
-  std::vector<size_t> patch_of(r.segments.size());
-  for (size_t i = 0; i < r.segments.size(); ++i) {
-    const size_t k = std::min<size_t>(
-        std::lower_bound(t.begin(), t.end(), r.segments[i].t_start) - t.begin(), t.size() - 1);
-    size_t patch = 0;
-    while (patch + 1 < sc.course.patches.size() && sc.course.patches[patch + 1].s_start_m <= s[k])
-      ++patch;
-    patch_of[i] = patch;
-  }
+  const std::vector<size_t> patch_of = SegmentPatches(sc, log, r.segments);
   std::vector<std::array<double, ipd::kAlphaSize>> alpha(sc.course.patches.size());
   for (size_t patch = 0; patch < alpha.size(); ++patch) {
     alpha[patch].fill(0.0);

@@ -392,29 +392,16 @@ std::vector<ScenarioRun> ExpandScenario(const std::string& name, uint64_t seed) 
     runs.push_back({"", Ipd35(seed), RunSeed(seed, 35)});
   } else if (name == "ipd35m") {
     runs.push_back({"", Ipd35Mismatched(seed), RunSeed(seed, 35)});
-  } else if (name == "wilcox") {
+  } else if (name == "wilcox" || name == "wilcoxm") {
     for (double roughness_cm : kWilcoxRoughnessCm) {
       for (int run = 1; run <= kWilcoxRunsPerRoughness; ++run) {
         char dir[48];
         std::snprintf(dir, sizeof(dir), "r%gcm_run%02d", roughness_cm, run);
         const uint64_t run_seed =
             RunSeed(seed, static_cast<uint64_t>(roughness_cm * 100) * 100 + run);
-        runs.push_back(
-            {dir, WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir), run_seed});
-      }
-    }
-  } else if (name == "wilcoxm") {
-    for (double roughness_cm : kWilcoxRoughnessCm) {
-      for (int run = 1; run <= kWilcoxRunsPerRoughness; ++run) {
-        char dir[48];
-        std::snprintf(dir, sizeof(dir), "r%gcm_run%02d", roughness_cm, run);
-        const uint64_t run_seed =
-            RunSeed(seed, static_cast<uint64_t>(roughness_cm * 100) * 100 + run);
-        runs.push_back(
-            {dir,
-             WilcoxMismatched(WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir),
-                              run_seed),
-             run_seed});
+        Scenario sc = WilcoxRun(roughness_cm / 100.0, 0.0, std::string("wilcox/") + dir);
+        if (name == "wilcoxm") sc = WilcoxMismatched(sc, run_seed);
+        runs.push_back({dir, sc, run_seed});
       }
     }
   } else if (name == "wilcox_lr") {
