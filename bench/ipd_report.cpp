@@ -273,7 +273,9 @@ int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods
       {"window", [&] { return CalibrateIpdWindow(log); }},
       {"batch", [&] { return CalibrateIpdBatch(log); }}};
   for (const auto& [name, calibrate] : methods) {
-    if (methods_wanted.find(name) == std::string::npos) continue;
+    if (("," + methods_wanted + ",").find("," + std::string(name) + ",") == std::string::npos) {
+      continue;
+    }
     const Clock::time_point start = Clock::now();
     const IpdCalibrationResult r = calibrate();
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -93,7 +93,7 @@ struct VehicleMismatch {
   // unit Gauss-Markov process in distance with this correlation length).
   TrackGeometry tracks;
   double track_soil_variation_sd = 0.0;
-  double track_soil_correlation_m = 2.0;
+  double track_soil_correlation_m = 2.0;  // > 0
 };
 
 // The articulated 6-wheel rover of Wilcox: per-side terrain profiles, sinkage, slip, and the
@@ -101,7 +101,7 @@ struct VehicleMismatch {
 struct RockerSpec {
   double roughness_rms_m = 0.01;  // RMS of each side's synthetic terrain profile y(x)
   double slip_mean = 0.2;         // true slip: advance = rim motion x (1 - slip)
-  double slip_sd = 0.02;          // cycle-to-cycle variation of the slip
+  double slip_sd = 0.02;          // sd of the slip's variation (each cycle's own, or correlated)
   // Slip against slope (Wilcox Sec. 5: odometry over-estimates uphill, under-estimates downhill):
   // slip = slip_mean + slip_per_slope x dz/dx of the course's hills under the rover's middle
   // wheels, clamped to [0, 0.9]. The hills (Course::hills) lift both sides' profiles.

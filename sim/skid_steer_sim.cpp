@@ -27,10 +27,12 @@ struct SoilVariation {
   double strength[2] = {0.0, 0.0};
   double modulus[2] = {0.0, 0.0};
 
-  void Advance(double distance_m, double correlation_m, std::mt19937_64* rng, UnitNormal* unit) {
-    const double decay = std::exp(-std::abs(distance_m) / correlation_m);
-    const double kick = std::sqrt(1.0 - decay * decay);
+  // Each track's processes advance by the ground its line crossed (m); correlation_m > 0.
+  void Advance(const double distance_m[2], double correlation_m, std::mt19937_64* rng,
+               UnitNormal* unit) {
     for (int side = 0; side < 2; ++side) {
+      const double decay = std::exp(-std::abs(distance_m[side]) / correlation_m);
+      const double kick = std::sqrt(1.0 - decay * decay);
       strength[side] = strength[side] * decay + kick * (*unit)(*rng);
       modulus[side] = modulus[side] * decay + kick * (*unit)(*rng);
     }
@@ -77,7 +79,7 @@ void TrackSoilAcceleration(const Vehicle& veh, const TrackSoil& soil, const Vehi
   x_dot[2] = force_y / veh.mass_kg + in.g_y - v * w;
 }
 
-// One semi-implicit Euler step of the body's velocity (the shear laws are stiff at low speed):
+// One linearly implicit Euler step of the body's velocity (the shear laws are stiff at low speed):
 // (I - dt J) dx = dt f(x), J by forward differences.
 void StepTrackSoil(const Vehicle& veh, const TrackSoil& soil, const VehicleMismatch& mm,
                    const SoilVariation& variation, const TrackInputs& in, double dt, double x[3]) {
@@ -96,7 +98,8 @@ void StepTrackSoil(const Vehicle& veh, const TrackSoil& soil, const VehicleMisma
                                    .partialPivLu()
                                    .solve(dt * Eigen::Vector3d(f[0], f[1], f[2]));
   for (int i = 0; i < 3; ++i) x[i] += step[i];
-  if (!step.allFinite() || std::abs(x[0]) > 100.0 || std::abs(x[1]) > 100.0) {
+  if (!step.allFinite() || std::abs(x[0]) > 100.0 || std::abs(x[1]) > 100.0 ||
+      std::abs(x[2]) > 100.0) {
     throw std::runtime_error("the track-soil model diverged (a simulator defect)");
   }
 }
@@ -137,7 +140,8 @@ SimResult SimulateSkidSteer(const Scenario& sc, uint64_t seed) {
   std::mt19937_64 soil_rng(seed ^ 0x747261636b736f6cULL);
   UnitNormal soil_unit;
   SoilVariation variation;
-  variation.Advance(1e9, 1.0, &soil_rng, &soil_unit);  // start from the stationary spread
+  const double far[2] = {1e9, 1e9};
+  variation.Advance(far, 1.0, &soil_rng, &soil_unit);  // start from the stationary spread
 
   for (int64_t k = 0; k <= steps; ++k) {
     const double t = k / steps_per_s;
@@ -166,7 +170,8 @@ SimResult SimulateSkidSteer(const Scenario& sc, uint64_t seed) {
       inputs.g_x = g_x, inputs.g_y = g_y, inputs.pitch = state.pitch, inputs.roll = state.roll;
       StepTrackSoil(veh, *terrain.track_soil, sc.mismatch, variation, inputs, dt, body);
       u[0] = body[0], u[1] = body[2], u[2] = body[1];
-      variation.Advance(u[0] * dt, sc.mismatch.track_soil_correlation_m, &soil_rng, &soil_unit);
+      const double crossed[2] = {(u[0] - 0.5 * c * u[2]) * dt, (u[0] + 0.5 * c * u[2]) * dt};
+      variation.Advance(crossed, sc.mismatch.track_soil_correlation_m, &soil_rng, &soil_unit);
     } else {
       ipd::SlipVelocities(v_n, w_n, g_x, g_y, terrain.ipd.alpha.data(), u);
       // Stochastic slip: Gauss-Markov with low-frequency density q = 2 sd^2 tau.

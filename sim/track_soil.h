@@ -8,16 +8,16 @@
 //
 // A point of track i at x along its contact (length L, x forward, entering at the front when the
 // belt runs forward) slides over the ground at s = (-(r w_i - v_i), v_y + w x), v_i = V_x -/+ B/2
-// V_yaw the ground speed of the track's line (left, right). Its shear displacement is what it
-// slid since it entered, j = |integral of s over its time in the contact|, and the soil's shear
-// stress opposes the sliding with Janosi-Hanamoto's magnitude
+// V_yaw the ground speed of the track's line (left, right). Its shear displacement j is what it
+// has slid since it entered (the length of the integral of s over its time in the contact), and
+// the soil's shear stress opposes the sliding s with Janosi-Hanamoto's magnitude
 //
 //   tau = (c + p tan(phi)) (1 - exp(-j / K)),   p = W_i / (b L)
 //
 // (b the belt's width, W_i the track's load, moved to the outer track by the sideways specific
 // force v w - g_y at the centre of gravity's height). The body follows the shear's resultant
-// forces and moment, rolling resistance W (c_r0 + c_r1 |v|) sign(v) and gravity (only the
-// simulator uses this).
+// forces and moment, rolling resistance W (c_r0 + c_r1 |v|) tanh(v / 0.05 m/s) and gravity (only
+// the simulator uses this).
 #pragma once
 
 #include <algorithm>
@@ -42,8 +42,9 @@ struct TrackGeometry {
 
 // Below this speed the belt's time in the contact is regularized (m/s).
 constexpr double kTrackSpeedFloorMps = 0.05;
-// Sliding speeds below this turn the shear's direction smoothly (m/s).
-constexpr double kTrackSlideFloorMps = 0.005;
+// Sliding speeds below this turn the shear's direction smoothly (m/s); the thrust of a track
+// slipping at s is s / sqrt(s^2 + floor^2) of Janosi-Hanamoto's.
+constexpr double kTrackSlideFloorMps = 0.001;
 // Points along each contact at which the shear is integrated (midpoint rule).
 constexpr int kTrackContactPoints = 12;
 
@@ -51,7 +52,7 @@ constexpr int kTrackContactPoints = 12;
 // contact, at shear displacement x = j / K at its rear: 1 - (1 - e^-x) / x (what TrackShear
 // integrates when nothing slides sideways).
 inline double ShearShare(double x) {
-  if (x < 1e-6) return 0.5 * x;  // its series, where the closed form cancels
+  if (x < 1e-6) return x * (0.5 - x / 6.0);  // its series, where the closed form cancels
   return 1.0 - -std::expm1(-x) / x;
 }
 
@@ -70,27 +71,26 @@ inline TrackForce TrackShear(double tread_mps, double ground_mps, double v_y_mps
                              double yaw_rate_radps, double strength_pa, double shear_modulus_m,
                              const TrackGeometry& track) {
   const double length = track.contact_length_m;
-  const double slip = tread_mps - ground_mps;  // the belt slides back over the ground at this
+  const double slip = tread_mps - ground_mps;  // the belt runs ahead of the ground by this
   const double belt = std::max(std::abs(tread_mps), kTrackSpeedFloorMps);
   const double dx = length / kTrackContactPoints;
   TrackForce force;
   for (int k = 0; k < kTrackContactPoints; ++k) {
     const double x = -0.5 * length + (k + 0.5) * dx;
-    // Distance the point has travelled in the contact, and its displacement over it (the
-    // sideways sliding v_y + w x' integrated over the positions x' it passed).
+    // What the point has slid over the ground since it entered the contact: back by the belt's
+    // slip over the time it has been in, sideways by v_y + w x' over the positions x' it passed.
     const double entry = tread_mps >= 0.0 ? 0.5 * length : -0.5 * length;
-    const double travelled = std::abs(entry - x);
-    const double j_x = slip * travelled / belt;
-    const double j_y = (v_y_mps * (entry - x) + 0.5 * yaw_rate_radps * (entry * entry - x * x)) /
+    const double d_x = -slip * std::abs(entry - x) / belt;
+    const double d_y = (v_y_mps * (entry - x) + 0.5 * yaw_rate_radps * (entry * entry - x * x)) /
                        (tread_mps >= 0.0 ? belt : -belt);
-    const double j = std::hypot(j_x, j_y);
-    // Sliding of the track over the ground; its direction regularized near rest (a point whose
-    // sliding reverses turns its shear over a few mm/s, not at once).
-    const double s_x = slip, s_y = v_y_mps + yaw_rate_radps * x;
+    const double j = std::hypot(d_x, d_y);
+    // The soil opposes the point's sliding over the ground, s = (-slip, v_y + w x), its
+    // direction regularized over kTrackSlideFloorMps (a point whose sliding reverses turns its
+    // shear over a millimetre per second, not at once).
+    const double s_x = -slip, s_y = v_y_mps + yaw_rate_radps * x;
     const double s = std::sqrt(s_x * s_x + s_y * s_y + kTrackSlideFloorMps * kTrackSlideFloorMps);
     const double tau = strength_pa * -std::expm1(-j / shear_modulus_m) * track.belt_width_m * dx;
-    // The ground pushes the track against its sliding: thrust forward when the belt runs ahead.
-    force.x_n += tau * s_x / s;
+    force.x_n -= tau * s_x / s;  // thrust forward when the belt runs ahead
     force.y_n -= tau * s_y / s;
     force.moment_nm -= tau * s_y / s * x;
   }

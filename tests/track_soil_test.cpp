@@ -22,8 +22,8 @@ TEST(TrackSoil, ShearShareByHand) {
   // 1 - (1 - e^-1) / 1 = e^-1.
   EXPECT_NEAR(sim::ShearShare(1.0), std::exp(-1.0), 1e-15);
   // The series below 1e-6 meets the closed form there (x / 2 - x^2 / 6 + ...).
-  EXPECT_NEAR(sim::ShearShare(std::nextafter(1e-6, 0.0)), sim::ShearShare(1e-6), 1e-12);
-  EXPECT_NEAR(sim::ShearShare(1e-6), 0.5e-6 - 1e-12 / 6.0, 1e-15);
+  EXPECT_NEAR(sim::ShearShare(std::nextafter(1e-6, 0.0)), sim::ShearShare(1e-6), 1e-15);
+  EXPECT_NEAR(sim::ShearShare(0.5e-6), 0.25e-6 - 0.25e-12 / 6.0, 1e-18);
   EXPECT_NEAR(sim::ShearShare(1e3), 1.0 - 1e-3, 1e-12);
 }
 
@@ -32,11 +32,23 @@ TEST(TrackSoil, StraightThrustIsJanosiHanamotoOverTheContact) {
   const double tread = 1.0, slip = 0.05;
   const sim::TrackForce f =
       sim::TrackShear(tread, tread - slip, 0.0, 0.0, kStrengthPa, kModulusM, track);
-  // Shear displacement at the rear j = slip L / tread; the thrust A tau_max (1 - K/j (1 - e^-j/K)).
+  // Shear displacement at the rear j = slip L / tread; the thrust A tau_max (1 - K/j (1 - e^-j/K)),
+  // times the direction's regularization slip / sqrt(slip^2 + floor^2).
+  const auto regularized = [](double slip_mps) {
+    return slip_mps / std::hypot(slip_mps, sim::kTrackSlideFloorMps);
+  };
   const double j = slip * track.contact_length_m / tread;
   const double area = track.contact_length_m * track.belt_width_m;
-  const double expected = area * kStrengthPa * sim::ShearShare(j / kModulusM);
+  const double expected = area * kStrengthPa * sim::ShearShare(j / kModulusM) * regularized(slip);
   EXPECT_NEAR(f.x_n, expected, 0.01 * expected);  // the midpoint rule's error
+  // At a slip of millimetres per second too.
+  const double small = 0.002;
+  const sim::TrackForce creeping =
+      sim::TrackShear(tread, tread - small, 0.0, 0.0, kStrengthPa, kModulusM, track);
+  const double expected_small =
+      area * kStrengthPa * sim::ShearShare(small * track.contact_length_m / tread / kModulusM) *
+      regularized(small);
+  EXPECT_NEAR(creeping.x_n, expected_small, 0.01 * expected_small);
   EXPECT_NEAR(f.y_n, 0.0, 1e-9);
   EXPECT_NEAR(f.moment_nm, 0.0, 1e-9);
   // Braking mirrors driving; the thrust never exceeds the strength over the contact.
@@ -120,8 +132,8 @@ TEST(TrackSoil, TheRobotTurnsLessThanItsTracksAndSlipsSideways) {
   ASSERT_GT(yaw_ratio.size(), 100u);
   std::sort(yaw_ratio.begin(), yaw_ratio.end());
   std::sort(lateral.begin(), lateral.end());
-  // A skid-steer turns less than its tracks say (ipd35's slip model: 0.82 median), and never
-  // faster or backwards; it slides sideways by centimetres per second in turns.
+  // A skid-steer turns less than its tracks say (ipd35's slip model: 0.82 median), hardly ever
+  // faster, never backwards; it slides sideways by centimetres per second in turns.
   const double median = yaw_ratio[yaw_ratio.size() / 2];
   EXPECT_GT(median, 0.7);
   EXPECT_LT(median, 0.97);
