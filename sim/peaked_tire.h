@@ -56,9 +56,15 @@ inline double PeakedTractionForceN(double normal_n, double kappa, const PeakedSo
          std::sin(soil.shape_c * std::atan(bk - soil.curvature_e * (bk - std::atan(bk))));
 }
 
-inline double PeakedRollingForceN(double normal_n, double v_fwd_mps, const PeakedSoil& soil) {
-  return -normal_n * (soil.roll_c0 + soil.roll_c1_spm * std::abs(v_fwd_mps)) *
+// Rolling resistance linear in speed, -N (c0 + c1 |v|), its sign smoothed over
+// kPeakedSpeedFloorMps (the mismatch suites' wheels and tracks alike).
+inline double RollingResistanceN(double normal_n, double v_fwd_mps, double c0, double c1_spm) {
+  return -normal_n * (c0 + c1_spm * std::abs(v_fwd_mps)) *
          std::tanh(v_fwd_mps / kPeakedSpeedFloorMps);
+}
+
+inline double PeakedRollingForceN(double normal_n, double v_fwd_mps, const PeakedSoil& soil) {
+  return RollingResistanceN(normal_n, v_fwd_mps, soil.roll_c0, soil.roll_c1_spm);
 }
 
 }  // namespace sim

@@ -58,5 +58,13 @@ class UnitNormal {
   bool saved_available_ = false;
 };
 
+// One step of a first-order Gauss-Markov process with stationary sd and correlation time tau
+// (or correlation length, `dt_s` then the distance moved), driven by a unit normal draw.
+inline double GaussMarkovStep(double value, double sd, double tau_s, double dt_s,
+                              double unit_normal) {
+  const double decay = std::exp(-dt_s / tau_s);
+  return value * decay + sd * std::sqrt(1.0 - decay * decay) * unit_normal;
+}
+
 }  // namespace sim
 }  // namespace slipgraph

@@ -121,8 +121,8 @@ SimResult SimulateRockerBogie(const Scenario& sc, uint64_t seed) {
     if (k % cycle_period == 0) {
       double variation = unit(rng);
       if (spec.slip_correlation_m > 0.0) {  // Gauss-Markov in the distance since the last cycle
-        const double decay = std::exp(-(x_rear - x_last_cycle) / spec.slip_correlation_m);
-        variation = slip_state = slip_state * decay + std::sqrt(1.0 - decay * decay) * variation;
+        variation = slip_state = GaussMarkovStep(slip_state, 1.0, spec.slip_correlation_m,
+                                                 x_rear - x_last_cycle, variation);
         x_last_cycle = x_rear;
       }
       slip = std::clamp(spec.slip_mean + spec.slip_per_slope * hills.Slope(x_rear + axle) +

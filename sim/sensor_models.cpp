@@ -11,12 +11,6 @@ namespace {
 
 constexpr double kGravity = 9.80665;
 
-// One step of a first-order Gauss-Markov process with stationary sd and correlation time tau.
-double GaussMarkovStep(double value, double sd, double tau_s, double dt_s, double unit_normal) {
-  const double decay = std::exp(-dt_s / tau_s);
-  return value * decay + sd * std::sqrt(1.0 - decay * decay) * unit_normal;
-}
-
 }  // namespace
 
 SensorSimulator::SensorSimulator(const SensorSpec& spec, const EffectSet& effects, int wheel_count,

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "io/input_error.h"
 #include "io/log_writer.h"
@@ -54,6 +56,11 @@ void EmitTire(YAML::Emitter& e, const TireParams& tire) {
     << YAML::EndMap;
 }
 
+// Keys and values into the map being emitted, in order.
+void EmitFields(YAML::Emitter& e, const std::vector<std::pair<const char*, double>>& fields) {
+  for (const auto& [key, value] : fields) e << YAML::Key << key << YAML::Value << value;
+}
+
 void EmitRolling(YAML::Emitter& e, const RollingParams& rolling) {
   e << YAML::Flow << YAML::BeginMap << YAML::Key << "R1" << YAML::Value << rolling.R1 << YAML::Key
     << "A_roll" << YAML::Value << rolling.A_roll << YAML::Key << "R2" << YAML::Value << rolling.R2
@@ -89,21 +96,21 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
     if (patch.terrain.peaked) {
       const PeakedSoil& p = *patch.terrain.peaked;
       e << YAML::Key << "peaked" << YAML::Value << YAML::Flow << YAML::BeginMap;
-      e << YAML::Key << "peak_mu" << YAML::Value << p.peak_mu;
-      e << YAML::Key << "stiffness_b" << YAML::Value << p.stiffness_b;
-      e << YAML::Key << "shape_c" << YAML::Value << p.shape_c;
-      e << YAML::Key << "curvature_e" << YAML::Value << p.curvature_e;
-      e << YAML::Key << "roll_c0" << YAML::Value << p.roll_c0;
-      e << YAML::Key << "roll_c1_spm" << YAML::Value << p.roll_c1_spm;
+      EmitFields(e, {{"peak_mu", p.peak_mu},
+                     {"stiffness_b", p.stiffness_b},
+                     {"shape_c", p.shape_c},
+                     {"curvature_e", p.curvature_e},
+                     {"roll_c0", p.roll_c0},
+                     {"roll_c1_spm", p.roll_c1_spm}});
       e << YAML::EndMap;
     } else if (patch.terrain.track_soil) {
       const TrackSoil& t = *patch.terrain.track_soil;
       e << YAML::Key << "track_soil" << YAML::Value << YAML::Flow << YAML::BeginMap;
-      e << YAML::Key << "cohesion_pa" << YAML::Value << t.cohesion_pa;
-      e << YAML::Key << "friction_angle_rad" << YAML::Value << t.friction_angle_rad;
-      e << YAML::Key << "shear_modulus_m" << YAML::Value << t.shear_modulus_m;
-      e << YAML::Key << "roll_c0" << YAML::Value << t.roll_c0;
-      e << YAML::Key << "roll_c1_spm" << YAML::Value << t.roll_c1_spm;
+      EmitFields(e, {{"cohesion_pa", t.cohesion_pa},
+                     {"friction_angle_rad", t.friction_angle_rad},
+                     {"shear_modulus_m", t.shear_modulus_m},
+                     {"roll_c0", t.roll_c0},
+                     {"roll_c1_spm", t.roll_c1_spm}});
       e << YAML::EndMap;
     } else {
       e << YAML::Key << "tire" << YAML::Value;
@@ -131,7 +138,7 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
   if (scenario.vehicle.type == VehicleType::kRockerBogie6) {
     const RockerSpec& r = scenario.rocker;
     e << YAML::Key << "rocker" << YAML::Value << YAML::BeginMap;
-    const std::pair<const char*, double> rocker_fields[] = {
+    const std::vector<std::pair<const char*, double>> rocker_fields = {
         {"roughness_rms_m", r.roughness_rms_m},
         {"slip_mean", r.slip_mean},
         {"slip_sd", r.slip_sd},
@@ -153,7 +160,7 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
         {"rear_extra_sinkage", r.rear_extra_sinkage},
         {"range_pitch_error_rad", r.range_pitch_error_rad},
     };
-    for (const auto& [key, value] : rocker_fields) e << YAML::Key << key << YAML::Value << value;
+    EmitFields(e, rocker_fields);
     const char* const side_names[] = {"left_profile", "right_profile"};
     for (size_t side = 0; side < result.profiles.size() && side < 2; ++side) {
       const TerrainProfile& p = result.profiles[side];
@@ -176,41 +183,39 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
   e << YAML::EndMap;
   const SensorSpec& s = scenario.sensors;
   const SensorMismatch& sm = s.mismatch;
-  const bool peaked =
-      std::any_of(scenario.course.patches.begin(), scenario.course.patches.end(),
-                  [](const TerrainPatch& p) { return p.terrain.peaked.has_value(); });
-  if (peaked) {
-    e << YAML::Key << "mismatch" << YAML::Value << YAML::BeginMap;
-    const std::pair<const char*, double> fields[] = {
-        {"relaxation_length_m", scenario.mismatch.relaxation_length_m},
-        {"radius_load_sensitivity", scenario.mismatch.radius_load_sensitivity},
-        {"attitude_error_sd_rad", sm.attitude_error_sd_rad},
-        {"attitude_error_tau_s", sm.attitude_error_tau_s},
-        {"vibration_sd_mps2_per_mps", sm.vibration_sd_mps2_per_mps},
-        {"vibration_hz", sm.vibration_hz},
-        {"vibration_damping", sm.vibration_damping},
-        {"gps_velocity_interval_mean", sm.gps_velocity_interval_mean ? 1.0 : 0.0},
-    };
-    for (const auto& [key, value] : fields) e << YAML::Key << key << YAML::Value << value;
-    e << YAML::EndMap;
+  // The mismatch suites' truth, for the soils their patches carry.
+  const auto any_patch = [&](bool (*has)(const TerrainType&)) {
+    return std::any_of(scenario.course.patches.begin(), scenario.course.patches.end(),
+                       [has](const TerrainPatch& p) { return has(p.terrain); });
+  };
+  std::vector<std::pair<const char*, double>> mismatch_fields;
+  if (any_patch([](const TerrainType& t) { return t.peaked.has_value(); })) {
+    mismatch_fields.insert(
+        mismatch_fields.end(),
+        {{"relaxation_length_m", scenario.mismatch.relaxation_length_m},
+         {"radius_load_sensitivity", scenario.mismatch.radius_load_sensitivity},
+         {"attitude_error_sd_rad", sm.attitude_error_sd_rad},
+         {"attitude_error_tau_s", sm.attitude_error_tau_s},
+         {"vibration_sd_mps2_per_mps", sm.vibration_sd_mps2_per_mps},
+         {"vibration_hz", sm.vibration_hz},
+         {"vibration_damping", sm.vibration_damping},
+         {"gps_velocity_interval_mean", sm.gps_velocity_interval_mean ? 1.0 : 0.0}});
   }
-  const bool tracks =
-      std::any_of(scenario.course.patches.begin(), scenario.course.patches.end(),
-                  [](const TerrainPatch& p) { return p.terrain.track_soil.has_value(); });
-  if (tracks) {
+  if (any_patch([](const TerrainType& t) { return t.track_soil.has_value(); })) {
     const VehicleMismatch& m = scenario.mismatch;
+    mismatch_fields.insert(mismatch_fields.end(),
+                           {{"track_contact_length_m", m.tracks.contact_length_m},
+                            {"track_belt_width_m", m.tracks.belt_width_m},
+                            {"track_soil_variation_sd", m.track_soil_variation_sd},
+                            {"track_soil_correlation_m", m.track_soil_correlation_m}});
+  }
+  if (!mismatch_fields.empty()) {
     e << YAML::Key << "mismatch" << YAML::Value << YAML::BeginMap;
-    const std::pair<const char*, double> fields[] = {
-        {"track_contact_length_m", m.tracks.contact_length_m},
-        {"track_belt_width_m", m.tracks.belt_width_m},
-        {"track_soil_variation_sd", m.track_soil_variation_sd},
-        {"track_soil_correlation_m", m.track_soil_correlation_m},
-    };
-    for (const auto& [key, value] : fields) e << YAML::Key << key << YAML::Value << value;
+    EmitFields(e, mismatch_fields);
     e << YAML::EndMap;
   }
   e << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
-  const std::pair<const char*, double> sensor_fields[] = {
+  const std::vector<std::pair<const char*, double>> sensor_fields = {
       {"imu_rate_hz", s.imu_rate_hz},
       {"wheel_rate_hz", s.wheel_rate_hz},
       {"gps_rate_hz", s.gps_rate_hz},
@@ -230,7 +235,7 @@ void WriteSimulation(const Scenario& scenario, uint64_t seed, const SimResult& r
       {"pose_sd_xy_m", s.pose_sd_xy_m},
       {"pose_sd_yaw_rad", s.pose_sd_yaw_rad},
   };
-  for (const auto& [key, value] : sensor_fields) e << YAML::Key << key << YAML::Value << value;
+  EmitFields(e, sensor_fields);
   e << YAML::EndMap;
   e << YAML::EndMap;
   const std::string path = (std::filesystem::path(directory) / "sim.yaml").string();

@@ -9,6 +9,7 @@
 #include "factors/ipd_kinematics.h"
 #include "factors/slip_ratio.h"
 #include "sim/command_schedule.h"
+#include "sim/peaked_tire.h"
 #include "sim/random.h"
 #include "sim/sensor_models.h"
 
@@ -31,10 +32,9 @@ struct SoilVariation {
   void Advance(const double distance_m[2], double correlation_m, std::mt19937_64* rng,
                UnitNormal* unit) {
     for (int side = 0; side < 2; ++side) {
-      const double decay = std::exp(-std::abs(distance_m[side]) / correlation_m);
-      const double kick = std::sqrt(1.0 - decay * decay);
-      strength[side] = strength[side] * decay + kick * (*unit)(*rng);
-      modulus[side] = modulus[side] * decay + kick * (*unit)(*rng);
+      const double moved = std::abs(distance_m[side]);
+      strength[side] = GaussMarkovStep(strength[side], 1.0, correlation_m, moved, (*unit)(*rng));
+      modulus[side] = GaussMarkovStep(modulus[side], 1.0, correlation_m, moved, (*unit)(*rng));
     }
   }
 };
@@ -72,9 +72,8 @@ void TrackSoilAcceleration(const Vehicle& veh, const TrackSoil& soil, const Vehi
     force_x += f.x_n, force_y += f.y_n;
     moment += f.moment_nm - y * f.x_n;
   }
-  const double rolling =
-      weight * (soil.roll_c0 + soil.roll_c1_spm * std::abs(v)) * std::tanh(v / kTrackSpeedFloorMps);
-  x_dot[0] = (force_x - rolling) / veh.mass_kg + in.g_x + v_y * w;
+  const double rolling = RollingResistanceN(weight, v, soil.roll_c0, soil.roll_c1_spm);
+  x_dot[0] = (force_x + rolling) / veh.mass_kg + in.g_x + v_y * w;
   x_dot[1] = moment / veh.yaw_inertia_kgm2;
   x_dot[2] = force_y / veh.mass_kg + in.g_y - v * w;
 }
