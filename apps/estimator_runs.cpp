@@ -177,10 +177,10 @@ void AddFrontEndOptions(CLI::App* cmd, FilterRunOptions* filter) {
       "it was fitted over (law_samples: by default a bank of filters, one per law, weighed by "
       "their GNSS likelihood)");
   cmd->add_flag_callback(
-      "--gnss-fading", [filter] { filter->ekf.gnss_fading_fixes = kGnssFadingFixes; },
-      "Fading memory on GNSS: widen the filter's covariance when its GNSS innovations keep one "
-      "sign, so that GNSS pulls a drifting velocity back (EkfOptions::gnss_fading_*; "
-      "docs/mismatch.md)");
+      "--no-gnss-fading", [filter] { filter->ekf.gnss_fading_fixes = 0.0; },
+      "No fading memory on GNSS (the paper's filter). By default the filter's covariance widens "
+      "when its GNSS innovations keep one sign, so that GNSS pulls a drifting velocity back "
+      "(EkfOptions::gnss_fading_*; docs/mismatch.md)");
   cmd->add_flag_callback(
       "--disturbance-modes", [filter] { filter->disturbance_modes = true; },
       "The single filter as three disturbance modes (quiet, changing, held) mixed as an "

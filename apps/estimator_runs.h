@@ -78,7 +78,8 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
 // --solver chain|ceres: how the sliding window solves (online, compare).
 void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver);
 
-// The front end's variants (filter, online): --single-law, --gnss-fading, --disturbance-modes.
+// The front end's variants (filter, online): --single-law, --no-gnss-fading,
+// --disturbance-modes.
 void AddFrontEndOptions(CLI::App* cmd, FilterRunOptions* filter);
 
 // For a LOG argument: an empty path given (LOG "", a script's unset variable) is an error, not

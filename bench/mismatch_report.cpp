@@ -13,8 +13,9 @@
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
 //     vibration, gnss, radius, relaxation): an ablation;
-//   --fading-fixes N, --fading-threshold T: the front end's GNSS fading memory (EkfOptions;
-//     N = 0: off), for choosing them on seeds the figures are not reported on;
+//   --fading-fixes N, --fading-threshold T: the front end's GNSS fading memory (EkfOptions; by
+//     default on, as `filter` runs it; N = 0: off, as `filter --no-gnss-fading`), for choosing
+//     them on seeds the figures are not reported on;
 //   --disturbance-modes: the single filter as disturbance modes (solvers/disturbance_imm.h);
 //     --imm-options TAU,SD,HELD,TQ,TC,TH[,MIX] sets its options (DisturbanceImmOptions, in that
 //     order), for choosing them on seeds the figures are not reported on;

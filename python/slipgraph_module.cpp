@@ -113,7 +113,7 @@ FilterRunOptions FrontEnd(bool use_gps, bool single_law, bool gnss_fading, bool 
   FilterRunOptions options;
   options.use_gps = use_gps;
   options.multiple_model = !single_law;
-  if (gnss_fading) options.ekf.gnss_fading_fixes = kGnssFadingFixes;
+  options.ekf.gnss_fading_fixes = gnss_fading ? kGnssFadingFixes : 0.0;
   options.disturbance_modes = disturbance_modes;
   return options;
 }
@@ -306,7 +306,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("list_logs", &ListLogs, py::arg("path"),
         "The logs at path: itself when it is a log, else its sub-directories that are logs");
   m.def("filter", &FilterRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
-        py::arg("single_law") = false, py::arg("gnss_fading") = false,
+        py::arg("single_law") = false, py::arg("gnss_fading") = true,
         py::arg("disturbance_modes") = false);
   m.def("smooth", &SmoothRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("stiffness_sd") = kPostProcessingStiffnessPriorSd, py::arg("threads") = 1);

@@ -40,8 +40,9 @@
 
 namespace slipgraph {
 
-// The fading memory's EMA length `filter --gnss-fading` uses (EkfOptions::gnss_fading_fixes).
-constexpr double kGnssFadingFixes = 4.0;
+// The fading memory's EMA length, on by default (EkfOptions::gnss_fading_fixes; `filter
+// --no-gnss-fading`: 0).
+constexpr double kGnssFadingFixes = 8.0;
 
 struct EkfOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
@@ -72,10 +73,10 @@ struct EkfOptions {
   // average above 1) and passes the gate, P is scaled by z^2 (at most gnss_fading_max) before
   // the update, so that the fix can pull the velocity back. Not in a bank of laws (which weighs
   // its filters by each fix's likelihood under their own covariance: AddGpsScored); in the
-  // disturbance modes (solvers/disturbance_imm.h) each mode fades. Off by default (0 fixes);
-  // `filter --gnss-fading` sets kGnssFadingFixes, chosen on held-out suites and not the default
-  // yet because the smoother and the workbench start from this filter (docs/mismatch.md).
-  double gnss_fading_fixes = 0.0;
+  // disturbance modes (solvers/disturbance_imm.h) each mode fades. 8 fixes and 0.5 (about 1.9
+  // sd of a consistent filter's average) were chosen on held-out suites (docs/mismatch.md); 0
+  // fixes: off.
+  double gnss_fading_fixes = kGnssFadingFixes;
   double gnss_fading_threshold = 0.5;
   double gnss_fading_max = 100.0;
   // Sum the sensor measurements' log-likelihood for TakeLogLikelihood() (a bank of filters

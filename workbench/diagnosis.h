@@ -34,6 +34,12 @@ struct DiagnosisOptions {
     BatchSmootherOptions o;
     o.regate_decay_prior = false;
     o.problem.gnss_gate_chi2 = std::numeric_limits<double>::infinity();
+    // From the paper's filter, without the GNSS fading memory (EkfOptions::gnss_fading_*): the
+    // workbench's figures (docs/workbench.md) were measured from it, and on
+    // data/hidden_clock_offset starting from the fading filter moves the score statistics by up
+    // to 30 % (the problem takes its start and its weak constraints' gating from the filter),
+    // which its Monte Carlo has not been re-run for.
+    o.filter.ekf.gnss_fading_fixes = 0.0;
     return o;
   }();
   double alpha = 0.01;      // family-wise level of the candidate tests and the segment tests

@@ -90,7 +90,7 @@ def read_log(path, skip_bad: bool = False, max_bad_fraction: float = 0.01) -> Lo
 
 
 def filter(log, model=None, use_gps: bool = True, single_law: bool = False,
-           gnss_fading: bool = False, disturbance_modes: bool = False) -> Run:
+           gnss_fading: bool = True, disturbance_modes: bool = False) -> Run:
     """The streaming EKF front end (Ward & Iagnemma), as ``slipgraph filter``; model: a model
     YAML over the vehicle's nominal one."""
     return Run(**_core.filter(_log(log), _model(model), use_gps, single_law, gnss_fading,
