@@ -83,6 +83,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     ReadOptions read;  // --skip-bad, --max-bad
     WindowSmootherOptions window;
     double stiffness_sd = kPostProcessingStiffnessPriorSd;
+    double gnss_fading_fixes = EkfOptions().gnss_fading_fixes;  // the front end's
     JsonOutput json;
   };
   auto options = std::make_shared<Options>();
@@ -99,6 +100,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                   "Report page (default ./<log>_compare.html); plots of every log in it");
   cmd->add_flag("--no-plots", options->no_plots, "Tables only in the HTML page");
   AddStiffnessOption(cmd, &options->stiffness_sd);
+  AddNoGnssFadingFlag(cmd, &options->gnss_fading_fixes);
   options->json.Add(cmd);
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
@@ -117,6 +119,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       std::vector<EstimatorRun> runs(3);
       FilterRunOptions filter;
       filter.use_gps = !options->no_gps;
+      filter.ekf.gnss_fading_fixes = options->gnss_fading_fixes;
       Clock::time_point start = Clock::now();
       const FilterResult ekf = RunEkf(log, model, filter);
       // One front end run: the window and the batch start from it; their times include it.

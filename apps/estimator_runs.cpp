@@ -173,20 +173,25 @@ void AddWindowSolverOption(CLI::App* cmd, WindowSolver* solver) {
 void AddFrontEndOptions(CLI::App* cmd, FilterRunOptions* filter) {
   cmd->add_flag_callback(
       "--single-law", [filter] { filter->multiple_model = false; },
-      "One filter on the user's tire law (the paper's), also when vehicle.yaml lists the soils "
+      "One filter on the user's tire law, also when vehicle.yaml lists the soils "
       "it was fitted over (law_samples: by default a bank of filters, one per law, weighed by "
       "their GNSS likelihood)");
-  cmd->add_flag_callback(
-      "--no-gnss-fading", [filter] { filter->ekf.gnss_fading_fixes = 0.0; },
-      "No fading memory on GNSS (the paper's filter). By default the filter's covariance widens "
-      "when its GNSS innovations keep one sign, so that GNSS pulls a drifting velocity back "
-      "(EkfOptions::gnss_fading_*; docs/mismatch.md)");
+  AddNoGnssFadingFlag(cmd, &filter->ekf.gnss_fading_fixes);
   cmd->add_flag_callback(
       "--disturbance-modes", [filter] { filter->disturbance_modes = true; },
       "The single filter as three disturbance modes (quiet, changing, held) mixed as an "
       "interacting multiple model: fewer false alarms where the model's tire law or attitude is "
       "off, some slow hold-backs missed (solvers/disturbance_imm.h; docs/mismatch.md). Where "
       "vehicle.yaml lists law_samples the bank runs instead: add --single-law");
+}
+
+void AddNoGnssFadingFlag(CLI::App* cmd, double* fading_fixes) {
+  cmd->add_flag_callback(
+      "--no-gnss-fading", [fading_fixes] { *fading_fixes = 0.0; },
+      "No fading memory on GNSS in the single front end (with --single-law or without law "
+      "samples: the paper's filter). By default its covariance widens when its GNSS innovations "
+      "keep one sign, so that GNSS pulls a drifting velocity back (EkfOptions::gnss_fading_*; "
+      "docs/mismatch.md)");
 }
 
 void AddStiffnessOption(CLI::App* cmd, double* prior_sd) {

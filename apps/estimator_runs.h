@@ -86,6 +86,10 @@ void AddFrontEndOptions(CLI::App* cmd, FilterRunOptions* filter);
 // the bundled sample that no argument means.
 CLI::Validator NonEmptyPath();
 
+// --no-gnss-fading: *fading_fixes (EkfOptions::gnss_fading_fixes, the front end's) set to 0
+// (filter, online, smooth, compare).
+void AddNoGnssFadingFlag(CLI::App* cmd, double* fading_fixes);
+
 // --stiffness-sd SD: the batch smoother's prior on the tire law's slip stiffness (smooth,
 // compare); *prior_sd holds the default.
 void AddStiffnessOption(CLI::App* cmd, double* prior_sd);

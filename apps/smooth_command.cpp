@@ -18,6 +18,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     bool advance_velocity = false;
     double advance_sd_m = 0.003;
     double stiffness_sd = kPostProcessingStiffnessPriorSd;
+    double gnss_fading_fixes = EkfOptions().gnss_fading_fixes;  // the front end's
   };
   auto options = std::make_shared<Options>();
   CLI::App* cmd = AddEstimatorCommand(
@@ -40,10 +41,12 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddStiffnessOption(cmd, &options->stiffness_sd);
+  AddNoGnssFadingFlag(cmd, &options->gnss_fading_fixes);
   cmd->callback([options, status]() {
     BatchSmootherOptions base_options;
     base_options.problem.stiffness_prior_sd = options->stiffness_sd;
     base_options.filter.use_gps = !options->no_gps;
+    base_options.filter.ekf.gnss_fading_fixes = options->gnss_fading_fixes;
     base_options.threads = options->threads;
     *status = RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
                                                      std::ostream& report) {

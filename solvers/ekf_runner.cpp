@@ -195,6 +195,11 @@ std::string DescribeFilterRun(const FilterResult& result) {
   line("wheels", result.stats.wheels);
   line("gps", result.stats.gps);
   line("attitude", result.stats.attitude);
+  if (result.stats.gnss_fading > 0) {
+    out << "  GNSS fading memory: the covariance widened before " << result.stats.gnss_fading
+        << " of the " << result.stats.gps.used
+        << " GNSS fixes used, their innovations having kept one sign (--no-gnss-fading: off)\n";
+  }
   out << "  weak constraints applied:";
   for (int i = 0; i < kWeakConstraintCount; ++i) {
     out << " " << WeakConstraintName(static_cast<WeakConstraint>(i)) << "="

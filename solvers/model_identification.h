@@ -107,9 +107,9 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& logs, const Mode
 // correlations, the noise and the track.
 std::string DescribeIdentification(const IdentificationResult& result);
 
-// The front end as `filter` runs it (a bank when the model has law samples; one EKF otherwise,
-// as for an identified model), the model's calibration applied, on a log: scored without truth
-// and, when the log has it, against truth.
+// The front end as `filter --no-gnss-fading` runs it (a bank when the model has law samples; one
+// EKF otherwise, as for an identified model), the model's calibration applied, on a log: scored
+// without truth and, when the log has it, against truth.
 struct ModelScore {
   long gnss_fixes = 0;
   double gnss_nis_mean = std::nan("");  // mean squared normalized GNSS innovation (1: consistent)
