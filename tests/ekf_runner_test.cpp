@@ -54,7 +54,7 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
   const double before = Combine(plain_runs, "plain").nees_within_95_fraction();
   const double after = Combine(considered_runs, "considered").nees_within_95_fraction();
   std::printf("ward21m seed 1, runs 01-06: v NEES inside 95 %% %.3f -> %.3f\n", before, after);
-  // Measured: 0.445 -> 0.807.
+  // Measured: 0.481 -> 0.909 (0.445 -> 0.807 with the paper's filter, without GNSS fading).
   EXPECT_LT(before, 0.6);
   EXPECT_GT(after, before + 0.25);
 }
