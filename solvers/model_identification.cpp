@@ -406,15 +406,17 @@ std::string DescribeIdentification(const IdentificationResult& r) {
   return out.str();
 }
 
-ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool use_gps) {
+ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool use_gps,
+                      bool gnss_fading) {
   DriveLog log = input_log;
   ApplyCalibration(model, &log);
   // As `filter --no-gnss-fading` runs it (a bank when the model has law samples): the paper's
-  // filter, on which docs/identify.md's figures were measured. With the fading memory the nominal
-  // model's held-out velocity error falls, and the identified law's gain with it.
+  // filter, on which docs/identify.md's figures were measured; or as `filter` runs it by default.
+  // With the fading memory the nominal model's held-out velocity error falls, and the identified
+  // law's gain with it.
   FilterRunOptions run;
   run.use_gps = use_gps;
-  run.ekf.gnss_fading_fixes = 0.0;
+  run.ekf.gnss_fading_fixes = gnss_fading ? kGnssFadingFixes : 0.0;
   run.ekf.record_innovations = true;
   const FilterResult result = RunEkf(log, model, run);
   ModelScore score;

@@ -108,8 +108,9 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& logs, const Mode
 std::string DescribeIdentification(const IdentificationResult& result);
 
 // The front end as `filter --no-gnss-fading` runs it (a bank when the model has law samples; one
-// EKF otherwise, as for an identified model), the model's calibration applied, on a log: scored
-// without truth and, when the log has it, against truth.
+// EKF otherwise, as for an identified model), or with gnss_fading as `filter` runs it by default
+// (EkfOptions::gnss_fading_*), the model's calibration applied, on a log: scored without truth
+// and, when the log has it, against truth. docs/identify.md's figures are the paper's filter's.
 struct ModelScore {
   long gnss_fixes = 0;
   double gnss_nis_mean = std::nan("");  // mean squared normalized GNSS innovation (1: consistent)
@@ -118,6 +119,7 @@ struct ModelScore {
   double velocity_rmse = std::nan("");
   double false_immobilized_fraction = std::nan("");
 };
-ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true);
+ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true,
+                      bool gnss_fading = false);
 
 }  // namespace slipgraph
