@@ -42,6 +42,7 @@ nlohmann::json ToJson(const IdentificationResult& r) {
   j["gnss_radius_error"] = {{"value", JsonNumber(r.gnss_radius_error)},
                             {"sd", JsonNumber(r.gnss_radius_error_sd)},
                             {"fixes", r.gnss_radius_fixes}};
+  j["falling_branch_refused"] = r.falling_branch_refused;
   for (const auto& offsets : r.offsets) {
     j["imu_offsets"].push_back({{"accel_x_mps2", offsets[0]}, {"gyro_z_radps", offsets[1]}});
   }

@@ -14,6 +14,7 @@
 #include "io/measurement_stream.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
+#include "solvers/trust_check.h"
 
 namespace slipgraph {
 namespace {
@@ -155,6 +156,17 @@ double GnssRadiusError(const std::vector<DriveLog>& logs, double* sd, long* used
   return slope - 1.0;
 }
 
+// The model with the fitted laws and radii in it.
+ModelConfig WithFittedLaw(const ModelConfig& model, const IdentificationProblem& problem) {
+  ModelConfig out = model;
+  SetLawCoefficients(problem.law, &out.tire, &out.rolling);
+  // The law is now the data's: its soils' spread no longer describes its error.
+  out.law_samples.clear();
+  out.calibration.wheel_radius_scale_left *= 1.0 + problem.radius_error[0];
+  out.calibration.wheel_radius_scale_right *= 1.0 + problem.radius_error[1];
+  return out;
+}
+
 // u = r (w_r - w_l) = c (yaw rate - a) over the wheel samples with the nearest IMU sample: least
 // squares of u on the gyro with an intercept (a: the gyro's offset). That way round because the
 // gyro is the precise one (encoder noise in a regressor would bias c up: 0.82 m for a 0.55 m
@@ -269,19 +281,52 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   fit_model.tire_uncertainty = options.law_residual;
   problem_options.tire_law_correlation_time_s = options.law_residual.correlation_time_s;
   fit_model.process.a_dist_mps3_per_sqrt_hz = options.disturbance_walk_mps3_per_sqrt_hz;
-  std::unique_ptr<IdentificationProblem> problem =
-      BuildIdentificationProblem(log_pointers, fit_model, initial, problem_options, options.priors);
-  if (!options.fit_radius) {
-    problem->problem->SetParameterBlockConstant(problem->radius_error.data());
+  IdentificationPriors priors = options.priors;
+  const auto fit = [&]() {
+    std::unique_ptr<IdentificationProblem> fitted =
+        BuildIdentificationProblem(log_pointers, fit_model, initial, problem_options, priors);
+    if (!options.fit_radius) {
+      fitted->problem->SetParameterBlockConstant(fitted->radius_error.data());
+    }
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.max_num_iterations = options.max_iterations;
+    solver.num_threads = options.threads;
+    // A relative cost change of 1e-5 is a tenth of a unit of log-likelihood on a minute's log:
+    // the law's bounds and the robust losses make the last digits slow (tr_ratio about 0.3).
+    solver.function_tolerance = 1e-5;
+    ceres::Solve(solver, fitted->problem.get(), &result.summary);
+    return fitted;
+  };
+  std::unique_ptr<IdentificationProblem> problem = fit();
+
+  // A law with a falling branch (C2 < 0) must still run in the front end that will use it: eq.
+  // (8)'s linear falling branch makes the velocity's dynamics unstable at large slip, and the
+  // default front end, whose GNSS fading widens its covariance, can settle on a wrong root there,
+  // a disturbance holding the body far ahead of its wheels (docs/identify.md). Each fitted log is
+  // run with it; where the law sends the velocity off the wheels (the trust check's test) and the
+  // model it started from does not, the law is fitted again without a falling branch.
+  if (options.keep_front_end_on_wheels && problem->law[kLawC2] < 0.0) {
+    const ModelConfig candidate = WithFittedLaw(model, *problem);
+    const double limit = TrustOptions{}.suspect_fraction;
+    for (size_t i = 0; i < input_logs.size(); ++i) {
+      const double off = ScoreModel(input_logs[i], candidate, options.use_gps, true).off_wheels;
+      if (off <= limit ||
+          ScoreModel(input_logs[i], model, options.use_gps, true).off_wheels > limit) {
+        continue;
+      }
+      std::ostringstream note;
+      note << std::setprecision(3)
+           << "the law fitted with a falling branch (C2 = " << problem->law[kLawC2]
+           << ") sent the default front end off the wheels on " << 100.0 * off << " % of "
+           << input_logs[i].directory << ": fitted again with C2 >= 0";
+      result.notes.push_back(note.str());
+      result.falling_branch_refused = true;
+      priors.law_min[kLawC2] = std::max(0.0, priors.law_min[kLawC2]);
+      problem = fit();
+      break;
+    }
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  solver.max_num_iterations = options.max_iterations;
-  solver.num_threads = options.threads;
-  // A relative cost change of 1e-5 is a tenth of a unit of log-likelihood on a minute's log: the
-  // law's bounds and the robust losses make the last digits slow (tr_ratio about 0.3).
-  solver.function_tolerance = 1e-5;
-  ceres::Solve(solver, problem->problem.get(), &result.summary);
   result.converged = result.summary.termination_type == ceres::CONVERGENCE;
   if (!result.converged) {
     result.notes.push_back(
@@ -324,11 +369,11 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   const std::array<double, kLawCoefficientCount> nominal_law =
       LawCoefficients(model.tire, model.rolling);
   for (int i = 0; i < kLawCoefficientCount; ++i) {
-    const double bound_gap = 1e-6 * (options.priors.law_max[i] - options.priors.law_min[i]);
+    const double bound_gap = 1e-6 * (priors.law_max[i] - priors.law_min[i]);
     result.parameters.push_back({LawCoefficientNames()[i], nominal_law[i], problem->law[i],
-                                 std::sqrt(covariance(i, i)), options.priors.law_sd[i],
-                                 problem->law[i] <= options.priors.law_min[i] + bound_gap ||
-                                     problem->law[i] >= options.priors.law_max[i] - bound_gap});
+                                 std::sqrt(covariance(i, i)), priors.law_sd[i],
+                                 problem->law[i] <= priors.law_min[i] + bound_gap ||
+                                     problem->law[i] >= priors.law_max[i] - bound_gap});
   }
   for (int side = 0; side < 2 && options.fit_radius; ++side) {
     const int i = kLawCoefficientCount + side;
@@ -341,11 +386,7 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
     const int kept = static_cast<int>(result.parameters.size());
     result.correlation = result.correlation.topLeftCorner(kept, kept).eval();
   }
-  SetLawCoefficients(problem->law, &model.tire, &model.rolling);
-  // The law is now the data's: its soils' spread no longer describes its error.
-  model.law_samples.clear();
-  model.calibration.wheel_radius_scale_left *= 1.0 + problem->radius_error[0];
-  model.calibration.wheel_radius_scale_right *= 1.0 + problem->radius_error[1];
+  model = WithFittedLaw(model, *problem);
 
   if (!model.IsValid(&error)) result.notes.push_back("the identified model is invalid: " + error);
   result.model = model;
@@ -420,6 +461,11 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
   run.ekf.record_innovations = true;
   const FilterResult result = RunEkf(log, model, run);
   ModelScore score;
+  if (!result.estimates.empty()) {
+    const TrustReport trust = CheckTrust(log, result.estimates);
+    score.trusted = trust.trusted;
+    score.off_wheels = trust.off_wheels_fraction;
+  }
   const auto it = result.stats.innovations.find("gnss");
   if (it != result.stats.innovations.end()) {
     double sum = 0.0;
