@@ -6,6 +6,8 @@
 // Run: build/bench/diagnose_monte_carlo [--parameters] [--mismatch] [SEEDS=20] [EFFECT...]
 // --parameters: "a parameter of the model is off" as candidates too (diagnose --parameters);
 // --mismatch: the hiddenm suites (docs/mismatch.md) instead of hidden.
+// --gnss-fading: the smoother starts from the default front end (GNSS fading memory) instead of
+// the paper's filter, as DiagnosisOptions has it.
 //
 // With --detectable first: the minimum detectable magnitudes checked. For each effect and seed,
 // the diagnosis of the drive with nothing hidden states the effect's detectable magnitude D
@@ -23,6 +25,7 @@
 #include "model/effect_catalogue.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
+#include "solvers/ward_ekf.h"
 #include "workbench/diagnosis.h"
 
 namespace {
@@ -87,7 +90,7 @@ int CheckDetectable(int seeds, double scale, std::vector<std::string> effects) {
 
 int main(int argc, char** argv_in) {
   // The flags, anywhere; the rest are the positional arguments.
-  bool parameters = false, mismatch = false;
+  bool parameters = false, mismatch = false, fading = false;
   std::vector<char*> args = {argv_in[0]};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv_in[i];
@@ -95,6 +98,8 @@ int main(int argc, char** argv_in) {
       parameters = true;
     } else if (a == "--mismatch") {
       mismatch = true;
+    } else if (a == "--gnss-fading") {
+      fading = true;
     } else {
       args.push_back(argv_in[i]);
     }
@@ -102,6 +107,7 @@ int main(int argc, char** argv_in) {
   argc = static_cast<int>(args.size());
   char** argv = args.data();
   DiagnosisOptions options;
+  if (fading) options.smoother.filter.ekf.gnss_fading_fixes = kGnssFadingFixes;
   options.effects =
       parameters ? &EffectRegistry::CatalogueWithParameters() : &EffectRegistry::Catalogue();
   const std::string suite = mismatch ? "hiddenm/" : "hidden/";
