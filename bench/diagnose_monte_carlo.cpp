@@ -3,18 +3,20 @@
 // effect ranks first (and first and significant), how often anything at all is significant, and the
 // mean and sd of the top candidate's fitted magnitude, and how often the verdict is "no candidate
 // explains it". Prints a table (docs/workbench.md).
-// Run: build/bench/diagnose_monte_carlo [--parameters] [--mismatch] [SEEDS=20] [EFFECT...]
+// Run: build/bench/diagnose_monte_carlo [--parameters] [--mismatch] [--gnss-fading] [SEEDS=20]
+//      [EFFECT...]
 // --parameters: "a parameter of the model is off" as candidates too (diagnose --parameters);
 // --mismatch: the hiddenm suites (docs/mismatch.md) instead of hidden.
-// --gnss-fading: the smoother starts from the default front end (GNSS fading memory) instead of
-// the paper's filter, as DiagnosisOptions has it.
+// --gnss-fading: the smoother starts from the default front end (GNSS fading memory), not from
+// the paper's filter that DiagnosisOptions starts it from.
 //
 // With --detectable first: the minimum detectable magnitudes checked. For each effect and seed,
 // the diagnosis of the drive with nothing hidden states the effect's detectable magnitude D
 // (CandidateScore::detectable: significant with 80 % power); the same drive and seed is then
 // simulated with the effect at D (the catalogue's sign) and diagnosed. If D is right, the effect
 // is significant on about 80 % of seeds. --scale F hides it at F x D instead (the power curve).
-// Run: build/bench/diagnose_monte_carlo --detectable [--scale F] [SEEDS=20] [EFFECT...]
+// Run: build/bench/diagnose_monte_carlo --detectable [--scale F] [--parameters] [--gnss-fading]
+//      [SEEDS=20] [EFFECT...]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -39,7 +41,8 @@ const CandidateScore* Candidate(const Diagnosis& d, const std::string& effect) {
   return nullptr;
 }
 
-int CheckDetectable(int seeds, double scale, std::vector<std::string> effects) {
+int CheckDetectable(int seeds, double scale, std::vector<std::string> effects,
+                    const DiagnosisOptions& options) {
   if (effects.empty()) {
     for (const EffectInfo& e : EffectCatalogue()) {
       if (e.in_model_catalogue) effects.push_back(e.name);
@@ -60,13 +63,13 @@ int CheckDetectable(int seeds, double scale, std::vector<std::string> effects) {
     for (int seed = 1; seed <= seeds; ++seed) {
       sim::ScenarioRun run = sim::ExpandScenario("hidden/none", seed).at(0);
       const DriveLog null_log = sim::Simulate(run.scenario, run.seed).log;
-      const Diagnosis null_d = Diagnose(null_log, DefaultModelConfig(null_log.vehicle));
+      const Diagnosis null_d = Diagnose(null_log, DefaultModelConfig(null_log.vehicle), options);
       const CandidateScore* c = Candidate(null_d, effect);
       if (c == nullptr || !std::isfinite(c->detectable)) continue;
       detectable.push_back(c->detectable);
       run.scenario.effects[effect] = std::copysign(scale * c->detectable, info->default_value);
       const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle));
+      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle), options);
       ++tried;
       const CandidateScore* found = Candidate(d, effect);
       significant += found != nullptr && found->significant;
@@ -118,7 +121,7 @@ int main(int argc, char** argv_in) {
   const int seeds = argc > first ? std::atoi(argv[first]) : 20;
   std::vector<std::string> effects;
   for (int i = first + 1; i < argc; ++i) effects.push_back(argv[i]);
-  if (check_detectable) return CheckDetectable(seeds, scale, effects);
+  if (check_detectable) return CheckDetectable(seeds, scale, effects, options);
   if (effects.empty()) {
     effects.push_back("none");
     for (const EffectInfo& e : EffectCatalogue()) {

@@ -167,6 +167,40 @@ ModelConfig WithFittedLaw(const ModelConfig& model, const IdentificationProblem&
   return out;
 }
 
+void SolveIdentification(const IdentifyOptions& options, IdentificationProblem* problem,
+                         ceres::Solver::Summary* summary) {
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = options.threads;
+  // A relative cost change of 1e-5 is a tenth of a unit of log-likelihood on a minute's log: the
+  // law's bounds and the robust losses make the last digits slow (tr_ratio about 0.3).
+  solver.function_tolerance = 1e-5;
+  ceres::Solve(solver, problem->problem.get(), summary);
+}
+
+// The first log (as read, ScoreModel calibrates it) whose velocity the default front end, run
+// with `fitted`, takes off the wheels (solvers/trust_check.h) where with `start` it does not,
+// said as "the fitted law sent the default front end off the wheels on X % of LOG"; empty when
+// none.
+std::string FallingBranchLeavesTheWheels(const std::vector<DriveLog>& logs,
+                                         const ModelConfig& start, const ModelConfig& fitted,
+                                         bool use_gps) {
+  const double limit = TrustOptions{}.suspect_fraction;
+  for (const DriveLog& log : logs) {
+    const double off = ScoreModel(log, fitted, use_gps, /*gnss_fading=*/true).off_wheels_fraction;
+    if (off <= limit ||
+        ScoreModel(log, start, use_gps, /*gnss_fading=*/true).off_wheels_fraction > limit) {
+      continue;
+    }
+    std::ostringstream out;
+    out << std::setprecision(3) << "the fitted law sent the default front end off the wheels on "
+        << 100.0 * off << " % of " << log.directory;
+    return out.str();
+  }
+  return "";
+}
+
 // u = r (w_r - w_l) = c (yaw rate - a) over the wheel samples with the nearest IMU sample: least
 // squares of u on the gyro with an intercept (a: the gyro's offset). That way round because the
 // gyro is the precise one (encoder noise in a regressor would bias c up: 0.82 m for a 0.55 m
@@ -282,49 +316,34 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   problem_options.tire_law_correlation_time_s = options.law_residual.correlation_time_s;
   fit_model.process.a_dist_mps3_per_sqrt_hz = options.disturbance_walk_mps3_per_sqrt_hz;
   IdentificationPriors priors = options.priors;
-  const auto fit = [&]() {
-    std::unique_ptr<IdentificationProblem> fitted =
-        BuildIdentificationProblem(log_pointers, fit_model, initial, problem_options, priors);
-    if (!options.fit_radius) {
-      fitted->problem->SetParameterBlockConstant(fitted->radius_error.data());
-    }
-    ceres::Solver::Options solver;
-    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    solver.max_num_iterations = options.max_iterations;
-    solver.num_threads = options.threads;
-    // A relative cost change of 1e-5 is a tenth of a unit of log-likelihood on a minute's log:
-    // the law's bounds and the robust losses make the last digits slow (tr_ratio about 0.3).
-    solver.function_tolerance = 1e-5;
-    ceres::Solve(solver, fitted->problem.get(), &result.summary);
-    return fitted;
-  };
-  std::unique_ptr<IdentificationProblem> problem = fit();
+  std::unique_ptr<IdentificationProblem> problem =
+      BuildIdentificationProblem(log_pointers, fit_model, initial, problem_options, priors);
+  if (!options.fit_radius) {
+    problem->problem->SetParameterBlockConstant(problem->radius_error.data());
+  }
+  SolveIdentification(options, problem.get(), &result.summary);
 
   // A law with a falling branch (C2 < 0) must still run in the front end that will use it: eq.
   // (8)'s linear falling branch makes the velocity's dynamics unstable at large slip, and the
   // default front end, whose GNSS fading widens its covariance, can settle on a wrong root there,
-  // a disturbance holding the body far ahead of its wheels (docs/identify.md). Each fitted log is
-  // run with it; where the law sends the velocity off the wheels (the trust check's test) and the
-  // model it started from does not, the law is fitted again without a falling branch.
+  // a disturbance holding the body far ahead of its wheels (docs/identify.md). Where the law
+  // sends a fitted log's velocity off the wheels and the starting model does not, C2's lower
+  // bound is raised to 0 and the problem solved again from where it stands.
   if (options.keep_front_end_on_wheels && problem->law[kLawC2] < 0.0) {
-    const ModelConfig candidate = WithFittedLaw(model, *problem);
-    const double limit = TrustOptions{}.suspect_fraction;
-    for (size_t i = 0; i < input_logs.size(); ++i) {
-      const double off = ScoreModel(input_logs[i], candidate, options.use_gps, true).off_wheels;
-      if (off <= limit ||
-          ScoreModel(input_logs[i], model, options.use_gps, true).off_wheels > limit) {
-        continue;
-      }
+    const std::string refused = FallingBranchLeavesTheWheels(
+        input_logs, model, WithFittedLaw(model, *problem), options.use_gps);
+    if (!refused.empty() && priors.law_max[kLawC2] <= 0.0) {
+      result.notes.push_back(refused + ": kept, C2's upper bound allows no other");
+    } else if (!refused.empty()) {
       std::ostringstream note;
-      note << std::setprecision(3)
-           << "the law fitted with a falling branch (C2 = " << problem->law[kLawC2]
-           << ") sent the default front end off the wheels on " << 100.0 * off << " % of "
-           << input_logs[i].directory << ": fitted again with C2 >= 0";
+      note << std::setprecision(3) << refused << " (C2 = " << problem->law[kLawC2] << ", "
+           << result.summary.iterations.size() << " iterations): solved again with C2 >= 0";
       result.notes.push_back(note.str());
       result.falling_branch_refused = true;
       priors.law_min[kLawC2] = std::max(0.0, priors.law_min[kLawC2]);
-      problem = fit();
-      break;
+      problem->law[kLawC2] = std::max(problem->law[kLawC2], priors.law_min[kLawC2]);
+      problem->problem->SetParameterLowerBound(problem->law.data(), kLawC2, priors.law_min[kLawC2]);
+      SolveIdentification(options, problem.get(), &result.summary);
     }
   }
   result.converged = result.summary.termination_type == ceres::CONVERGENCE;
@@ -464,7 +483,7 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
   if (!result.estimates.empty()) {
     const TrustReport trust = CheckTrust(log, result.estimates);
     score.trusted = trust.trusted;
-    score.off_wheels = trust.off_wheels_fraction;
+    score.off_wheels_fraction = trust.off_wheels_fraction;
   }
   const auto it = result.stats.innovations.find("gnss");
   if (it != result.stats.innovations.end()) {

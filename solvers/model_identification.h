@@ -18,7 +18,7 @@
 //      (no bank: the law is what is sought). Their sd and correlations from the problem's
 //      covariance; a parameter whose sd is not under half its prior's is reported as not
 //      identified (the prior, not the data, set it). A law with a falling branch (C2 < 0) that
-//      sends the default front end off the wheels on the fitted logs is fitted again with
+//      sends the default front end off the wheels on the fitted logs is solved again with
 //      C2 >= 0 (IdentifyOptions::keep_front_end_on_wheels).
 //   3. The effective track: the wheels' speed difference r (w_r - w_l) regressed on the yaw gyro
 //      (less its offset), r (w_r - w_l) = c yaw rate; applied to the model for
@@ -50,7 +50,7 @@ struct IdentifyOptions {
   bool fit_radius = false;
   // Run each fitted log with the default front end (GNSS fading) and the fitted law; where a law
   // with a falling branch sends the velocity off the wheels (solvers/trust_check.h) and the
-  // starting model does not, fit again with C2 >= 0.
+  // starting model does not, solve again with C2 >= 0.
   bool keep_front_end_on_wheels = true;
   int max_iterations = 100;
   int threads = 1;
@@ -128,7 +128,7 @@ struct ModelScore {
   double false_immobilized_fraction = std::nan("");
   // The front end's trust check (solvers/trust_check.h): passed, and the samples off the wheels.
   bool trusted = true;
-  double off_wheels = 0.0;
+  double off_wheels_fraction = 0.0;
 };
 ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true,
                       bool gnss_fading = false);
