@@ -341,7 +341,7 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
       result.notes.push_back(note.str());
       result.falling_branch_refused = true;
       priors.law_min[kLawC2] = std::max(0.0, priors.law_min[kLawC2]);
-      problem->law[kLawC2] = std::max(problem->law[kLawC2], priors.law_min[kLawC2]);
+      problem->law[kLawC2] = priors.law_min[kLawC2];  // C2 < 0 <= the new bound: start on it
       problem->problem->SetParameterLowerBound(problem->law.data(), kLawC2, priors.law_min[kLawC2]);
       SolveIdentification(options, problem.get(), &result.summary);
     }
@@ -481,9 +481,7 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
   const FilterResult result = RunEkf(log, model, run);
   ModelScore score;
   if (!result.estimates.empty()) {
-    const TrustReport trust = CheckTrust(log, result.estimates);
-    score.trusted = trust.trusted;
-    score.off_wheels_fraction = trust.off_wheels_fraction;
+    score.off_wheels_fraction = CheckTrust(log, result.estimates).off_wheels_fraction;
   }
   const auto it = result.stats.innovations.find("gnss");
   if (it != result.stats.innovations.end()) {

@@ -126,8 +126,7 @@ struct ModelScore {
   // Against truth (NaN without it).
   double velocity_rmse = std::nan("");
   double false_immobilized_fraction = std::nan("");
-  // The front end's trust check (solvers/trust_check.h): passed, and the samples off the wheels.
-  bool trusted = true;
+  // Samples off the wheels, as the front end's trust check counts them (solvers/trust_check.h).
   double off_wheels_fraction = 0.0;
 };
 ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true,

@@ -105,9 +105,8 @@ TEST(ModelIdentification, WheelsLargerThanTheModelSaysAHiddenEffect) {
   // The wheels roll 5 % further than vehicle.yaml's radius says. Measured held-out velocity
   // RMSE, seeds 5-8: 0.087 -> 0.056, 0.113 -> 0.070, 0.145 -> 0.105, 0.180 -> 0.133 (seeds 7
   // and 8 solved again with C2 >= 0; with their falling branches 0.092 and 0.096; seed 7's
-  // bound is 0.109). The
-  // radius against GNSS reads +1.2 to +4.4 % (the mean slip is in it: a true 0 reads -0.5 to
-  // -3.4 % on hiddenm/none): reported, not applied.
+  // bound is 0.109). The radius against GNSS reads +1.2 to +4.4 % (the mean slip is in it: a
+  // true 0 reads -0.5 to -3.4 % on hiddenm/none): reported, not applied.
   for (uint64_t seed : {6, 7}) {
     const DriveLog log = testing::SimulatedScenario("hiddenm/wheel_radius_error", seed);
     const Split split = Halves(log);
