@@ -20,6 +20,8 @@
 //     --imm-options TAU,SD,HELD,TQ,TC,TH[,MIX] sets its options (DisturbanceImmOptions, in that
 //     order), for choosing them on seeds the figures are not reported on;
 //   --single-law: one filter also where vehicle.yaml lists law samples;
+//   --stiffness-sd SD, --stiffness-margin M: the batch's slip-stiffness prior (0: the law as
+//     given) and its check against GNSS (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
 //   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
 //     trying a setting on seeds the figures are not reported on.
 #include <algorithm>
@@ -68,6 +70,10 @@ std::vector<std::string> g_without;
 // --fading-fixes, --fading-threshold (EkfOptions' GNSS fading memory), --single-law,
 // --disturbance-modes and --imm-options.
 FilterRunOptions g_front;
+// --stiffness-sd, --stiffness-margin: the batch's slip stiffness prior and its GNSS check
+// (as `smooth` and `compare` run them by default).
+double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
+double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -145,7 +151,8 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     if (smoother) {
       BatchSmootherOptions options;
       options.filter = g_front;
-      options.problem.stiffness_prior_sd = 0.15;  // as `smooth` and `compare` run it
+      options.problem.stiffness_prior_sd = g_stiffness_sd;
+      options.stiffness_gnss_margin = g_stiffness_gnss_margin;
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
       score(kBatchGnss, log, result.estimates);
@@ -204,6 +211,10 @@ int main(int argc, char** argv) {
           std::sscanf(argv[++i], "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &o.quiet_a_dist_tau_s,
                       &o.quiet_a_dist_sd_mps2, &o.held_a_dist_mps3_per_sqrt_hz, &o.quiet_mean_s,
                       &o.change_mean_s, &o.held_mean_s, &o.mix_interval_s) >= 6;
+    } else if (std::strcmp(argv[i], "--stiffness-sd") == 0 && has_value) {
+      g_stiffness_sd = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--stiffness-margin") == 0 && has_value) {
+      g_stiffness_gnss_margin = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--model") == 0 && has_value) {
       g_model_path = argv[++i];
       g_model_text = ReadTextFile(g_model_path);

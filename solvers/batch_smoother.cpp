@@ -21,7 +21,8 @@ bool BatchSmootherOptions::IsValid(std::string* error) const {
              .NonNegative("step_sd_tolerance", step_sd_tolerance)
              .AtLeast("threads", threads, 1)
              .Positive("initial_trust_region_radius", initial_trust_region_radius)
-             .NonNegative("min_immobilized_s", min_immobilized_s) &&
+             .NonNegative("min_immobilized_s", min_immobilized_s)
+             .NonNegative("stiffness_gnss_margin", stiffness_gnss_margin) &&
          filter.IsValid(error) && problem.IsValid(error);
 }
 
@@ -216,7 +217,8 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   std::ostringstream breakdown;
   breakdown << "cost by factor (" << (options.start != nullptr ? "given start" : "EKF start")
             << " -> solution):";
-  for (const auto& [kind, cost] : CostByKind(*problem)) {
+  result.cost_by_kind = CostByKind(*problem);
+  for (const auto& [kind, cost] : result.cost_by_kind) {
     breakdown << " " << kind << " " << initial_costs.at(kind) << " -> " << cost << ";";
   }
   result.notes.push_back(breakdown.str());
@@ -296,17 +298,10 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   return result;
 }
 
-}  // namespace
-
-SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
-                           const BatchSmootherOptions& options) {
-  return SmoothBatch(log, model, RunEkf(log, model, options.filter), options);
-}
-
-SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
-                           const BatchSmootherOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw std::invalid_argument(error);
+// SmoothBatchOnce, and with BatchSmootherOptions::regate_decay_prior a second solve gated by the
+// first's slip.
+SmootherResult SmoothBatchRegated(const DriveLog& log, const ModelConfig& model,
+                                  const FilterResult& ekf, const BatchSmootherOptions& options) {
   if (!options.regate_decay_prior || !options.problem.decay_gate_slip.empty()) {
     return SmoothBatchOnce(log, model, ekf, options);
   }
@@ -337,6 +332,54 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const 
                          std::to_string(changed) + " of " + std::to_string(gate.size()) +
                          " states changed side of thresh_i)");
   return second;
+}
+
+// The GNSS factors' cost at a solution (NaN without GNSS factors).
+double GnssCost(const SmootherResult& result) {
+  const auto it = result.cost_by_kind.find("gnss");
+  return it == result.cost_by_kind.end() ? std::nan("") : it->second;
+}
+
+}  // namespace
+
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model,
+                           const BatchSmootherOptions& options) {
+  return SmoothBatch(log, model, RunEkf(log, model, options.filter), options);
+}
+
+SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
+                           const BatchSmootherOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
+  SmootherResult result = SmoothBatchRegated(log, model, ekf, options);
+  if (result.used_fallback || result.stiffness.empty() ||
+      !std::isfinite(options.stiffness_gnss_margin)) {
+    return result;
+  }
+  const double with_stiffness = GnssCost(result);
+  if (!std::isfinite(with_stiffness)) {
+    result.notes.push_back("the slip stiffness is not checked against GNSS: no GNSS factors");
+    return result;
+  }
+  BatchSmootherOptions as_given_options = options;
+  as_given_options.problem.stiffness_prior_sd = 0.0;
+  SmootherResult as_given = SmoothBatchRegated(log, model, ekf, as_given_options);
+  const double without = GnssCost(as_given);
+  char costs[96];
+  std::snprintf(costs, sizeof(costs), "GNSS cost %.2f with it, %.2f with the law as given",
+                with_stiffness, without);
+  if (as_given.used_fallback || !(with_stiffness - without > options.stiffness_gnss_margin)) {
+    result.notes.push_back(std::string("the estimated slip stiffness kept: ") + costs);
+    return result;
+  }
+  const auto [lo, hi] = std::minmax_element(result.stiffness.begin(), result.stiffness.end());
+  char range[64];
+  std::snprintf(range, sizeof(range), "theta %.2f to %.2f", *lo, *hi);
+  as_given.notes.push_back(
+      std::string("the slip stiffness was estimated (") + range +
+      ") and not kept: its velocities fit GNSS worse than the law's as given (" + costs +
+      "); the law's slope is not what the model lacks here, the law as given is reported");
+  return as_given;
 }
 
 std::vector<WardEstimate> DisturbanceWithEffects(const SmootherResult& result, const DriveLog& log,

@@ -6,6 +6,7 @@
 
 #include <ceres/solver.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,14 @@ struct BatchSmootherOptions {
   // estimate's first-order shift dx, and the sum of dx dx' is added to the states' covariance (a
   // Schmidt consider covariance: the law is not refitted, its error is counted).
   bool consider_law_uncertainty = true;
+  // The slip stiffness (WardProblemOptions::stiffness_prior_sd) checked against GNSS, the one
+  // sensor that sees the velocity without the tire law: the log is smoothed again with the law
+  // as given, and the stiffness's solution is kept unless its velocities fit GNSS worse by more
+  // than this cost (half a chi-square; 1: a likelihood ratio of e in favour of the law as
+  // given). A law of another family, or an accelerometer error the model lacks (an AHRS's slow
+  // attitude error), pulls the stiffness far down and the velocity below GNSS with it (ward21m,
+  // docs/mismatch.md). Costs a second smooth. Infinity: no check.
+  double stiffness_gnss_margin = 3.0;
 
   // The solver's settings (the filter's and the problem's are checked where they are used).
   bool IsValid(std::string* error) const;
@@ -91,13 +100,14 @@ struct EffectEstimate {
 };
 
 struct SmootherResult {
-  std::vector<WardEstimate> estimates;  // same layout as the EKF's, one per wheel sample
-  FilterResult ekf;                     // the initialising filter run
-  std::vector<EffectEstimate> effects;  // the model's effects that have a model term
-  double final_cost = 0.0;              // the solution's cost (for likelihood-ratio tests)
-  ceres::Solver::Summary summary;       // from either solver (BatchSolver)
-  std::string solver;                   // the one that solved it (empty: none ran)
-  bool used_fallback = false;           // true: estimates are the EKF's (see notes)
+  std::vector<WardEstimate> estimates;         // same layout as the EKF's, one per wheel sample
+  FilterResult ekf;                            // the initialising filter run
+  std::vector<EffectEstimate> effects;         // the model's effects that have a model term
+  double final_cost = 0.0;                     // the solution's cost (for likelihood-ratio tests)
+  std::map<std::string, double> cost_by_kind;  // the solution's cost per factor kind
+  ceres::Solver::Summary summary;              // from either solver (BatchSolver)
+  std::string solver;                          // the one that solved it (empty: none ran)
+  bool used_fallback = false;                  // true: estimates are the EKF's (see notes)
   bool covariance_ok = false;
   // corr(v_bx error at k, at k+1) from the chain covariance (empty without it): how long the
   // solution's own velocity error persists.

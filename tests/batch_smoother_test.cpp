@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "evaluation/evaluation.h"
@@ -210,6 +211,7 @@ TEST(BatchSmoother, SlipStiffnessStopsAtItsBoundAndSaysSo) {
       return note.find("lower bound") != std::string::npos;
     });
   };
+  options.stiffness_gnss_margin = std::numeric_limits<double>::infinity();  // the bound alone
   const SmootherResult free = SmoothBatch(log, model, options);
   ASSERT_FALSE(free.stiffness.empty());
   EXPECT_LT(*std::min_element(free.stiffness.begin(), free.stiffness.end()), -0.3);
@@ -219,6 +221,42 @@ TEST(BatchSmoother, SlipStiffnessStopsAtItsBoundAndSaysSo) {
   ASSERT_FALSE(bounded.used_fallback);
   for (double theta : bounded.stiffness) EXPECT_GE(theta, -0.2 - 1e-9);
   EXPECT_TRUE(said(bounded));
+}
+
+// The stiffness checked against GNSS (BatchSmootherOptions::stiffness_gnss_margin). ward21m/13,
+// seed 1 (a peaked law of the slip ratio, soils not the law's, an AHRS with a slow error): the
+// stiffness runs down to about -0.8 and the velocity below GNSS with it (measured: v RMSE 0.062
+// m/s, against 0.021 with the law as given); the check reports the law as given and says why.
+// On ward21/05 (the law's family, a soil softer than the law) the stiffness is kept (0.010
+// against 0.028 m/s).
+TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
+  const auto said = [](const SmootherResult& r, const char* what) {
+    return std::any_of(r.notes.begin(), r.notes.end(), [&](const std::string& note) {
+      return note.find(what) != std::string::npos;
+    });
+  };
+  BatchSmootherOptions options;
+  options.problem.stiffness_prior_sd = kPostProcessingStiffnessPriorSd;
+  {
+    const DriveLog log = testing::SimulatedScenario("ward21m/13");
+    const ModelConfig model = DefaultModelConfig(log.vehicle);
+    const SmootherResult checked = SmoothBatch(log, model, options);
+    ASSERT_FALSE(checked.used_fallback);
+    EXPECT_TRUE(checked.stiffness.empty());
+    EXPECT_TRUE(said(checked, "and not kept"));
+    EXPECT_LT(Evaluate(log, EstimateTable(checked.estimates)).velocity_rmse, 0.035);
+    BatchSmootherOptions unchecked = options;
+    unchecked.stiffness_gnss_margin = std::numeric_limits<double>::infinity();
+    const SmootherResult kept = SmoothBatch(log, model, unchecked);
+    ASSERT_FALSE(kept.stiffness.empty());
+    EXPECT_LT(*std::min_element(kept.stiffness.begin(), kept.stiffness.end()), -0.5);
+    EXPECT_GT(Evaluate(log, EstimateTable(kept.estimates)).velocity_rmse, 0.045);
+  }
+  const DriveLog log = testing::SimulatedScenario("ward21/05");
+  const SmootherResult matched = SmoothBatch(log, DefaultModelConfig(log.vehicle), options);
+  ASSERT_FALSE(matched.stiffness.empty());
+  EXPECT_TRUE(said(matched, "stiffness kept"));
+  EXPECT_LT(Evaluate(log, EstimateTable(matched.estimates)).velocity_rmse, 0.015);
 }
 
 TEST(BatchSmoother, FallsBackToTheEkfAndSaysSo) {
@@ -268,6 +306,10 @@ TEST(BatchSmoother, InvalidOptionsAreRefused) {
   options.initial_trust_region_radius = 0.0;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("initial_trust_region_radius"), std::string::npos);
+  options.initial_trust_region_radius = 1e4;
+  options.stiffness_gnss_margin = -1.0;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("stiffness_gnss_margin"), std::string::npos);
   const DriveLog log;
   EXPECT_THROW(SmoothBatch(log, ModelConfig(), FilterResult(), options), std::invalid_argument);
 }
