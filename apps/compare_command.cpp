@@ -196,7 +196,9 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       const std::string batch_law =
           options->stiffness_sd > 0.0
               ? std::string("the batch estimates the tire law's slip stiffness (prior sd ") +
-                    prior + "; --stiffness-sd 0: the law as given)"
+                    prior +
+                    ", kept where GNSS does not favour the law as given; --stiffness-sd "
+                    "0: the law as given)"
               : "the batch keeps the tire law as given";
       text << name << " (" << by_estimator["EKF"].size()
            << " log(s)) against truth; window and batch times include the EKF run they start "

@@ -197,8 +197,10 @@ void AddNoGnssFadingFlag(CLI::App* cmd, double* fading_fixes) {
 void AddStiffnessOption(CLI::App* cmd, double* prior_sd) {
   cmd->add_option("--stiffness-sd", *prior_sd,
                   "Batch smoother: estimate the tire law's slip stiffness (the terrain is not the "
-                  "law's), with a prior of this relative sd around the law's; 0: the law as "
-                  "given. Not with model effects, nor in smooth's --chunk mode")
+                  "law's), with a prior of this relative sd around the law's, kept only when "
+                  "its velocities fit GNSS about as well as the law's as given (a second smooth; "
+                  "docs/mismatch.md); 0: the law as given. Not with model effects, nor in "
+                  "smooth's --chunk mode")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
 }

@@ -364,11 +364,16 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const 
   BatchSmootherOptions as_given_options = options;
   as_given_options.problem.stiffness_prior_sd = 0.0;
   SmootherResult as_given = SmoothBatchRegated(log, model, ekf, as_given_options);
+  if (as_given.used_fallback) {
+    result.notes.push_back(
+        "the slip stiffness is not checked against GNSS: the solve with the law as given failed");
+    return result;
+  }
   const double without = GnssCost(as_given);
   char costs[96];
   std::snprintf(costs, sizeof(costs), "GNSS cost %.2f with it, %.2f with the law as given",
                 with_stiffness, without);
-  if (as_given.used_fallback || !(with_stiffness - without > options.stiffness_gnss_margin)) {
+  if (!(with_stiffness - without > options.stiffness_gnss_margin)) {
     result.notes.push_back(std::string("the estimated slip stiffness kept: ") + costs);
     return result;
   }

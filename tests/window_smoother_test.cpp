@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -279,6 +280,7 @@ TEST(WindowSmoother, StiffnessNodesLeaveTheWindowWithTheirInformation) {
   BatchSmootherOptions batch_options;
   batch_options.problem = options.problem;
   batch_options.problem.stiffness_prior_sd = options.stiffness_prior_sd;
+  batch_options.stiffness_gnss_margin = std::numeric_limits<double>::infinity();  // as the window
   batch_options.regate_decay_prior = false;  // the window gates as the EKF does
   const SmootherResult batch = SmoothBatch(log, model, window.ekf, batch_options);
   ASSERT_FALSE(batch.used_fallback);
