@@ -82,7 +82,7 @@ struct BatchSmootherOptions {
   // The slip stiffness (WardProblemOptions::stiffness_prior_sd) checked against GNSS, the one
   // sensor that sees the velocity without the tire law: the log is smoothed again with the law
   // as given, and the stiffness's solution is kept unless its velocities fit GNSS worse by more
-  // than this cost (half a chi-square; 1: a likelihood ratio of e in favour of the law as
+  // than this cost (half a chi-square; 3: a likelihood ratio of e^3 in favour of the law as
   // given). A law of another family, or an accelerometer error the model lacks (an AHRS's slow
   // attitude error), pulls the stiffness far down and the velocity below GNSS with it (ward21m,
   // docs/mismatch.md). Costs a second smooth. Infinity: no check.
