@@ -265,7 +265,7 @@ int main(int argc, char** argv) {
     const Evaluation pooled = Combine(all, suite);
     std::printf(
         "%s: %d/%zu detected, mean delay %.2f s, false immobilized %.3f %% (mean over "
-        "suites; worst suite %.3f %%), v RMSE %.4f m/s, v NEES inside 95 %% %.1f %%\n",
+        "suites; worst suite %.3f %%), v RMSE %.4f m/s, v NEES inside 95 %% %.2f %%\n",
         kNames[e], pooled.detected(), pooled.events.size(), pooled.mean_detection_delay_s(),
         100.0 * false_mean, 100.0 * worst, pooled.velocity_rmse,
         100.0 * pooled.nees_within_95_fraction());

@@ -2,6 +2,8 @@
 // see shared/log-format.md). Plain data; parsing lives in io/yaml_config.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,13 @@ struct TireParams {
 inline void ScaleSlipStiffness(double scale, TireParams* tire) {
   tire->At *= scale;
   tire->C2 *= scale;
+}
+
+// The two scales at which a slope uncertain by `relative_sd` is tried (a consider covariance:
+// the mean of the two squared shifts): exp(-sd) and exp(+sd), one sd each way on a log scale, so
+// that a slope half as steep and one twice as steep are equally likely (sd 0.69).
+inline std::array<double, 2> SlipStiffnessSdScales(double relative_sd) {
+  return {std::exp(-relative_sd), std::exp(relative_sd)};
 }
 
 // Ward & Iagnemma eq. (9): F = -sign(v) N (R1 (1 - exp(-A_roll |v|)) + R2 |v|).

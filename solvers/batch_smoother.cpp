@@ -41,9 +41,16 @@ namespace {
 // with soil laws (ModelConfig::law_samples, n >= 2) each soil's deviation from the law over
 // sqrt(n - 1) (their sample covariance, correlations included); else each coefficient with a
 // stated sd, one sd off (ModelConfig::tire_sd, rolling_sd), and the slope at small slip (At and
-// C2) scaled by 1 + its relative sd (ModelConfig::tire_slip_stiffness_relative_sd).
-std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelConfig& model) {
-  std::vector<std::pair<std::string, ModelConfig>> out;
+// C2) scaled by exp(-sd) and exp(+sd), each weighted by 1/sqrt(2), as the front end takes it
+// (ModelConfig::tire_slip_stiffness_relative_sd, SlipStiffnessSdScales), unless At's or C2's sd
+// is stated.
+struct LawPerturbation {
+  std::string name;
+  ModelConfig model;
+  double weight = 1.0;  // of its residual shift
+};
+std::vector<LawPerturbation> LawPerturbations(const ModelConfig& model) {
+  std::vector<LawPerturbation> out;
   const size_t n = model.law_samples.size();
   if (n >= 2) {
     const double scale = 1.0 / std::sqrt(static_cast<double>(n - 1));
@@ -56,7 +63,7 @@ std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelCon
       m.rolling.R1 += scale * (soil.rolling.R1 - model.rolling.R1);
       m.rolling.A_roll += scale * (soil.rolling.A_roll - model.rolling.A_roll);
       m.rolling.R2 += scale * (soil.rolling.R2 - model.rolling.R2);
-      out.emplace_back("soil " + std::to_string(i + 1), m);
+      out.push_back({"soil " + std::to_string(i + 1), m});
     }
     return out;
   }
@@ -64,7 +71,7 @@ std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelCon
     if (!(sd > 0.0)) return;
     ModelConfig m = model;
     apply(m, sd);
-    out.emplace_back(name, m);
+    out.push_back({name, m});
   };
   add("C1", model.tire_sd.C1, [](ModelConfig& m, double sd) { m.tire.C1 += sd; });
   add("At", model.tire_sd.At, [](ModelConfig& m, double sd) { m.tire.At += sd; });
@@ -72,8 +79,16 @@ std::vector<std::pair<std::string, ModelConfig>> LawPerturbations(const ModelCon
   add("R1", model.rolling_sd.R1, [](ModelConfig& m, double sd) { m.rolling.R1 += sd; });
   add("A_roll", model.rolling_sd.A_roll, [](ModelConfig& m, double sd) { m.rolling.A_roll += sd; });
   add("R2", model.rolling_sd.R2, [](ModelConfig& m, double sd) { m.rolling.R2 += sd; });
-  add("slip_stiffness", model.tire_slip_stiffness_relative_sd,
-      [](ModelConfig& m, double sd) { ScaleSlipStiffness(1.0 + sd, &m.tire); });
+  // The slope's sd where the coefficients' leave the slope (At, C2) unstated: not counted twice.
+  if (model.tire_slip_stiffness_relative_sd > 0.0 && !(model.tire_sd.At > 0.0) &&
+      !(model.tire_sd.C2 > 0.0)) {
+    const auto scales = SlipStiffnessSdScales(model.tire_slip_stiffness_relative_sd);
+    for (size_t i = 0; i < scales.size(); ++i) {
+      ModelConfig m = model;
+      ScaleSlipStiffness(scales[i], &m.tire);
+      out.push_back({i == 0 ? "slip_stiffness -" : "slip_stiffness +", m, std::sqrt(0.5)});
+    }
+  }
   return out;
 }
 
@@ -99,7 +114,7 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
   const Eigen::VectorXd base = Residuals(problem->problem.get());
   std::vector<Eigen::VectorXd> shifts;
   std::string names;
-  for (const auto& [name, perturbed] : perturbations) {
+  for (const auto& [name, perturbed, weight] : perturbations) {
     std::unique_ptr<WardProblem> other =
         BuildWardBatchProblem(log, perturbed, ekf.estimates, problem_options);
     if (other->states.size() != problem->states.size() ||
@@ -119,7 +134,7 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
                        " has other residuals");
       return {};
     }
-    shifts.push_back(r - base);
+    shifts.push_back(weight * (r - base));
     names += (names.empty() ? "" : ", ") + name;
   }
   const ChainSensitivity sensitivity =

@@ -85,8 +85,9 @@ void RunChosenFilter(const DriveLog& log, const ModelConfig& model, const Filter
 }
 
 // ModelConfig::tire_slip_stiffness_relative_sd, a consider covariance for the single front end:
-// the same filter run again with the law's slope at small slip (At and C2) scaled by 1 - sd and
-// by 1 + sd, each state's variance increased by the mean of the two squared shifts. A slope that
+// the same filter run again with the law's slope at small slip (At and C2) scaled by exp(-sd)
+// and by exp(+sd) (SlipStiffnessSdScales), each state's variance increased by the mean of the two
+// squared shifts. A slope that
 // is off moves the velocity where the law holds it (the slip the force needs) and hardly where it
 // does not (a hold-back, where the slip is the wheels' and GNSS's): the shift goes through the
 // filter's own gains. The estimates are unchanged; the shift's sd is the law's share
@@ -96,7 +97,7 @@ void AddLawSlopeConsider(const DriveLog& log, const ModelConfig& model,
                          FilterResult* result) {
   const double sd = model.tire_slip_stiffness_relative_sd;
   std::vector<std::array<double, ward::kStateSize>> added(result->estimates.size());
-  for (double scale : {1.0 - sd, 1.0 + sd}) {
+  for (double scale : SlipStiffnessSdScales(sd)) {
     ModelConfig moved = model;
     ScaleSlipStiffness(scale, &moved.tire);
     FilterResult other;
@@ -127,7 +128,8 @@ void AddLawSlopeConsider(const DriveLog& log, const ModelConfig& model,
   }
   std::ostringstream note;
   note << "the sd include the tire law's slope uncertainty (tire_sd.slip_stiffness " << sd
-       << ": the estimate's mean squared shift with At and C2 moved by that share each way)";
+       << ": the estimate's mean squared shift with At and C2 scaled by exp(-" << sd
+       << ") and exp(+" << sd << "))";
   result->notes.push_back(note.str());
 }
 
@@ -138,9 +140,10 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   const double slope_sd = model.tire_slip_stiffness_relative_sd;
-  if (!(slope_sd >= 0.0 && slope_sd < 1.0)) {
+  if (!(slope_sd >= 0.0 && slope_sd <= kMaxSlipStiffnessRelativeSd)) {
     throw std::invalid_argument("RunEkf: tire_sd.slip_stiffness " + std::to_string(slope_sd) +
-                                " must lie in [0, 1)");
+                                " must lie in [0, " + std::to_string(kMaxSlipStiffnessRelativeSd) +
+                                "]");
   }
   FilterResult result;
   StreamSelection selection;

@@ -24,8 +24,8 @@ bool HasNote(const FilterResult& result, const std::string& text) {
                      [&](const std::string& note) { return note.find(text) != std::string::npos; });
 }
 
-// ward21m seed 1, runs 01-06 (seeds 1-10 chose 0.7: docs/mismatch.md): the share of samples
-// inside the 95 % bound, single filter with GNSS.
+// ward21m seed 1, runs 01-06 (seeds 1-10 chose 0.7, the default: docs/mismatch.md): the share of
+// samples inside the 95 % bound, single filter with GNSS, the law as exact and as a guess.
 TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
   std::vector<Evaluation> plain_runs, considered_runs;
   for (const char* name :
@@ -33,9 +33,11 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
     const DriveLog log = testing::SimulatedScenario(name);
     ModelConfig model = DefaultModelConfig(log.vehicle);
     ASSERT_TRUE(model.law_samples.empty());
-    const FilterResult plain = RunEkf(log, model);
-    model.tire_slip_stiffness_relative_sd = 0.7;
+    // A law nobody fitted to this terrain is a guess by default.
+    EXPECT_EQ(model.tire_slip_stiffness_relative_sd, 0.7);
     const FilterResult considered = RunEkf(log, model);
+    model.tire_slip_stiffness_relative_sd = 0.0;  // the law as exact
+    const FilterResult plain = RunEkf(log, model);
     EXPECT_TRUE(HasNote(considered, "slope uncertainty")) << name;
     ASSERT_EQ(plain.estimates.size(), considered.estimates.size());
     // The law's share, for a window behind it to add to its own sd.

@@ -208,7 +208,7 @@ TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
   EXPECT_EQ(plain.str().find("tire_sd"), std::string::npos);
   // The model file may state or override it.
   EXPECT_DOUBLE_EQ(ReadModelYaml(WriteModel("rolling_sd: {R1: 0.05}\n"), v).rolling_sd.R1, 0.05);
-  // The slope's relative sd (model file only), in [0, 1), and written back.
+  // The slope's sd on a log scale (model file only), in [0, 2], and written back.
   const ModelConfig slope = ReadModelYaml(WriteModel("tire_sd: {slip_stiffness: 0.7}\n"), v);
   EXPECT_DOUBLE_EQ(slope.tire_slip_stiffness_relative_sd, 0.7);
   std::ostringstream slope_out;
@@ -216,8 +216,8 @@ TEST(YamlConfig, TheLawsStatedUncertaintyReadsWritesAndIsChecked) {
   EXPECT_DOUBLE_EQ(ReadModelYaml(WriteModel(slope_out.str()), v).tire_slip_stiffness_relative_sd,
                    0.7);
   try {
-    ReadModelYaml(WriteModel("tire_sd: {slip_stiffness: 1.0}\n"), v);
-    FAIL() << "a slope sd of 1 was accepted";
+    ReadModelYaml(WriteModel("tire_sd: {slip_stiffness: 2.5}\n"), v);
+    FAIL() << "a slope sd of 2.5 was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("tire_sd.slip_stiffness"), std::string::npos) << e.what();
   }
