@@ -25,7 +25,7 @@ struct NumberField {
 std::vector<NumberField> TireFields(TireParams* tire, bool needed) {
   return {{"C1", &tire->C1, needed}, {"At", &tire->At, needed}, {"C2", &tire->C2, needed}};
 }
-// The model file's tire_sd: the coefficients' sd and the slope's relative sd.
+// The model file's tire_sd: the coefficients' sd and the sd of the log of the slope.
 std::vector<NumberField> TireSdFields(ModelConfig* m) {
   std::vector<NumberField> fields = TireFields(&m->tire_sd, false);
   fields.push_back({"slip_stiffness", &m->tire_slip_stiffness_relative_sd, false});

@@ -95,8 +95,7 @@ bool ModelConfig::IsValid(std::string* error) const {
   if (!(tire_slip_stiffness_relative_sd >= 0.0 &&
         tire_slip_stiffness_relative_sd <= kMaxSlipStiffnessRelativeSd)) {
     *error = "tire_sd.slip_stiffness " + std::to_string(tire_slip_stiffness_relative_sd) +
-             " must lie in [0, " + std::to_string(kMaxSlipStiffnessRelativeSd) +
-             "] (the sd of the log of the law's slope)";
+             " must lie in [0, 2] (the sd of the log of the law's slope)";
     return false;
   }
   for (size_t i = 0; i < law_samples.size(); ++i) {

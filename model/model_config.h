@@ -101,7 +101,8 @@ struct CalibrationConfig {
   double track_width_m = 0.0;  // 0: vehicle.yaml's
 };
 
-// The largest tire_sd.slip_stiffness taken: a slope uncertain by a factor e^2 either way.
+// The largest tire_sd.slip_stiffness taken (error messages say [0, 2]): a slope uncertain by a
+// factor e^2 either way.
 constexpr double kMaxSlipStiffnessRelativeSd = 2.0;
 
 struct ModelConfig {
@@ -116,15 +117,15 @@ struct ModelConfig {
   TireParams tire_sd{0.0, 0.0, 0.0};
   RollingParams rolling_sd{0.0, 0.0, 0.0};
   // How far the tire law's slope at small slip (At and C2 together: the slip a force needs) may
-  // be off: the sd of its logarithm (model file `tire_sd: slip_stiffness`; 0.69: half or twice
-  // as steep at one sd; at most kMaxSlipStiffnessRelativeSd). The single front end's sd then
-  // include how far its estimate moves with the slope so moved (RunEkf; the window adds that
-  // share to its own), and the batch smoother's consider covariance counts it with tire_sd and
-  // rolling_sd (BatchSmootherOptions::consider_law_uncertainty); both at exp(-sd) and exp(+sd)
-  // (SlipStiffnessSdScales). 0: exact. Unused where law_samples replace it. A law nobody fitted
-  // to this terrain is a guess: by default half or twice as steep at one sd (0.7: the least of
-  // 0.3, 0.5, 0.7, 1.0 that put the front end's velocity error inside its 95 % bound on 85 % of
-  // ward21m's samples, seeds 1-10; docs/mismatch.md).
+  // be off: the sd of its logarithm (model file `tire_sd: slip_stiffness`; at most
+  // kMaxSlipStiffnessRelativeSd). The single front end's sd then include how far its estimate
+  // moves with the slope so moved (RunEkf; the window and the chunks add that share to their own),
+  // and the batch smoother's consider covariance counts it with tire_sd and rolling_sd
+  // (BatchSmootherOptions::consider_law_uncertainty, unless At's or C2's sd is stated); both at
+  // exp(-sd) and exp(+sd) (SlipStiffnessSdScales). 0: the law is exact. Where law_samples are
+  // listed the bank's spread and the batch's soils replace it (`--single-law` still takes it).
+  // A law nobody fitted to this terrain is a guess: by default half or twice as steep at one sd
+  // (chosen on ward21m seeds 1-10, docs/mismatch.md).
   double tire_slip_stiffness_relative_sd = 0.7;
   // Or the laws of the soils it was fitted over (from vehicle.yaml `law_samples`): with two or
   // more, their spread around the law (correlations included) replaces the three above in the

@@ -84,14 +84,13 @@ void RunChosenFilter(const DriveLog& log, const ModelConfig& model, const Filter
   }
 }
 
-// ModelConfig::tire_slip_stiffness_relative_sd, a consider covariance for the single front end:
-// the same filter run again with the law's slope at small slip (At and C2) scaled by exp(-sd)
-// and by exp(+sd) (SlipStiffnessSdScales), each state's variance increased by the mean of the two
-// squared shifts. A slope that
-// is off moves the velocity where the law holds it (the slip the force needs) and hardly where it
-// does not (a hold-back, where the slip is the wheels' and GNSS's): the shift goes through the
-// filter's own gains. The estimates are unchanged; the shift's sd is the law's share
-// (FilterResult::law_spread_sd). Left out, with a note, when a moved run diverged.
+// ModelConfig::tire_slip_stiffness_relative_sd, a consider covariance for the single front end: the
+// same filter run again with the law's slope at small slip (At and C2) scaled by exp(-sd) and by
+// exp(+sd) (SlipStiffnessSdScales), each state's variance increased by the mean of the two squared
+// shifts. A slope that is off moves the velocity where the law holds it (the slip the force needs)
+// and hardly where it does not (a hold-back, where the slip is the wheels' and GNSS's): the shift
+// goes through the filter's own gains. The estimates are unchanged; the shift's sd is the law's
+// share (FilterResult::law_spread_sd). Left out, with a note, when a moved run diverged.
 void AddLawSlopeConsider(const DriveLog& log, const ModelConfig& model,
                          const FilterRunOptions& options, const StreamSelection& selection,
                          FilterResult* result) {
@@ -142,8 +141,7 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& model,
   const double slope_sd = model.tire_slip_stiffness_relative_sd;
   if (!(slope_sd >= 0.0 && slope_sd <= kMaxSlipStiffnessRelativeSd)) {
     throw std::invalid_argument("RunEkf: tire_sd.slip_stiffness " + std::to_string(slope_sd) +
-                                " must lie in [0, " + std::to_string(kMaxSlipStiffnessRelativeSd) +
-                                "]");
+                                " must lie in [0, 2]");
   }
   FilterResult result;
   StreamSelection selection;

@@ -208,7 +208,9 @@ TEST(BatchSmoother, TheLawsStatedUncertaintyIsInTheSd) {
   for (size_t k = 0; k < on.estimates.size(); ++k) {
     guess_var += std::pow(guess.estimates[k].sd[ward::kVbx], 2);
     exact_var += std::pow(on.estimates[k].sd[ward::kVbx], 2);
-    if (k % 50 == 0) EXPECT_EQ(on.estimates[k].sd[ward::kVbx], off.estimates[k].sd[ward::kVbx]);
+    if (k % 50 == 0) {
+      EXPECT_EQ(on.estimates[k].sd[ward::kVbx], off.estimates[k].sd[ward::kVbx]);
+    }
   }
   EXPECT_GT(guess_var, exact_var);
 }

@@ -66,6 +66,7 @@ TEST(EkfRunner, TheBankKeepsItsOwnSpread) {
   const DriveLog log = testing::SimulatedScenario("ward21/01");
   ModelConfig model = DefaultModelConfig(log.vehicle);
   ASSERT_GE(model.law_samples.size(), 2u);
+  model.tire_slip_stiffness_relative_sd = 0.0;
   const FilterResult plain = RunEkf(log, model);
   model.tire_slip_stiffness_relative_sd = 0.7;
   const FilterResult considered = RunEkf(log, model);
