@@ -249,6 +249,7 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"gps_sd_v", &m.measurement.gps_sd_v_mps, false}}},
       {"weak_constraints",
        {{"sd_oppose_motion", &wc.sd_oppose_motion, false},
+        {"oppose_motion_cauchy_scale", &wc.oppose_motion_cauchy_scale_mps2, false},
         {"sd_act_quickly", &wc.sd_act_quickly, false},
         {"sd_no_pull_back", &wc.sd_no_pull_back, false},
         {"sd_at_rest", &wc.sd_at_rest, false},
@@ -485,6 +486,7 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                                 {"gps_sd_xy", m.measurement.gps_sd_xy_m},
                                 {"gps_sd_v", m.measurement.gps_sd_v_mps}});
   section("weak_constraints", {{"sd_oppose_motion", wc.sd_oppose_motion},
+                               {"oppose_motion_cauchy_scale", wc.oppose_motion_cauchy_scale_mps2},
                                {"sd_act_quickly", wc.sd_act_quickly},
                                {"sd_no_pull_back", wc.sd_no_pull_back},
                                {"sd_at_rest", wc.sd_at_rest},

@@ -111,6 +111,10 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "rolling.R1 and rolling.R2 must be non-negative";
     return false;
   }
+  if (!(weak_constraints.oppose_motion_cauchy_scale_mps2 >= 0.0)) {
+    *error = "weak_constraints.oppose_motion_cauchy_scale must be non-negative (0: the paper's)";
+    return false;
+  }
   if (!(weak_constraints.decay_alpha > 0.0 && weak_constraints.decay_alpha < 1.0)) {
     *error = "weak_constraints.decay_alpha must lie in (0, 1)";
     return false;

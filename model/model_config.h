@@ -41,10 +41,16 @@ struct ProcessNoiseConfig {
 // with a plain 0.05 sigma, WC2 alone would pin a_dist to 5 mm/s^2 within a second).
 struct WeakConstraintConfig {
   double sd_oppose_motion = 0.1;  // WC1, m/s^2 sqrt(s)
-  double sd_act_quickly = 0.2;    // WC2, m/s^2 sqrt(s)
-  double sd_no_pull_back = 0.1;   // WC3, m/s^2 sqrt(s)
-  double sd_at_rest = 0.02;       // WC4, on a_dist and b_ax (m/s^2 sqrt(s)); b_gz uses sd/10 rad/s
-  double sd_bound = 0.05;         // WC5 and WC6, in the bounded state's unit x sqrt(s)
+  // WC1 doubted as the push grows: its variance times 1 + (a_dist / scale)^2 (the weight of a
+  // Cauchy loss of that scale, in m/s^2; the smoother's prior carries that loss). A forward push
+  // of several m/s^2 is the tire law failing in a transient (a tread that relaxes, a body that
+  // overtakes its wheels), not a disturbance the constraint should hold at zero through the
+  // law's slope. 0: the paper's constraint.
+  double oppose_motion_cauchy_scale_mps2 = 1.0;
+  double sd_act_quickly = 0.2;   // WC2, m/s^2 sqrt(s)
+  double sd_no_pull_back = 0.1;  // WC3, m/s^2 sqrt(s)
+  double sd_at_rest = 0.02;      // WC4, on a_dist and b_ax (m/s^2 sqrt(s)); b_gz uses sd/10 rad/s
+  double sd_bound = 0.05;        // WC5 and WC6, in the bounded state's unit x sqrt(s)
   double min_slip_rate_per_s = 0.05;      // WC2 min_delta_i: slow slip growth, per second
   double slip_threshold = 0.3;            // WC2 thresh_i: WC2 applies only below this EMA slip
   double decay_alpha = 0.995;             // WC2 alpha, 0 < alpha < 1, applied per filter cycle

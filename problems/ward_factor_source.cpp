@@ -397,8 +397,12 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   const double still = options_.wheel_still_radps;
   const double vel_dir = DriveDirection(w[0], w[1], still);
   if (vel_dir != 0.0) {
-    Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, wc.sd_oppose_motion / root_dt), nullptr,
-        x);
+    // The EKF's doubt of a large push (weak_constraints.cpp) as the loss's weight: Cauchy's
+    // 1 / (1 + r^2 / b^2) at r = a_dist / sd equals 1 / (1 + (a_dist / scale)^2) at b = scale / sd.
+    const double sd = wc.sd_oppose_motion / root_dt;
+    const double scale = wc.oppose_motion_cauchy_scale_mps2;
+    Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, sd),
+        scale > 0.0 ? new ceres::CauchyLoss(scale / sd) : nullptr, x);
     ++counts->oppose_motion;
   }
   if (stop_timers_[k].AtRestFor(times_[k], wc.stop_time_s)) {

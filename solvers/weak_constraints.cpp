@@ -24,9 +24,11 @@ void CollectWeakConstraints(const double* x, const double* x_prev, const WeakCon
                             const WeakConstraintConfig& c, std::vector<PseudoMeasurement>* out) {
   using namespace ward;  // NOLINT: state indices
   const double a_dist = x[kAdist];
-  // WC1: the disturbance only opposes motion.
+  // WC1: the disturbance only opposes motion (doubted as the push grows: a Cauchy weight).
   if (in.vel_dir != 0.0 && Sign(a_dist) == in.vel_dir) {
-    out->push_back({WeakConstraint::kOpposeMotion, kAdist, 0.0, c.sd_oppose_motion});
+    const double scale = c.oppose_motion_cauchy_scale_mps2;
+    const double doubt = scale > 0.0 ? std::sqrt(1.0 + (a_dist / scale) * (a_dist / scale)) : 1.0;
+    out->push_back({WeakConstraint::kOpposeMotion, kAdist, 0.0, c.sd_oppose_motion * doubt});
   }
   // WC2: a disturbance that grows slowly while slip stays small is decayed toward zero.
   if (in.slip_ema_rate_per_s > 0.0 && in.slip_ema_rate_per_s < c.min_slip_rate_per_s &&

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "evaluation/evaluation.h"
@@ -13,12 +14,16 @@
 namespace slipgraph {
 namespace testing {
 
+// adjust, when given, changes the model of each run (its vehicle's default) before the run.
 inline Evaluation EvaluateFrontEnd(const std::vector<const char*>& names, uint64_t seed,
-                                   const FilterRunOptions& options) {
+                                   const FilterRunOptions& options,
+                                   const std::function<void(ModelConfig*)>& adjust = {}) {
   std::vector<Evaluation> runs;
   for (const char* name : names) {
     const DriveLog log = SimulatedScenario(name, seed);
-    const FilterResult result = RunEkf(log, DefaultModelConfig(log.vehicle), options);
+    ModelConfig model = DefaultModelConfig(log.vehicle);
+    if (adjust) adjust(&model);
+    const FilterResult result = RunEkf(log, model, options);
     runs.push_back(Evaluate(log, EstimateTable(result.estimates)));
   }
   return Combine(runs, "runs");

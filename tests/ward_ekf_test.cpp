@@ -392,5 +392,42 @@ TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlon
   EXPECT_LT(b.velocity_rmse, 1.05 * a.velocity_rmse);
 }
 
+// Weak constraint 1 doubted as the push grows (weak_constraints.oppose_motion_cauchy_scale) on
+// three ward21m runs of seed 4 whose robot surges when a hold-back lets go: the peaked law's tread,
+// relaxing, pushes on while the body overtakes its wheels, a force eq. (8) cannot give. The
+// paper's constraint holds that push at zero through the law's slope, the velocity leaves the
+// surge 0.1-0.15 m/s below the body's and the held disturbance then stands the robot still for
+// seconds (docs/mismatch.md). Measured: false immobilized 9.97 -> 0.24 % of samples, velocity
+// RMSE 0.098 -> 0.034 m/s. The control: three matched ward21 runs, the single filter on the mean
+// law: the detections and the false alarms unchanged, the velocity error 0.0166 -> 0.0173 m/s
+// (+4 %; +2-3 % over seeds 11-40's 600 runs, hence the bound of 6 %).
+TEST(WardEkf, DoubtedOpposeMotionLetsTheVelocityFollowASurge) {
+  const auto suite = [](const std::vector<const char*>& names, uint64_t seed, double scale) {
+    FilterRunOptions options;
+    options.multiple_model = false;
+    return testing::EvaluateFrontEnd(names, seed, options, [scale](ModelConfig* model) {
+      model->weak_constraints.oppose_motion_cauchy_scale_mps2 = scale;
+    });
+  };
+  const double kDefault = WeakConstraintConfig().oppose_motion_cauchy_scale_mps2;
+  const std::vector<const char*> surging = {"ward21m/09", "ward21m/14", "ward21m/18"};
+  const Evaluation paper = suite(surging, 4, 0.0), doubted = suite(surging, 4, kDefault);
+  std::printf("ward21m seed 4, runs 09 14 18: false %.4f -> %.4f, v RMSE %.4f -> %.4f\n",
+              paper.false_immobilized_fraction(), doubted.false_immobilized_fraction(),
+              paper.velocity_rmse, doubted.velocity_rmse);
+  EXPECT_EQ(doubted.detected(), paper.detected());
+  EXPECT_GT(paper.false_immobilized_fraction(), 0.05);
+  EXPECT_LT(doubted.false_immobilized_fraction(), 0.2 * paper.false_immobilized_fraction());
+  EXPECT_LT(doubted.velocity_rmse, 0.5 * paper.velocity_rmse);
+  const std::vector<const char*> matched = {"ward21/01", "ward21/02", "ward21/03"};
+  const Evaluation a = suite(matched, 1, 0.0), b = suite(matched, 1, kDefault);
+  std::printf("ward21 seed 1, runs 01-03: detected %d -> %d, false %d -> %d, v RMSE %.4f -> %.4f\n",
+              a.detected(), b.detected(), a.false_immobilized_samples, b.false_immobilized_samples,
+              a.velocity_rmse, b.velocity_rmse);
+  EXPECT_EQ(b.detected(), a.detected());
+  EXPECT_EQ(b.false_immobilized_samples, a.false_immobilized_samples);
+  EXPECT_LT(b.velocity_rmse, 1.06 * a.velocity_rmse);
+}
+
 }  // namespace
 }  // namespace slipgraph

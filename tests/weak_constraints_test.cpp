@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace slipgraph {
 namespace {
 
@@ -45,6 +47,27 @@ TEST(WeakConstraints, Wc1DisturbanceMustOpposeMotion) {
   EXPECT_EQ(p->z, 0.0);  // innovation 0 - x3
   in.vel_dir = 0.0;      // wheels stopped: no direction, no constraint
   EXPECT_EQ(Count(Collect(x, in), WeakConstraint::kOpposeMotion), 0);
+}
+
+// WC1's variance grows by 1 + (a_dist / scale)^2 (a Cauchy weight): a small push is held at the
+// paper's sd, a push of several m/s^2 (the tire law failing in a transient) hardly at all.
+TEST(WeakConstraints, Wc1IsDoubtedAsThePushGrows) {
+  WeakConstraintInputs in;
+  in.vel_dir = -1.0;  // reversing: a backward disturbance pushes
+  WeakConstraintConfig config;
+  ASSERT_EQ(config.oppose_motion_cauchy_scale_mps2, 1.0);
+  const auto density = [&](double a_dist) {
+    const double x[kStateSize] = {-1.0, 0.0, a_dist, -4.0, -4.0, 0.0, 0.0};
+    std::vector<PseudoMeasurement> out;
+    CollectWeakConstraints(x, x, in, config, &out);
+    const PseudoMeasurement* p = Find(out, WeakConstraint::kOpposeMotion, kAdist);
+    return p != nullptr ? p->density : -1.0;
+  };
+  EXPECT_DOUBLE_EQ(density(-0.4), 0.1 * std::sqrt(1.0 + 0.16));
+  EXPECT_DOUBLE_EQ(density(-3.0), 0.1 * std::sqrt(10.0));
+  EXPECT_EQ(density(0.5), -1.0);                 // opposing the motion: no constraint
+  config.oppose_motion_cauchy_scale_mps2 = 0.0;  // the paper's
+  EXPECT_DOUBLE_EQ(density(-3.0), 0.1);
 }
 
 TEST(WeakConstraints, Wc2DecaysASlowlyGrowingDisturbanceWhileSlipIsSmall) {

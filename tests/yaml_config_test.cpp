@@ -119,6 +119,9 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {decay_alpha: 1.5}\n"), LagrVehicle()),
                InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("tire: {C1: -1}\n"), LagrVehicle()), InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {oppose_motion_cauchy_scale: -1}\n"),
+                             LagrVehicle()),
+               InputError);
   EXPECT_THROW(
       ReadModelYaml(WriteModel("calibration: {wheel_radius_scale_left: 0}\n"), LagrVehicle()),
       InputError);
@@ -128,6 +131,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   ModelConfig m = DefaultModelConfig(LagrVehicle());
   m.tire.C2 = -0.02;
   m.weak_constraints.decay_alpha = 0.7;
+  m.weak_constraints.oppose_motion_cauchy_scale_mps2 = 0.0;
   m.effects = {"quadratic_drag", "imu_mounting_pitch"};
   m.calibration.wheel_radius_scale_right = 0.97;
   m.calibration.track_width_m = 0.81;
