@@ -189,7 +189,7 @@ void AddNoGnssFadingFlag(CLI::App* cmd, double* fading_fixes) {
   cmd->add_flag_callback(
       "--no-gnss-fading", [fading_fixes] { *fading_fixes = 0.0; },
       "No fading memory on GNSS in the single front end (with --single-law or without law "
-      "samples: the paper's filter). By default its covariance widens when its GNSS innovations "
+      "samples). By default its covariance widens when its GNSS innovations "
       "keep one sign, so that GNSS pulls a drifting velocity back (EkfOptions::gnss_fading_*; "
       "docs/mismatch.md)");
 }

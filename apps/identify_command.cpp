@@ -122,12 +122,12 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     text << DescribeIdentification(result);
     nlohmann::json json = ToJson(result);
     if (!held_out.empty()) {
-      // Scored by the paper's filter and by the default front end (its GNSS fading memory takes
-      // out part of what a better law would: docs/identify.md).
+      // Scored without the GNSS fading memory and by the default front end (the fading takes out
+      // part of what a better law would: docs/identify.md).
       for (const bool fading : {false, true}) {
         text << "held out, "
              << (fading ? "the default front end (GNSS fading memory, as `filter --model` runs it)"
-                        : "the paper's filter (`filter --no-gnss-fading`)")
+                        : "without the fading memory (`filter --no-gnss-fading`)")
              << " (the model file's values -> the identified):\n";
         const char* key = fading ? "held_out_default_front_end" : "held_out";
         for (size_t i = 0; i < held_out.size(); ++i) {
