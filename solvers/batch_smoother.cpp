@@ -10,6 +10,7 @@
 #include "model/option_check.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/chain_solver.h"
+#include "solvers/model_choice_variance.h"
 #include "solvers/smoothed_detection.h"
 
 namespace slipgraph {
@@ -349,6 +350,27 @@ SmootherResult SmoothBatchRegated(const DriveLog& log, const ModelConfig& model,
   return second;
 }
 
+// BatchSmootherOptions::model_choice_variance: `kept`'s sd widened by `other`'s solution, whose
+// log-likelihood ratio against it is `log_ratio`. Both need their covariance.
+void AddOtherModelsVariance(const SmootherResult& other, double log_ratio,
+                            const BatchSmootherOptions& options, const std::string& name,
+                            SmootherResult* kept) {
+  if (!options.model_choice_variance || !options.covariance) return;
+  if (!kept->covariance_ok || !other.covariance_ok) {
+    kept->notes.push_back("the sd do not count the solution with " + name +
+                          ": no covariance for both");
+    return;
+  }
+  const double p = OtherModelProbability(log_ratio);
+  AddModelChoiceVariance(other.estimates, p, &kept->estimates);
+  char text[160];
+  std::snprintf(
+      text, sizeof(text),
+      "the sd count the solution with %s, its probability %.2f by GNSS's likelihood ratio",
+      name.c_str(), p);
+  kept->notes.push_back(text);
+}
+
 // The GNSS factors' cost at a solution (NaN without GNSS factors).
 double GnssCost(const SmootherResult& result) {
   const auto it = result.cost_by_kind.find("gnss");
@@ -390,6 +412,9 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const 
                 with_stiffness, without);
   if (!(with_stiffness - without > options.stiffness_gnss_margin)) {
     result.notes.push_back(std::string("the estimated slip stiffness kept: ") + costs);
+    // log L(as given) - log L(stiffness) = the stiffness's GNSS cost - the law's.
+    AddOtherModelsVariance(as_given, with_stiffness - without, options, "the law as given",
+                           &result);
     return result;
   }
   const auto [lo, hi] = std::minmax_element(result.stiffness.begin(), result.stiffness.end());
@@ -399,6 +424,8 @@ SmootherResult SmoothBatch(const DriveLog& log, const ModelConfig& model, const 
       std::string("the slip stiffness was estimated (") + range +
       ") and not kept: its velocities fit GNSS worse than the law's as given (" + costs +
       "); the law's slope is not what the model lacks here, the law as given is reported");
+  AddOtherModelsVariance(result, without - with_stiffness, options, "the estimated stiffness",
+                         &as_given);
   return as_given;
 }
 

@@ -87,6 +87,12 @@ struct BatchSmootherOptions {
   // attitude error), pulls the stiffness far down and the velocity below GNSS with it (ward21m,
   // docs/mismatch.md). Costs a second smooth. Infinity: no check.
   double stiffness_gnss_margin = 3.0;
+  // The two solutions the check compares are two models GNSS tells apart by little (on ward21m
+  // by a cost of -1 to +2 on most runs). With this on, the reported sd count the one not kept:
+  // each state's variance becomes the mean squared error about the kept solution over both,
+  // weighted by GNSS's likelihood ratio at even prior odds (solvers/model_choice_variance.h).
+  // The estimates are unchanged.
+  bool model_choice_variance = true;
 
   // The solver's settings (the filter's and the problem's are checked where they are used).
   bool IsValid(std::string* error) const;
