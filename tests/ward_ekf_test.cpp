@@ -421,9 +421,10 @@ TEST(WardEkf, DoubtedOpposeMotionLetsTheVelocityFollowASurge) {
   EXPECT_LT(doubted.velocity_rmse, 0.5 * paper.velocity_rmse);
   const std::vector<const char*> matched = {"ward21/01", "ward21/02", "ward21/03"};
   const Evaluation a = suite(matched, 1, 0.0), b = suite(matched, 1, kDefault);
-  std::printf("ward21 seed 1, runs 01-03: detected %d -> %d, false %d -> %d, v RMSE %.4f -> %.4f\n",
-              a.detected(), b.detected(), a.false_immobilized_samples, b.false_immobilized_samples,
-              a.velocity_rmse, b.velocity_rmse);
+  std::printf(
+      "ward21 seed 1, runs 01-03: detected %d -> %d, false %ld -> %ld, v RMSE %.4f -> %.4f\n",
+      a.detected(), b.detected(), a.false_immobilized_samples, b.false_immobilized_samples,
+      a.velocity_rmse, b.velocity_rmse);
   EXPECT_EQ(b.detected(), a.detected());
   EXPECT_EQ(b.false_immobilized_samples, a.false_immobilized_samples);
   EXPECT_LT(b.velocity_rmse, 1.06 * a.velocity_rmse);
