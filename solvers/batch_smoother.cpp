@@ -351,7 +351,8 @@ SmootherResult SmoothBatchRegated(const DriveLog& log, const ModelConfig& model,
 }
 
 // BatchSmootherOptions::model_choice_variance: `kept`'s sd widened by `other`'s solution, whose
-// log-likelihood ratio against it is `log_ratio`. Both need their covariance.
+// log-likelihood ratio against it is `log_ratio`. Both need their covariance. The correlation of
+// successive velocity errors (velocity_next_correlation) stays the kept solution's own.
 void AddOtherModelsVariance(const SmootherResult& other, double log_ratio,
                             const BatchSmootherOptions& options, const std::string& name,
                             SmootherResult* kept) {

@@ -7,6 +7,9 @@
 // Volinsky 1999, eq. 2 and 3), taken about the reported solution. The other model's own sd are
 // not mixed in: a model that fixes a parameter the kept one estimates reports smaller sd, not a
 // smaller error, and would narrow the kept solution's where the two agree.
+// The probability is the caller's: the batch (BatchSmootherOptions::model_choice_variance) takes
+// GNSS's likelihood ratio at the two fitted solutions, not the models' marginal evidence, which
+// would also charge the richer model for its freedom.
 #pragma once
 
 #include <vector>

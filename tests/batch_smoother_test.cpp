@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,18 @@ namespace {
 bool Noted(const SmootherResult& result, const char* text) {
   return std::any_of(result.notes.begin(), result.notes.end(),
                      [&](const std::string& note) { return note.find(text) != std::string::npos; });
+}
+
+// The probability the run's note gives the solution its sd count (model_choice_variance), NaN
+// without that note.
+double NotedOtherProbability(const SmootherResult& result) {
+  for (const std::string& note : result.notes) {
+    const size_t at = note.find(", its probability ");
+    if (note.rfind("the sd count the solution with", 0) == 0 && at != std::string::npos) {
+      return std::atof(note.c_str() + at + std::string(", its probability ").size());
+    }
+  }
+  return std::nan("");
 }
 
 TEST(BatchSmoother, Fig5IsSmoothedWithUncertaintyAndTheHoldBackFound) {
@@ -252,6 +265,8 @@ TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
     ASSERT_FALSE(checked.used_fallback);
     EXPECT_TRUE(checked.stiffness.empty());
     EXPECT_TRUE(Noted(checked, "and not kept"));
+    // Not kept: GNSS favours the law as given by more than the margin, e^3 to 1.
+    EXPECT_LT(NotedOtherProbability(checked), 0.05);
     EXPECT_LT(Evaluate(log, EstimateTable(checked.estimates)).velocity_rmse, 0.035);
     BatchSmootherOptions unchecked = options;
     unchecked.stiffness_gnss_margin = std::numeric_limits<double>::infinity();
@@ -290,6 +305,7 @@ TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
     const SmootherResult alone = SmoothBatch(log, model, options);
     ASSERT_FALSE(counted.stiffness.empty());
     EXPECT_TRUE(Noted(counted, "the sd count the solution with the law as given"));
+    const double p_as_given = NotedOtherProbability(counted);
     ASSERT_EQ(counted.estimates.size(), alone.estimates.size());
     double ratio = 0.0;
     for (size_t k = 0; k < counted.estimates.size(); ++k) {
@@ -303,6 +319,7 @@ TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
     std::printf("%s: v NEES inside 95 %%: %.3f without, %.3f with; sd x %.2f on average\n", name,
                 without.nees_within_95_fraction(), with.nees_within_95_fraction(), ratio);
     if (std::string(name).rfind("ward21m", 0) == 0) {  // measured 0.23 -> 0.82, sd x 1.56
+      EXPECT_NEAR(p_as_given, 0.69, 0.05);  // GNSS favours the law as given (cost 0.8 lower)
       EXPECT_LT(without.nees_within_95_fraction(), 0.4);
       EXPECT_GT(with.nees_within_95_fraction(), 0.7);
     } else {  // measured 0.97 -> 1.00, sd x 1.23
