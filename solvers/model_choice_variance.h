@@ -23,8 +23,8 @@ namespace slipgraph {
 double OtherModelProbability(double log_likelihood_ratio);
 
 // Widens every state's sd in `kept` as above. `other`: the other model's solution on the same
-// samples (same size and times). Throws std::invalid_argument
-// when the two do not match or p_other is outside [0, 1].
+// samples (same size and times). Throws std::invalid_argument when the two do not match or
+// p_other is outside [0, 1].
 void AddModelChoiceVariance(const std::vector<WardEstimate>& other, double p_other,
                             std::vector<WardEstimate>* kept);
 

@@ -291,8 +291,7 @@ TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
 // model_choice_variance). ward21m/05, seed 1: the stiffness is kept (GNSS gives the law as given
 // a probability of 0.69) and its velocity runs below the truth; counted, the error is inside its
 // 95 % bound on far more samples. On ward21/05, where the stiffness is right, the sd grow by a
-// fifth.
-// The estimates are the same either way.
+// fifth. The estimates are the same either way.
 TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
   for (const char* name : {"ward21m/05", "ward21/05"}) {
     SCOPED_TRACE(name);
