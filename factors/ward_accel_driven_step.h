@@ -13,7 +13,8 @@
 // each stage needs only the yaw acceleration's four partials, from 4-wide Jets of the shared tire
 // physics (ComputeTireForces). The 7-wide Jet pass through all four stages it replaces was about
 // 45 % of an EKF step (perf, docs/ekf.md). Tested against that pass
-// (tests/ward_accel_driven_step_test.cpp).
+// (tests/ward_accel_driven_step_test.cpp). The dynamics factor takes its Jacobians from here too,
+// with the column of the specific force (through it, the accelerometer offset c_ax).
 #pragma once
 
 #include <ceres/jet.h>
@@ -52,13 +53,13 @@ inline YawAccelerationPartials YawAccelerationWithPartials(const double* x,
 }
 
 // x_next = x propagated over dt_s; A = d x_next / d x. specific_force_mps2 is a_x - c_ax.
-inline void PropagateAccelerometerDriven(const double* x, double specific_force_mps2,
-                                         const AttitudeLoads<double>& loads, const Params& p,
-                                         double dt_s, double* x_next,
-                                         Eigen::Matrix<double, kStateSize, kStateSize>* A,
-                                         double max_substep_s = 0.01) {
-  // The non-identity entries of d state / d x, in this order.
-  enum Entry : int { kVB, kBB, kYV, kYB, kYWl, kYWr, kYY, kGG, kEntries };
+// d_specific_force, when given: d x_next / d specific_force_mps2 (non-zero in v_bx and yaw_rate).
+inline void PropagateAccelerometerDriven(
+    const double* x, double specific_force_mps2, const AttitudeLoads<double>& loads,
+    const Params& p, double dt_s, double* x_next, Eigen::Matrix<double, kStateSize, kStateSize>* A,
+    Eigen::Matrix<double, kStateSize, 1>* d_specific_force = nullptr, double max_substep_s = 0.01) {
+  // The non-identity entries of d state / d x, in this order, then d [v_bx, yaw_rate] / d a_x.
+  enum Entry : int { kVB, kBB, kYV, kYB, kYWl, kYWr, kYY, kGG, kVA, kYA, kEntries };
   using Sensitivity = Eigen::Matrix<double, kEntries, 1>;
   const double gravity_along_x = loads.gravity_along_x_mps2;
 
@@ -83,6 +84,8 @@ inline void PropagateAccelerometerDriven(const double* x, double specific_force_
     (*ds_dot)(kYWr) = g.d_omega_right + g.d_yaw_rate * ds(kYWr);
     (*ds_dot)(kYY) = g.d_yaw_rate * ds(kYY);
     (*ds_dot)(kGG) = -ds(kGG) / p.gyro_bias_tau_s;
+    (*ds_dot)(kVA) = 1.0;
+    (*ds_dot)(kYA) = g.d_v_bx * ds(kVA) + g.d_yaw_rate * ds(kYA);
   };
 
   const int substeps = dt_s > max_substep_s ? static_cast<int>(std::ceil(dt_s / max_substep_s)) : 1;
@@ -118,6 +121,11 @@ inline void PropagateAccelerometerDriven(const double* x, double specific_force_
   (*A)(kYawRate, kOmegaRight) = ds(kYWr);
   (*A)(kYawRate, kYawRate) = ds(kYY);
   (*A)(kGyroBias, kGyroBias) = ds(kGG);
+  if (d_specific_force != nullptr) {
+    d_specific_force->setZero();
+    (*d_specific_force)(kVbx) = ds(kVA);
+    (*d_specific_force)(kYawRate) = ds(kYA);
+  }
 }
 
 }  // namespace ward

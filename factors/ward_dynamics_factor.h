@@ -15,9 +15,11 @@
 #include <ceres/jet.h>
 #include <ceres/sized_cost_function.h>
 
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
 
+#include "factors/ward_accel_driven_step.h"
 #include "factors/ward_dynamics.h"
 
 namespace slipgraph {
@@ -66,8 +68,25 @@ struct WardDynamicsFactor {
     }
   }
 
+  // f and its Jacobian d f / d [x_k, c_ax] by the chain rule through the RK4 stages
+  // (factors/ward_accel_driven_step.h, as the EKF's prediction). Accelerometer-driven form only:
+  // false, and nothing written, for eq. (10) as printed.
+  using PredictionJacobian = Eigen::Matrix<double, ward::kStateSize, ward::kStateSize + 1>;
+  bool PredictWithJacobian(const double* x_k, double accel_offset, double* predicted,
+                           PredictionJacobian* J) const {
+    if (std::isnan(accel_input_mps2_)) return false;
+    Eigen::Matrix<double, ward::kStateSize, ward::kStateSize> A;
+    Eigen::Matrix<double, ward::kStateSize, 1> d_specific_force;
+    ward::PropagateAccelerometerDriven(x_k, accel_input_mps2_ - accel_offset, loads_, params_,
+                                       dt_s_, predicted, &A, &d_specific_force);
+    J->leftCols<ward::kStateSize>() = A;
+    J->col(ward::kStateSize) = -d_specific_force;  // the specific force is a_x - c_ax
+    return true;
+  }
+
   // The factor as the problems use it: x_{k+1} enters linearly (its Jacobian is S on the rows'
-  // columns), so only x_k and c_ax are differentiated, with 8-wide Jets instead of the 16 an
+  // columns), so only x_k and c_ax are differentiated: by the chain rule through RK4 in the
+  // accelerometer-driven form, with 8-wide Jets for eq. (10) as printed, instead of the 16 an
   // automatic differentiation of all three blocks takes. Checked against CreateAutoDiff in
   // tests/ward_dynamics_factor_test.cpp.
   static ceres::CostFunction* Create(const ward::Params& params,
@@ -108,17 +127,25 @@ class WardDynamicsCost final
     const double* x_next = parameters[1];
     const double* offsets = parameters[2];
     if (jacobians == nullptr) return factor_(x_k, x_next, offsets, residuals);
-    using Jet = ceres::Jet<double, ward::kStateSize + 1>;
-    Jet x[ward::kStateSize], predicted[ward::kStateSize];
-    for (int j = 0; j < ward::kStateSize; ++j) x[j] = Jet(x_k[j], j);
-    factor_.Predict(x, Jet(offsets[0], ward::kStateSize), predicted);
+    double predicted[ward::kStateSize];
+    WardDynamicsFactor::PredictionJacobian J;  // d f / d [x_k, c_ax]
+    if (!factor_.PredictWithJacobian(x_k, offsets[0], predicted, &J)) {
+      using Jet = ceres::Jet<double, ward::kStateSize + 1>;
+      Jet x[ward::kStateSize], predicted_jet[ward::kStateSize];
+      for (int j = 0; j < ward::kStateSize; ++j) x[j] = Jet(x_k[j], j);
+      factor_.Predict(x, Jet(offsets[0], ward::kStateSize), predicted_jet);
+      for (int r = 0; r < ward::kStateSize; ++r) {
+        predicted[r] = predicted_jet[r].a;
+        J.row(r) = predicted_jet[r].v.transpose();
+      }
+    }
     for (int i = 0; i < kN; ++i) {
       const int row = WardDynamicsFactor::kRows[i];
       const double s = factor_.sqrt_information(i);
-      residuals[i] = s * (x_next[row] - predicted[row].a);
+      residuals[i] = s * (x_next[row] - predicted[row]);
       if (jacobians[0] != nullptr) {
         for (int j = 0; j < ward::kStateSize; ++j) {
-          jacobians[0][i * ward::kStateSize + j] = -s * predicted[row].v[j];
+          jacobians[0][i * ward::kStateSize + j] = -s * J(row, j);
         }
       }
       if (jacobians[1] != nullptr) {
@@ -126,7 +153,7 @@ class WardDynamicsCost final
         jacobians[1][i * ward::kStateSize + row] = s;
       }
       if (jacobians[2] != nullptr) {
-        jacobians[2][i * 2] = -s * predicted[row].v[ward::kStateSize];
+        jacobians[2][i * 2] = -s * J(row, ward::kStateSize);
         jacobians[2][i * 2 + 1] = 0.0;
       }
     }

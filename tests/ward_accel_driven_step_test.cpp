@@ -33,6 +33,26 @@ struct ReferenceStep {
   }
 };
 
+// The same step as a function of the specific force alone, for its column.
+struct ReferenceStepInForce {
+  const double* x;
+  const AttitudeLoads<double>& loads;
+  const Params& params;
+  double dt_s;
+  template <typename T>
+  void operator()(const T* specific_force_mps2, T* x_next) const {
+    T start[kStateSize];
+    for (int i = 0; i < kStateSize; ++i) start[i] = T(x[i]);
+    PropagateWith(
+        start,
+        [&](const T* state, T* x_dot) {
+          StateDerivative(state, loads, params, x_dot);
+          x_dot[kVbx] = specific_force_mps2[0] - state[kAccelBias] - loads.gravity_along_x_mps2;
+        },
+        dt_s, x_next);
+  }
+};
+
 void ExpectSameAsTheJetPass(const double* x, double specific_force_mps2,
                             const Attitude<double>& attitude, const Params& params, double dt_s) {
   const AttitudeLoads<double> loads = ComputeAttitudeLoads(attitude, params);
@@ -41,9 +61,14 @@ void ExpectSameAsTheJetPass(const double* x, double specific_force_mps2,
   reference(x, expected);
   const StateMatrix expected_A = testing::AutoDiffJacobian<kStateSize, kStateSize>(reference, x);
 
+  const Eigen::Matrix<double, kStateSize, 1> expected_column =
+      testing::AutoDiffJacobian<1, kStateSize>(ReferenceStepInForce{x, loads, params, dt_s},
+                                               &specific_force_mps2);
+
   double next[kStateSize];
   StateMatrix A;
-  PropagateAccelerometerDriven(x, specific_force_mps2, loads, params, dt_s, next, &A);
+  Eigen::Matrix<double, kStateSize, 1> column;
+  PropagateAccelerometerDriven(x, specific_force_mps2, loads, params, dt_s, next, &A, &column);
   for (int i = 0; i < kStateSize; ++i) {
     // The same arithmetic on the values: equal to the last bit.
     EXPECT_EQ(next[i], expected[i]) << "state " << i;
@@ -54,6 +79,8 @@ void ExpectSameAsTheJetPass(const double* x, double specific_force_mps2,
       EXPECT_NEAR(A(r, c), expected_A(r, c), 1e-12 * (1.0 + std::abs(expected_A(r, c))))
           << "A(" << r << ", " << c << ")";
     }
+    EXPECT_NEAR(column(r), expected_column(r), 1e-12 * (1.0 + std::abs(expected_column(r))))
+        << "d x_next / d specific force, row " << r;
   }
 }
 

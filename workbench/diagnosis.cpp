@@ -157,6 +157,10 @@ Fit FitEffect(const DriveLog& log, const ModelConfig& model, const SmootherResul
   // The cost to 1e-7 of itself (about 0.001 on these logs) is enough for a likelihood ratio.
   smoother.function_tolerance = 1e-7;
   smoother.initial_trust_region_radius = options.fit_initial_trust_region_radius;
+  // A fit reports its cost and its term's magnitude and sd: the states' sd and what the law's
+  // uncertainty adds to them are not read.
+  smoother.consider_law_uncertainty = false;
+  smoother.model_choice_variance = false;
   const SmootherResult fit = SmoothBatch(log, with, without.ekf, smoother);
   Fit out;
   if (fit.used_fallback) return out;
