@@ -14,13 +14,15 @@
 // The law, the stiffness and the effects exclude each other (the effects' slip and traction
 // terms see the model's law). Inputs: the attitude at the sample (REP-103 roll
 // and pitch, rad); sd_a includes the tire law's uncertainty (ModelConfig::tire_uncertainty) when
-// the accelerometer also drives the velocity. The balance without effects is differentiated
-// automatically; the effect terms by Jets of the state and every magnitude
+// the accelerometer also drives the velocity. The balance with the model's law takes f_tire's
+// partials from 4-wide Jets, with the law or the stiffness it is differentiated automatically;
+// the effect terms by Jets of the state and every magnitude
 // (tests/accelerometer_factor_test.cpp checks every block's Jacobian numerically).
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/cost_function.h>
+#include <ceres/sized_cost_function.h>
 
 #include <memory>
 #include <stdexcept>
@@ -29,6 +31,7 @@
 
 #include "factors/effect_term.h"
 #include "factors/imu_factor.h"
+#include "factors/tire_acceleration_partials.h"
 #include "factors/tire_law_coefficients.h"
 #include "factors/traction.h"
 
@@ -59,14 +62,45 @@ struct AccelerometerUnknowns {
 
 namespace accelerometer_detail {
 
-struct Plain {
-  AccelerometerReading reading;
-  template <typename T>
-  bool operator()(const T* x, const T* offsets, T* residual) const {
-    const ward::TireForces<T> forces = ward::ComputeTireForces(x, reading.loads, reading.params);
-    residual[0] = reading.Residual(forces.f_tire_mps2, x, offsets);
+// The balance with the model's law: f_tire's partials from one 4-wide Jet pass
+// (factors/tire_acceleration_partials.h), the rest of the residual linear.
+class Plain final : public ceres::SizedCostFunction<1, ward::kStateSize, 2> {
+ public:
+  explicit Plain(const AccelerometerReading& reading) : reading_(reading) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const double* x = parameters[0];
+    const double* offsets = parameters[1];
+    if (jacobians == nullptr) {
+      const ward::TireForces<double> forces =
+          ward::ComputeTireForces(x, reading_.loads, reading_.params);
+      residuals[0] = reading_.Residual(forces.f_tire_mps2, x, offsets);
+      return true;
+    }
+    const ward::TireAccelerationPartials f =
+        ward::TireAccelerationsWithPartials(x, reading_.loads, reading_.params).body_x;
+    residuals[0] = reading_.Residual(f.value, x, offsets);
+    const double w = -reading_.sqrt_information;
+    if (jacobians[0] != nullptr) {
+      double* j = jacobians[0];
+      for (int i = 0; i < ward::kStateSize; ++i) j[i] = 0.0;
+      j[ward::kVbx] = w * f.d_v_bx;
+      j[ward::kAccelBias] = w;
+      j[ward::kAdist] = w;
+      j[ward::kOmegaLeft] = w * f.d_omega_left;
+      j[ward::kOmegaRight] = w * f.d_omega_right;
+      j[ward::kYawRate] = w * f.d_yaw_rate;
+    }
+    if (jacobians[1] != nullptr) {
+      jacobians[1][0] = w;
+      jacobians[1][1] = 0.0;
+    }
     return true;
   }
+
+ private:
+  AccelerometerReading reading_;
 };
 
 struct Law {
@@ -187,7 +221,7 @@ class AccelerometerFactor final : public ceres::CostFunction {
       return new ceres::AutoDiffCostFunction<Stiffness, 1, ward::kStateSize, 2, 1, 1>(
           new Stiffness{reading, unknowns.stiffness_share});
     }
-    return new ceres::AutoDiffCostFunction<Plain, 1, ward::kStateSize, 2>(new Plain{reading});
+    return new Plain(reading);
   }
 
   std::unique_ptr<ceres::CostFunction> base_;

@@ -17,40 +17,15 @@
 // with the column of the specific force (through it, the accelerometer offset c_ax).
 #pragma once
 
-#include <ceres/jet.h>
-
 #include <Eigen/Core>
 #include <cmath>
 
+#include "factors/tire_acceleration_partials.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 
 namespace slipgraph {
 namespace ward {
-
-// g_tire of eq. (2) and its partials with respect to v_bx, yaw_rate, w_l and w_r (the only states
-// the tire forces read).
-struct YawAccelerationPartials {
-  double value_radps2;
-  double d_v_bx;
-  double d_yaw_rate;
-  double d_omega_left;
-  double d_omega_right;
-};
-
-inline YawAccelerationPartials YawAccelerationWithPartials(const double* x,
-                                                           const AttitudeLoads<double>& loads,
-                                                           const Params& p) {
-  using Jet4 = ceres::Jet<double, 4>;
-  Jet4 state[kStateSize];
-  for (int i = 0; i < kStateSize; ++i) state[i] = Jet4(x[i]);
-  state[kVbx].v[0] = 1.0;
-  state[kYawRate].v[1] = 1.0;
-  state[kOmegaLeft].v[2] = 1.0;
-  state[kOmegaRight].v[3] = 1.0;
-  const Jet4 g = ComputeTireForces(state, loads, p).g_tire_radps2;
-  return {g.a, g.v[0], g.v[1], g.v[2], g.v[3]};
-}
 
 // x_next = x propagated over dt_s; A = d x_next / d x. specific_force_mps2 is a_x - c_ax.
 // d_specific_force, when given: d x_next / d specific_force_mps2 (non-zero in v_bx and yaw_rate).
@@ -67,13 +42,13 @@ inline void PropagateAccelerometerDriven(
   // the accelerometer-driven v_bx' (so that the values match PropagateWith's to the bit).
   const auto derivative = [&](const double* s, const Sensitivity& ds, double* s_dot,
                               Sensitivity* ds_dot) {
-    const YawAccelerationPartials g = YawAccelerationWithPartials(s, loads, p);
+    const TireAccelerationPartials g = TireAccelerationsWithPartials(s, loads, p).yaw;
     s_dot[kVbx] = specific_force_mps2 - s[kAccelBias] - gravity_along_x;
     s_dot[kAccelBias] = -s[kAccelBias] / p.accel_bias_tau_s;
     s_dot[kAdist] = 0.0;
     s_dot[kOmegaLeft] = 0.0;
     s_dot[kOmegaRight] = 0.0;
-    s_dot[kYawRate] = g.value_radps2;
+    s_dot[kYawRate] = g.value;
     s_dot[kGyroBias] = -s[kGyroBias] / p.gyro_bias_tau_s;
     // d v_bx / d v_bx stays 1 and the wheel speeds are constant, so:
     (*ds_dot)(kVB) = -ds(kBB);

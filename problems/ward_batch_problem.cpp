@@ -39,6 +39,9 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
     effects = out->effects.data();
     const int count = static_cast<int>(out->effect_terms.size());
     problem.AddParameterBlock(effects, count);
+  }
+  if (effects != nullptr && options.Builds("effect_prior")) {
+    const int count = static_cast<int>(out->effect_terms.size());
     Eigen::VectorXd sd(count);
     for (int j = 0; j < count; ++j) sd[j] = out->effect_terms[j]->prior_sd;
     added.push_back(

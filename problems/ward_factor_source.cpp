@@ -222,6 +222,7 @@ void WardFactorSource::AddStiffnessNode(size_t j, double* nodes, ceres::Problem*
   }
   problem->AddParameterBlock(&nodes[j], 1);
   problem->SetParameterLowerBound(&nodes[j], 0, options_.stiffness_min);
+  if (!options_.Builds(j == 0 ? "stiffness_prior" : "stiffness_walk")) return;
   if (j == 0) {
     added->push_back({"stiffness_prior",
                       problem->AddResidualBlock(
@@ -281,6 +282,7 @@ WardFactorSource::Context WardFactorSource::ContextAt(double t) const {
 
 void WardFactorSource::AddStatePrior(size_t k, double* x, ceres::Problem* problem,
                                      std::vector<AddedFactor>* added) const {
+  if (!options_.Builds("first_state_prior")) return;
   std::array<double, kStateSize> mean, sd;
   for (int i = 0; i < kStateSize; ++i) {
     mean[i] = initial_[k].x[i];
@@ -294,6 +296,7 @@ void WardFactorSource::AddStatePrior(size_t k, double* x, ceres::Problem* proble
 void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double* offsets,
                                       ceres::Problem* problem,
                                       std::vector<AddedFactor>* added) const {
+  if (!options_.Builds("offset_prior")) return;
   const SensorNoise& noise = model_.measurement;
   const ProcessNoiseConfig& q = model_.process;
   added->push_back({"offset_prior", problem->AddResidualBlock(
@@ -320,6 +323,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   const size_t n = size();
   const auto Add = [&](const char* kind, ceres::CostFunction* cost, ceres::LossFunction* loss,
                        auto... blocks) {
+    if (!options_.Builds(kind)) {
+      delete cost;
+      delete loss;
+      return;
+    }
     added->push_back({kind, problem->AddResidualBlock(cost, loss, blocks...)});
   };
   const auto& w = wheel_speeds_[k];
@@ -339,7 +347,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
                                              ward::ComputeAttitudeLoads(c.attitude, params), params,
                                              tire_uncertainty_, imu_period_s_));
     }
-    if (std::isfinite(imu.ax)) {
+    if (std::isfinite(imu.ax) && options_.Builds("accelerometer")) {
       AccelerometerUnknowns unknowns;
       std::vector<double*> blocks = {x, offsets};
       if (globals.law != nullptr) {
@@ -477,7 +485,10 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
 void WardFactorSource::AddLateBodyVelocity(size_t k, const std::function<double*(size_t)>& state_of,
                                            ceres::Problem* problem, std::vector<AddedFactor>* added,
                                            FactorCounts* counts) const {
-  if (!options_.body_velocity_when_available || k == 0 || k >= times_.size()) return;
+  if (!options_.body_velocity_when_available || k == 0 || k >= times_.size() ||
+      !options_.Builds("body_velocity")) {
+    return;
+  }
   const auto available = [&](size_t i) { return options_.body_velocity[i].available_t; };
   auto it = std::upper_bound(velocity_by_availability_.begin(), velocity_by_availability_.end(),
                              times_[k - 1], [&](double t, size_t i) { return t < available(i); });

@@ -8,6 +8,7 @@
 
 #include <ceres/problem.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -122,9 +123,23 @@ struct WardProblemOptions {
   // The effect terms the model's `effects` may name (factors/effect_term.h); null: the
   // catalogue's (CatalogueTerms()). Not owned: it outlives the problem.
   const EffectTerms* effect_terms = nullptr;
+  // The factor kinds to build ("dynamics", "accelerometer", ...); empty: every kind. The law's
+  // consider covariance builds only the kinds the law enters. FactorCounts count every kind.
+  std::vector<std::string> only_kinds;
+  bool Builds(const std::string& kind) const {
+    return only_kinds.empty() ||
+           std::find(only_kinds.begin(), only_kinds.end(), kind) != only_kinds.end();
+  }
   // Each field in its range; the first that is not is named in *error.
   bool IsValid(std::string* error) const;
 };
+
+// The factor kinds the tire and rolling law (and the slip stiffness that scales it) enters; every
+// other kind has the same residuals with any law (tests/ward_factor_source_test.cpp).
+inline const std::vector<std::string>& TireLawFactorKinds() {
+  static const std::vector<std::string> kinds = {"accelerometer", "dynamics"};
+  return kinds;
+}
 
 // A residual block that went into a problem, with its factor kind ("dynamics", "gnss", ...).
 struct AddedFactor {

@@ -1,10 +1,15 @@
 #include "solvers/batch_smoother.h"
 
+#include <ceres/cost_function.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "factors/catalogue_terms.h"
 #include "model/option_check.h"
@@ -101,6 +106,21 @@ Eigen::VectorXd Residuals(ceres::Problem* problem) {
   return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
 }
 
+// Each residual block's first row in Problem::Evaluate's residual vector (the blocks' order).
+std::unordered_map<ceres::ResidualBlockId, Eigen::Index> ResidualRows(
+    const ceres::Problem& problem) {
+  std::vector<ceres::ResidualBlockId> ids;
+  problem.GetResidualBlocks(&ids);
+  std::unordered_map<ceres::ResidualBlockId, Eigen::Index> rows;
+  rows.reserve(ids.size());
+  Eigen::Index row = 0;
+  for (const ceres::ResidualBlockId id : ids) {
+    rows[id] = row;
+    row += problem.GetCostFunctionForResidualBlock(id)->num_residuals();
+  }
+  return rows;
+}
+
 // The consider covariance of the law's stated uncertainty (BatchSmootherOptions::
 // consider_law_uncertainty): per state, the diagonal of sum_j dx_j dx_j'. Empty with a note when
 // it cannot be computed.
@@ -113,11 +133,14 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
   const auto perturbations = LawPerturbations(model);
   if (perturbations.empty()) return variance;
   const Eigen::VectorXd base = Residuals(problem->problem.get());
+  const auto rows_of = ResidualRows(*problem->problem);
+  WardProblemOptions law_options = problem_options;
+  law_options.only_kinds = TireLawFactorKinds();  // the rest do not move with the law
   std::vector<Eigen::VectorXd> shifts;
   std::string names;
   for (const auto& [name, perturbed, weight] : perturbations) {
     std::unique_ptr<WardProblem> other =
-        BuildWardBatchProblem(log, perturbed, ekf.estimates, problem_options);
+        BuildWardBatchProblem(log, perturbed, ekf.estimates, law_options);
     if (other->states.size() != problem->states.size() ||
         other->stiffness.size() != problem->stiffness.size() ||
         other->effects.size() != problem->effects.size()) {
@@ -129,13 +152,29 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     other->offsets = problem->offsets;
     other->effects = problem->effects;
     std::copy(problem->stiffness.begin(), problem->stiffness.end(), other->stiffness.begin());
-    const Eigen::VectorXd r = Residuals(other->problem.get());
-    if (r.size() != base.size()) {
-      notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
-                       " has other residuals");
-      return {};
+    Eigen::VectorXd shift = Eigen::VectorXd::Zero(base.size());
+    std::vector<double> r;
+    for (const std::string& kind : TireLawFactorKinds()) {
+      const auto mine = problem->blocks.find(kind);
+      const auto theirs = other->blocks.find(kind);
+      const size_t count = mine == problem->blocks.end() ? 0 : mine->second.size();
+      if (count != (theirs == other->blocks.end() ? 0 : theirs->second.size())) {
+        notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
+                         " has other residuals");
+        return {};
+      }
+      for (size_t i = 0; i < count; ++i) {
+        const ceres::ResidualBlockId id = theirs->second[i];
+        const int rows = other->problem->GetCostFunctionForResidualBlock(id)->num_residuals();
+        r.resize(rows);
+        other->problem->EvaluateResidualBlock(id, true, nullptr, r.data(), nullptr);
+        const Eigen::Index first = rows_of.at(mine->second[i]);
+        for (int j = 0; j < rows; ++j) {
+          shift[first + j] = weight * (r[j] - base[first + j]);
+        }
+      }
     }
-    shifts.push_back(weight * (r - base));
+    shifts.push_back(std::move(shift));
     names += (names.empty() ? "" : ", ") + name;
   }
   const ChainSensitivity sensitivity =

@@ -50,6 +50,44 @@ double Residual(const ceres::CostFunction& cost, const std::vector<const double*
   return testing::Residuals(cost, blocks).at(0);
 }
 
+// The plain factor's Jacobians, taken from f_tire's partials, against automatic differentiation
+// of the balance as eq. (11) writes it, and against numeric differentiation; at rest too (v_rel
+// = v_fwd = 0, the laws' Taylor branches).
+struct PlainReference {
+  AccelerometerReading reading;
+  template <typename T>
+  bool operator()(const T* x, const T* offsets, T* residual) const {
+    const ward::TireForces<T> forces = ward::ComputeTireForces(x, reading.loads, reading.params);
+    residual[0] = reading.Residual(forces.f_tire_mps2, x, offsets);
+    return true;
+  }
+};
+
+TEST(AccelerometerFactor, PlainJacobiansAsAutomaticDifferentiation) {
+  LawFixture f;
+  std::vector<std::vector<double>> states = {
+      f.x, std::vector<double>(7, 0.0), {-0.4, -0.02, 0.6, -1.0, -2.5, -0.2, 0.001}};
+  for (const std::vector<double>& x : states) {
+    std::unique_ptr<ceres::CostFunction> factor(
+        AccelerometerFactor::Create(f.params, f.attitude, 0.3, 0.08));
+    ceres::AutoDiffCostFunction<PlainReference, 1, ward::kStateSize, 2> reference(
+        new PlainReference{AccelerometerReading(f.params, f.attitude, 0.3, 0.08)});
+    const double* blocks[] = {x.data(), f.offsets.data()};
+    double r = 0.0, r_ref = 0.0, j0[7], j1[2], k0[7], k1[2];
+    double* jac[] = {j0, j1};
+    double* ref[] = {k0, k1};
+    ASSERT_TRUE(factor->Evaluate(blocks, &r, jac));
+    ASSERT_TRUE(reference.Evaluate(blocks, &r_ref, ref));
+    EXPECT_NEAR(r, r_ref, 1e-12 * (1.0 + std::abs(r_ref)));
+    for (int i = 0; i < 7; ++i) EXPECT_NEAR(j0[i], k0[i], 1e-12 * (1.0 + std::abs(k0[i])));
+    for (int i = 0; i < 2; ++i) EXPECT_NEAR(j1[i], k1[i], 1e-12 * (1.0 + std::abs(k1[i])));
+    double r_plain = 0.0;
+    ASSERT_TRUE(factor->Evaluate(blocks, &r_plain, nullptr));
+    EXPECT_NEAR(r_plain, r_ref, 1e-12 * (1.0 + std::abs(r_ref)));
+    testing::ExpectJacobiansMatchNumeric(*factor, {x.data(), f.offsets.data()}, 1e-5);
+  }
+}
+
 TEST(AccelerometerFactorWithLaw, IsTheAccelerometerFactorOfTheLawItIsGiven) {
   LawFixture f;
   std::unique_ptr<ceres::CostFunction> factor(

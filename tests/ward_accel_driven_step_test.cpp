@@ -115,31 +115,5 @@ TEST(WardAccelDrivenStep, AllWheelDriveVehicle) {
   ExpectSameAsTheJetPass(x, 0.3, Attitude<double>{0.05, -0.1}, params, 0.02);
 }
 
-TEST(WardAccelDrivenStep, YawPartialsAreTheTireForcesDerivatives) {
-  // Against central differences of the plain double evaluation: catches a slot mix-up that the
-  // comparison with the Jet pass would share.
-  const Params params = testing::LagrParams();
-  const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.03, -0.04}, params);
-  const double x[kStateSize] = {0.6, 0.0, 0.0, 2.2, 2.9, 0.15, 0.0};
-  const YawAccelerationPartials g = YawAccelerationWithPartials(x, loads, params);
-  const auto yaw_acceleration = [&](const double* state) {
-    return ComputeTireForces(state, loads, params).g_tire_radps2;
-  };
-  EXPECT_DOUBLE_EQ(g.value_radps2, yaw_acceleration(x));
-  const int slots[4] = {kVbx, kYawRate, kOmegaLeft, kOmegaRight};
-  const double partials[4] = {g.d_v_bx, g.d_yaw_rate, g.d_omega_left, g.d_omega_right};
-  for (int k = 0; k < 4; ++k) {
-    double plus[kStateSize], minus[kStateSize];
-    std::copy(x, x + kStateSize, plus);
-    std::copy(x, x + kStateSize, minus);
-    const double h = 1e-6;
-    plus[slots[k]] += h;
-    minus[slots[k]] -= h;
-    const double numeric = (yaw_acceleration(plus) - yaw_acceleration(minus)) / (2.0 * h);
-    EXPECT_NEAR(partials[k], numeric, 1e-6 * (1.0 + std::abs(numeric))) << "slot " << k;
-    EXPECT_NE(partials[k], 0.0) << "slot " << k;
-  }
-}
-
 }  // namespace
 }  // namespace slipgraph

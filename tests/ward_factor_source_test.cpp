@@ -1,14 +1,19 @@
 // The Ward factor source on a simulated fig5 log: every state gets its encoder factor, every
 // GNSS fix and IMU sample goes to one state, the dynamics link consecutive states, every residual
 // is finite at the front end's estimate; an absurd fix is left out and counted; the stiffness
-// walk's nodes cover the log; an empty front end is refused.
+// walk's nodes cover the log; only the tire law's kinds move with the law, and only the kinds
+// asked for are built; an empty front end is refused.
 #include "problems/ward_factor_source.h"
 
+#include <ceres/cost_function.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "solvers/ekf_runner.h"
@@ -24,7 +29,8 @@ struct Built {
   std::vector<AddedFactor> added;
 };
 
-void BuildAll(const WardFactorSource& source, ceres::Problem* problem, Built* b) {
+void BuildAll(const WardFactorSource& source, ceres::Problem* problem, Built* b,
+              double* stiffness = nullptr) {
   b->states.resize(source.size());
   for (size_t k = 0; k < source.size(); ++k) {
     std::copy(source.initial(k).x.begin(), source.initial(k).x.end(), b->states[k].begin());
@@ -34,7 +40,7 @@ void BuildAll(const WardFactorSource& source, ceres::Problem* problem, Built* b)
   source.AddOffsetPrior(b->offsets, b->offsets.data(), problem, &b->added);
   for (size_t k = 0; k < source.size(); ++k) {
     source.AddStep(k, k > 0 ? b->states[k - 1].data() : nullptr, b->states[k].data(),
-                   {b->offsets.data()}, problem, &b->added, &b->counts);
+                   {b->offsets.data(), nullptr, stiffness}, problem, &b->added, &b->counts);
   }
 }
 
@@ -101,6 +107,70 @@ TEST(WardFactorSource, StiffnessNodesCoverTheLog) {
     source.AddStiffnessNode(j, nodes.data(), &problem, &added);
   EXPECT_EQ(added.size(), nodes.size());  // the prior on the first, a walk step to each other
   EXPECT_EQ(problem.GetParameterLowerBound(nodes.data(), 0), options.stiffness_min);
+}
+
+// The law's consider covariance rebuilds only TireLawFactorKinds(): every other kind's residuals
+// must not move with the law (here each coefficient and the slope moved by a third), and those
+// kinds' must.
+TEST(WardFactorSource, OnlyTheTireLawKindsMoveWithTheLaw) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  ModelConfig other = model;
+  other.tire.C1 *= 1.3, other.tire.At *= 0.7, other.tire.C2 *= 1.3;
+  other.rolling.R1 *= 1.3, other.rolling.A_roll *= 0.7, other.rolling.R2 *= 1.3;
+  WardProblemOptions options;
+  options.stiffness_prior_sd = 0.15;  // the stiffness nodes' factors too
+  const WardFactorSource mine(log, model, front.estimates, options);
+  const WardFactorSource theirs(log, other, front.estimates, options);
+  ceres::Problem a, b;
+  Built built_a, built_b;
+  std::vector<double> nodes_a(mine.stiffness_node_count(), 0.1);
+  std::vector<double> nodes_b = nodes_a;
+  for (size_t j = 0; j < nodes_a.size(); ++j) {
+    mine.AddStiffnessNode(j, nodes_a.data(), &a, &built_a.added);
+    theirs.AddStiffnessNode(j, nodes_b.data(), &b, &built_b.added);
+  }
+  BuildAll(mine, &a, &built_a, nodes_a.data());
+  BuildAll(theirs, &b, &built_b, nodes_b.data());
+  ASSERT_EQ(built_a.added.size(), built_b.added.size());
+  std::map<std::string, double> moved;
+  for (size_t i = 0; i < built_a.added.size(); ++i) {
+    ASSERT_STREQ(built_a.added[i].kind, built_b.added[i].kind);
+    const int rows = a.GetCostFunctionForResidualBlock(built_a.added[i].id)->num_residuals();
+    std::vector<double> ra(rows), rb(rows);
+    a.EvaluateResidualBlock(built_a.added[i].id, true, nullptr, ra.data(), nullptr);
+    b.EvaluateResidualBlock(built_b.added[i].id, true, nullptr, rb.data(), nullptr);
+    double& worst = moved[built_a.added[i].kind];
+    for (int r = 0; r < rows; ++r) worst = std::max(worst, std::abs(ra[r] - rb[r]));
+  }
+  const std::vector<std::string>& law_kinds = TireLawFactorKinds();
+  EXPECT_GE(moved.size(), 10u);
+  for (const auto& [kind, worst] : moved) {
+    if (std::find(law_kinds.begin(), law_kinds.end(), kind) != law_kinds.end()) {
+      EXPECT_GT(worst, 1e-3) << kind;
+    } else {
+      EXPECT_EQ(worst, 0.0) << kind;
+    }
+  }
+}
+
+TEST(WardFactorSource, OnlyTheKindsAskedForAreBuilt) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  WardProblemOptions options;
+  options.only_kinds = TireLawFactorKinds();
+  const WardFactorSource source(log, model, front.estimates, options);
+  ceres::Problem problem;
+  Built b;
+  BuildAll(source, &problem, &b);
+  std::map<std::string, long> built;
+  for (const AddedFactor& f : b.added) ++built[f.kind];
+  ASSERT_EQ(built.size(), 2u);
+  EXPECT_EQ(built["dynamics"], b.counts.dynamics);
+  EXPECT_EQ(built["accelerometer"], b.counts.accelerometer);
+  EXPECT_EQ(problem.NumResidualBlocks(), static_cast<int>(b.added.size()));
 }
 
 TEST(WardFactorSource, AnEmptyFrontEndIsRefused) {
