@@ -98,27 +98,21 @@ std::vector<LawPerturbation> LawPerturbations(const ModelConfig& model) {
   return out;
 }
 
-Eigen::VectorXd Residuals(ceres::Problem* problem) {
-  std::vector<double> r;
-  ceres::Problem::EvaluateOptions options;
-  options.apply_loss_function = true;
-  problem->Evaluate(options, nullptr, &r, nullptr, nullptr);
-  return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
+// The residual blocks of the factor kinds the law enters (TireLawFactorKinds), kind by kind.
+std::vector<ceres::ResidualBlockId> LawBlocks(const WardProblem& problem) {
+  std::vector<ceres::ResidualBlockId> ids;
+  for (const std::string& kind : TireLawFactorKinds()) {
+    const auto it = problem.blocks.find(kind);
+    if (it != problem.blocks.end()) ids.insert(ids.end(), it->second.begin(), it->second.end());
+  }
+  return ids;
 }
 
-// Each residual block's first row in Problem::Evaluate's residual vector (the blocks' order).
-std::unordered_map<ceres::ResidualBlockId, Eigen::Index> ResidualRows(
-    const ceres::Problem& problem) {
-  std::vector<ceres::ResidualBlockId> ids;
-  problem.GetResidualBlocks(&ids);
-  std::unordered_map<ceres::ResidualBlockId, Eigen::Index> rows;
-  rows.reserve(ids.size());
-  Eigen::Index row = 0;
-  for (const ceres::ResidualBlockId id : ids) {
-    rows[id] = row;
-    row += problem.GetCostFunctionForResidualBlock(id)->num_residuals();
-  }
-  return rows;
+// A block's residuals as Problem::Evaluate gives them (loss-corrected).
+void BlockResiduals(const ceres::Problem& problem, ceres::ResidualBlockId id,
+                    std::vector<double>* r) {
+  r->resize(problem.GetCostFunctionForResidualBlock(id)->num_residuals());
+  problem.EvaluateResidualBlock(id, true, nullptr, r->data(), nullptr);
 }
 
 // The consider covariance of the law's stated uncertainty (BatchSmootherOptions::
@@ -127,16 +121,21 @@ std::unordered_map<ceres::ResidualBlockId, Eigen::Index> ResidualRows(
 std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     const DriveLog& log, const ModelConfig& model, const FilterResult& ekf,
     const WardProblemOptions& problem_options, WardProblem* problem,
-    const std::vector<double*>& states, const std::vector<double*>& globals,
+    const std::vector<double*>& states, const std::vector<double*>& globals, int threads,
     std::vector<std::string>* notes) {
   std::vector<Eigen::Matrix<double, kStateSize, 1>> variance;
   const auto perturbations = LawPerturbations(model);
   if (perturbations.empty()) return variance;
-  const Eigen::VectorXd base = Residuals(problem->problem.get());
-  const auto rows_of = ResidualRows(*problem->problem);
+  // The law moves only the residuals of its kinds: the shifts are taken on those blocks.
+  ResidualShifts shifts;
+  shifts.blocks = LawBlocks(*problem);
+  std::vector<double> base, r;
+  for (const ceres::ResidualBlockId id : shifts.blocks) {
+    BlockResiduals(*problem->problem, id, &r);
+    base.insert(base.end(), r.begin(), r.end());
+  }
   WardProblemOptions law_options = problem_options;
   law_options.only_kinds = TireLawFactorKinds();  // the rest do not move with the law
-  std::vector<Eigen::VectorXd> shifts;
   std::string names;
   for (const auto& [name, perturbed, weight] : perturbations) {
     std::unique_ptr<WardProblem> other =
@@ -152,33 +151,26 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     other->offsets = problem->offsets;
     other->effects = problem->effects;
     std::copy(problem->stiffness.begin(), problem->stiffness.end(), other->stiffness.begin());
-    Eigen::VectorXd shift = Eigen::VectorXd::Zero(base.size());
-    std::vector<double> r;
-    for (const std::string& kind : TireLawFactorKinds()) {
-      const auto mine = problem->blocks.find(kind);
-      const auto theirs = other->blocks.find(kind);
-      const size_t count = mine == problem->blocks.end() ? 0 : mine->second.size();
-      if (count != (theirs == other->blocks.end() ? 0 : theirs->second.size())) {
-        notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
-                         " has other residuals");
-        return {};
-      }
-      for (size_t i = 0; i < count; ++i) {
-        const ceres::ResidualBlockId id = theirs->second[i];
-        const int rows = other->problem->GetCostFunctionForResidualBlock(id)->num_residuals();
-        r.resize(rows);
-        other->problem->EvaluateResidualBlock(id, true, nullptr, r.data(), nullptr);
-        const Eigen::Index first = rows_of.at(mine->second[i]);
-        for (int j = 0; j < rows; ++j) {
-          shift[first + j] = weight * (r[j] - base[first + j]);
-        }
+    const std::vector<ceres::ResidualBlockId> theirs = LawBlocks(*other);
+    if (theirs.size() != shifts.blocks.size()) {
+      notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
+                       " has other residuals");
+      return {};
+    }
+    Eigen::VectorXd shift(static_cast<Eigen::Index>(base.size()));
+    Eigen::Index row = 0;
+    for (const ceres::ResidualBlockId id : theirs) {
+      BlockResiduals(*other->problem, id, &r);
+      for (const double value : r) {
+        shift[row] = weight * (value - base[static_cast<size_t>(row)]);
+        ++row;
       }
     }
-    shifts.push_back(std::move(shift));
+    shifts.columns.push_back(std::move(shift));
     names += (names.empty() ? "" : ", ") + name;
   }
   const ChainSensitivity sensitivity =
-      ComputeChainSensitivity(problem->problem.get(), states, globals, shifts);
+      ComputeChainSensitivity(problem->problem.get(), states, globals, shifts, threads);
   if (!sensitivity.ok) {
     notes->push_back("the law's uncertainty is not in the sd (" + sensitivity.error + ")");
     return {};
@@ -327,7 +319,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
       std::vector<Eigen::Matrix<double, kStateSize, 1>> law;
       if (options.consider_law_uncertainty) {
         law = LawConsiderVariance(log, model, result.ekf, problem_options, problem.get(), states,
-                                  globals, &result.notes);
+                                  globals, options.threads, &result.notes);
       }
       for (size_t k = 0; k < n; ++k) {
         for (int i = 0; i < kStateSize; ++i) {

@@ -1,7 +1,6 @@
 #include "solvers/chain_covariance.h"
 
 #include <ceres/cost_function.h>
-#include <ceres/crs_matrix.h>
 #include <ceres/loss_function.h>
 #include <ceres/manifold.h>
 
@@ -163,39 +162,6 @@ void AddOuterProducts(const double* jb, int rows, int count, std::vector<double>
       for (int b = a; b < count; ++b) h[b] += ja * jr[b];
     }
   }
-}
-
-// H from a Jacobian in Problem::Evaluate's layout (the states' columns, then the globals').
-bool AssembleFromJacobian(const ceres::CRSMatrix& J, Information* info) {
-  const int m = info->m, state_columns = info->n * m;
-  std::vector<int> block, index;
-  std::vector<double> hb;
-  Information::Part part;
-  part.C = info->C.data();
-  for (int row = 0; row < J.num_rows;) {
-    // Rows of one residual block share their columns: take them together.
-    const int begin = J.rows[row], count = J.rows[row + 1] - begin;
-    int last = row + 1;
-    while (last < J.num_rows && J.rows[last + 1] - J.rows[last] == count &&
-           std::equal(J.cols.begin() + begin, J.cols.begin() + begin + count,
-                      J.cols.begin() + J.rows[last])) {
-      ++last;
-    }
-    AddOuterProducts(J.values.data() + begin, last - row, count, &hb);
-    row = last;
-    block.resize(count);
-    index.resize(count);
-    for (int a = 0; a < count; ++a) {
-      const int c = J.cols[begin + a];
-      block[a] = c >= state_columns ? -1 : c / m;
-      index[a] = c >= state_columns ? c - state_columns : c % m;
-    }
-    if (!info->Add(block, index, hb, &part)) {
-      info->error = part.error;
-      return false;
-    }
-  }
-  return true;
 }
 
 // A residual block's cost, rho(|r|^2) / 2, with rho and its derivatives at |r|^2 in rho[3]
@@ -628,31 +594,55 @@ void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
 }
 
 template <int M>
-void SensitivityFrom(const ceres::CRSMatrix& J, int n, int m, int g,
-                     const std::vector<Eigen::VectorXd>& shifts, ChainSensitivity* out) {
-  ChainFactorization<M> f;
-  Information info(n, m, g);
-  if (!AssembleFromJacobian(J, &info)) {
-    out->error = info.error;
-    return;
+void SensitivityAt(ceres::Problem* problem, const std::vector<double*>& states,
+                   const std::vector<double*>& globals, int m, int g, const ResidualShifts& shifts,
+                   int threads, ChainSensitivity* out) {
+  Eigen::Index rows = 0;
+  for (const ceres::ResidualBlockId id : shifts.blocks) {
+    rows += problem->GetCostFunctionForResidualBlock(id)->num_residuals();
   }
-  if (!Factor(info, &f)) {
-    out->error = f.error;
-    return;
-  }
-  out->states.resize(shifts.size());
-  out->globals.resize(shifts.size());
-  std::vector<double> gradient(static_cast<size_t>(J.num_cols));
-  for (size_t j = 0; j < shifts.size(); ++j) {
-    // J' t over the CRS rows.
-    std::fill(gradient.begin(), gradient.end(), 0.0);
-    for (int row = 0; row < J.num_rows; ++row) {
-      const double t = shifts[j][row];
-      if (t == 0.0) continue;
-      for (int e = J.rows[row]; e < J.rows[row + 1]; ++e) gradient[J.cols[e]] += J.values[e] * t;
+  for (const Eigen::VectorXd& t : shifts.columns) {
+    if (t.size() != rows) {
+      out->error = "a residual shift has " + std::to_string(t.size()) + " rows, its blocks " +
+                   std::to_string(rows);
+      return;
     }
-    Solve(f, gradient, &out->states[j], &out->globals[j]);
   }
+  ChainFactorization<M> f;
+  double cost = 0.0;
+  std::vector<double> gradient;
+  if (!Linearize(problem, states, globals, m, g, &cost, &gradient, &f, &out->error, threads)) {
+    return;
+  }
+  // J' t, block by block over the blocks the shifts move.
+  const size_t columns = shifts.columns.size();
+  const int n = static_cast<int>(states.size()), state_columns = n * m;
+  std::vector<std::vector<double>> jt(columns, std::vector<double>(state_columns + g, 0.0));
+  const Layout layout(*problem, states, globals, m);
+  BlockEvaluation e;
+  Eigen::Index row = 0;
+  for (const ceres::ResidualBlockId id : shifts.blocks) {
+    if (!e.Evaluate(*problem, id, layout)) {
+      out->error = "a residual block could not be evaluated";
+      return;
+    }
+    for (size_t j = 0; j < columns; ++j) {
+      const Eigen::VectorXd& t = shifts.columns[j];
+      for (int a = 0; a < e.count; ++a) {
+        double sum = 0.0;
+        for (int r = 0; r < e.rows; ++r) {
+          sum += e.jb[static_cast<size_t>(r) * e.count + a] * t[row + r];
+        }
+        const int column =
+            e.block[a] < 0 ? state_columns + e.index[a] : e.block[a] * m + e.index[a];
+        jt[j][column] += sum;
+      }
+    }
+    row += e.rows;
+  }
+  out->states.resize(columns);
+  out->globals.resize(columns);
+  for (size_t j = 0; j < columns; ++j) Solve(f, jt[j], &out->states[j], &out->globals[j]);
   out->ok = true;
 }
 
@@ -661,32 +651,18 @@ void SensitivityFrom(const ceres::CRSMatrix& J, int n, int m, int g,
 ChainSensitivity ComputeChainSensitivity(ceres::Problem* problem,
                                          const std::vector<double*>& states,
                                          const std::vector<double*>& globals,
-                                         const std::vector<Eigen::VectorXd>& residual_shifts) {
+                                         const ResidualShifts& shifts, int threads) {
   ChainSensitivity out;
   int m = 0, g = 0;
   if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
-  // The shifts are indexed by Problem::Evaluate's rows: its Jacobian, in its order.
-  ceres::Problem::EvaluateOptions options;
-  options.parameter_blocks = states;
-  options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
-  options.apply_loss_function = true;
-  ceres::CRSMatrix J;
-  if (!problem->Evaluate(options, nullptr, nullptr, nullptr, &J)) {
-    out.error = "the Jacobian could not be evaluated";
+  if (shifts.columns.empty()) {
+    out.ok = true;
     return out;
   }
-  for (const Eigen::VectorXd& t : residual_shifts) {
-    if (t.size() != J.num_rows) {
-      out.error = "a residual shift has " + std::to_string(t.size()) + " rows, the problem " +
-                  std::to_string(J.num_rows);
-      return out;
-    }
-  }
-  const int n = static_cast<int>(states.size());
   if (m == 7) {
-    SensitivityFrom<7>(J, n, m, g, residual_shifts, &out);
+    SensitivityAt<7>(problem, states, globals, m, g, shifts, threads, &out);
   } else {
-    SensitivityFrom<Eigen::Dynamic>(J, n, m, g, residual_shifts, &out);
+    SensitivityAt<Eigen::Dynamic>(problem, states, globals, m, g, shifts, threads, &out);
   }
   return out;
 }

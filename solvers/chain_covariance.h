@@ -102,12 +102,18 @@ class ChainLinearization {
 // its share of the blocks); false when a block cannot be evaluated or the cost is not finite.
 bool ChainCost(const ceres::Problem& problem, double* cost, int threads = 1);
 
-// How the solution would move if the residuals moved by t (one column per perturbation, over all
-// the problem's residuals in the order Problem::Evaluate returns them): at a minimum, where
-// J'r = 0, the first-order shift is dx = -H^-1 J' t. With t the change a model constant's error
-// of one sd makes to the residuals, dx dx' is that constant's share of the estimate's error
-// covariance (a Schmidt "consider" covariance: the constant is not estimated, its uncertainty is
-// accounted for).
+// How the solution would move if the residuals moved by t (one column per perturbation): at a
+// minimum, where J'r = 0, the first-order shift is dx = -H^-1 J' t. With t the change a model
+// constant's error of one sd makes to the residuals, dx dx' is that constant's share of the
+// estimate's error covariance (a Schmidt "consider" covariance: the constant is not estimated,
+// its uncertainty is accounted for). t is given on the blocks it moves: each column stacks the
+// listed blocks' rows in their order (num_residuals each, loss-corrected as Problem::Evaluate
+// gives residuals); the other residuals do not move. H and J' t are taken block by block, on
+// `threads` threads for H, without the problem's whole Jacobian.
+struct ResidualShifts {
+  std::vector<ceres::ResidualBlockId> blocks;
+  std::vector<Eigen::VectorXd> columns;
+};
 struct ChainSensitivity {
   bool ok = false;
   std::string error;
@@ -117,6 +123,6 @@ struct ChainSensitivity {
 ChainSensitivity ComputeChainSensitivity(ceres::Problem* problem,
                                          const std::vector<double*>& states,
                                          const std::vector<double*>& globals,
-                                         const std::vector<Eigen::VectorXd>& residual_shifts);
+                                         const ResidualShifts& shifts, int threads = 1);
 
 }  // namespace slipgraph

@@ -373,7 +373,10 @@ TEST(ChainCovariance, SensitivityIsTheSolutionsShiftWhenAConstantMoves) {
   for (size_t i = 0; i < r0.size(); ++i) t[static_cast<Eigen::Index>(i)] = r1[i] - r0[i];
   std::vector<double*> states;
   for (auto& s : x) states.push_back(s.data());
-  const ChainSensitivity sensitivity = ComputeChainSensitivity(&problem, states, {&c}, {t, -t});
+  ResidualShifts shifts;
+  problem.GetResidualBlocks(&shifts.blocks);
+  shifts.columns = {t, -t};
+  const ChainSensitivity sensitivity = ComputeChainSensitivity(&problem, states, {&c}, shifts);
   ASSERT_TRUE(sensitivity.ok) << sensitivity.error;
   ASSERT_EQ(sensitivity.states.size(), 2u);
   for (int k = 0; k < n; ++k) {
@@ -385,8 +388,30 @@ TEST(ChainCovariance, SensitivityIsTheSolutionsShiftWhenAConstantMoves) {
   EXPECT_NEAR(sensitivity.globals[0][0], c_moved - c, 1e-9);
   // The measured state moves most; the shift is not trivially zero anywhere near it.
   EXPECT_GT(std::abs(sensitivity.states[0][2][0]), 0.05);
+  // On the two threads' assembly: the same.
+  const ChainSensitivity two = ComputeChainSensitivity(&problem, states, {&c}, shifts, 2);
+  ASSERT_TRUE(two.ok) << two.error;
+  EXPECT_NEAR(two.states[0][2][0], sensitivity.states[0][2][0], 1e-12);
+  // Given on the measured block alone (the only one the move shifts): the same.
+  ResidualShifts measured;
+  Eigen::Index row = 0;
+  for (const ceres::ResidualBlockId id : shifts.blocks) {
+    const int rows = problem.GetCostFunctionForResidualBlock(id)->num_residuals();
+    if (t.segment(row, rows).cwiseAbs().maxCoeff() > 0.0) {
+      measured.blocks.push_back(id);
+      measured.columns.push_back(t.segment(row, rows));
+    }
+    row += rows;
+  }
+  ASSERT_EQ(measured.blocks.size(), 1u);
+  const ChainSensitivity alone = ComputeChainSensitivity(&problem, states, {&c}, measured);
+  ASSERT_TRUE(alone.ok) << alone.error;
+  for (int k = 0; k < n; ++k) {
+    EXPECT_NEAR(alone.states[0][k][0], sensitivity.states[0][k][0], 1e-12) << k;
+  }
   // A shift of the wrong length is refused.
-  EXPECT_FALSE(ComputeChainSensitivity(&problem, states, {&c}, {Eigen::VectorXd::Ones(3)}).ok);
+  measured.columns = {Eigen::VectorXd::Ones(3)};
+  EXPECT_FALSE(ComputeChainSensitivity(&problem, states, {&c}, measured).ok);
 }
 
 }  // namespace
