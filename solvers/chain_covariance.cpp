@@ -312,12 +312,16 @@ class BlockEvaluation {
 // H, the gradient J'r (states, then globals) and the cost from each residual block's own
 // evaluation (BlockEvaluation): no program and no sparse Jacobian built per call. A block's
 // parameters that are neither a state nor a global are held constant, as Problem::Evaluate holds
-// the blocks it is not given. On `threads` threads, each takes the blocks within its own run of
-// states (the globals' block of H and of the gradient summed after); the blocks that cross from
-// one run to the next, and those on the globals alone, are added after them.
-// `partition` (may be null): the blocks each thread takes, from an earlier call on the same
-// problem with the same threads; filled when empty.
+// the blocks it is not given. The states are cut into runs, each run's blocks summed on its own
+// (on `threads` threads; the globals' block of H and of the gradient summed after, in the runs'
+// order); the blocks that cross from one run to the next, and those on the globals alone, are
+// added after them.
+// `partition` (may be null): the blocks each run takes, from an earlier call on the same
+// problem; filled when empty.
 using Partition = std::vector<std::vector<ceres::ResidualBlockId>>;
+// The blocks are summed in this many runs (at most), whatever the number of threads that take
+// them, so that the sums, and so the solution to its last digit, do not depend on the threads.
+constexpr int kAssemblyRuns = 8;
 bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& states,
                         const std::vector<double*>& globals, Information* info, double* cost,
                         std::vector<double>* gradient, int threads = 1,
@@ -325,8 +329,8 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
   const int m = info->m, g = info->g, n = info->n, state_columns = n * m;
   const Layout layout(*problem, states, globals, m);
   gradient->assign(static_cast<size_t>(state_columns + g), 0.0);
-  // Each thread's run of states, and the blocks each takes (the last list: after them).
-  const int parts = std::max(1, std::min(threads, n / 64));
+  // The runs of states, and the blocks each takes (the last list: after them).
+  const int parts = std::max(1, std::min(kAssemblyRuns, n / 64));
   Partition own;
   Partition& taken = partition != nullptr ? *partition : own;
   if (taken.size() != static_cast<size_t>(parts) + 1 && parts == 1) {
@@ -387,7 +391,7 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
       }
     }
   };
-  RunConcurrently(parts, parts, [&](size_t p) {
+  RunConcurrently(parts, threads, [&](size_t p) {
     assemble(taken[p], Cs.data() + p * g * g, globals_gradient.data() + p * g, &costs[p],
              &errors[p]);
   });
@@ -704,9 +708,9 @@ struct ChainLinearization::Impl {
   Information info{0, 0, 0};
   std::vector<double> gradient;
   double cost = 0.0;
-  // Which blocks each thread takes, kept while the problem's shape is the same.
+  // Which blocks each run takes, kept while the problem's shape is the same.
   Partition partition;
-  std::tuple<const ceres::Problem*, const double*, const double*, size_t, int, int> partition_of{};
+  std::tuple<const ceres::Problem*, const double*, const double*, size_t, int> partition_of{};
   // The last step's factorization, its storage reused by the next (7: the Ward state).
   ChainFactorization<7> factorization7;
   ChainFactorization<Eigen::Dynamic> factorization;
@@ -723,10 +727,9 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
   int m = 0, g = 0;
   if (!Sizes(problem, states, globals, &m, &g, error)) return false;
   impl_->info.Reset(static_cast<int>(states.size()), m, g);
-  const auto shape = std::make_tuple(static_cast<const ceres::Problem*>(problem),
-                                     static_cast<const double*>(states.front()),
-                                     static_cast<const double*>(states.back()), globals.size(),
-                                     problem->NumResidualBlocks(), threads);
+  const auto shape = std::make_tuple(
+      static_cast<const ceres::Problem*>(problem), static_cast<const double*>(states.front()),
+      static_cast<const double*>(states.back()), globals.size(), problem->NumResidualBlocks());
   if (shape != impl_->partition_of) impl_->partition.clear();
   impl_->partition_of = shape;
   if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
@@ -827,10 +830,11 @@ double ChainLinearization::PredictedDecrease(const std::vector<Eigen::VectorXd>&
 bool ChainCost(const ceres::Problem& problem, double* cost, int threads) {
   std::vector<ceres::ResidualBlockId> ids;
   problem.GetResidualBlocks(&ids);
-  const size_t parts = static_cast<size_t>(std::max(1, std::min<int>(threads, ids.size() / 256)));
+  const size_t parts =
+      static_cast<size_t>(std::max(1, std::min<int>(kAssemblyRuns, ids.size() / 256)));
   std::vector<double> costs(parts, 0.0);
   std::vector<char> ok(parts, 1);
-  RunConcurrently(parts, static_cast<int>(parts), [&](size_t p) {
+  RunConcurrently(parts, threads, [&](size_t p) {
     std::vector<double*> blocks;
     std::vector<double> residuals;
     for (size_t i = ids.size() * p / parts; i < ids.size() * (p + 1) / parts; ++i) {

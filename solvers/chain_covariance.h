@@ -69,12 +69,13 @@ class ChainLinearization {
   ChainLinearization(ChainLinearization&&) noexcept;
   ChainLinearization& operator=(ChainLinearization&&) noexcept;
 
-  // Evaluates every residual block at the current values (on `threads` threads, each over its
-  // own run of states); false with *error when a block cannot be evaluated or links states that
-  // are not neighbours. The cost functions must be callable from several threads at once, as
-  // Ceres' own multi-threaded evaluation requires. Which blocks each thread takes is kept for
-  // the next call with the same problem, states and number of blocks: a problem whose blocks
-  // change between calls needs a new ChainLinearization.
+  // Evaluates every residual block at the current values (runs of states on `threads` threads;
+  // the sums, and so the result to its last digit, do not depend on their number); false with
+  // *error when a block cannot be evaluated or links states that are not neighbours. The cost
+  // functions must be callable from several threads at once, as Ceres' own multi-threaded
+  // evaluation requires. Which blocks each run takes is kept for the next call with the same
+  // problem, states and number of blocks: a problem whose blocks change between calls needs a
+  // new ChainLinearization.
   bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                  const std::vector<double*>& globals, std::string* error, int threads = 1);
   double cost() const;  // 0.5 |r|^2, loss-corrected
@@ -98,8 +99,9 @@ class ChainLinearization {
 };
 
 // The problem's cost, 0.5 |r|^2 loss-corrected, as Problem::Evaluate gives it, summed block by
-// block (no program built; the cost functions called directly, on `threads` threads, each over
-// its share of the blocks); false when a block cannot be evaluated or the cost is not finite.
+// block (no program built; the cost functions called directly, shares of the blocks on
+// `threads` threads, summed in the same order whatever their number); false when a block cannot
+// be evaluated or the cost is not finite.
 bool ChainCost(const ceres::Problem& problem, double* cost, int threads = 1);
 
 // How the solution would move if the residuals moved by t (one column per perturbation): at a

@@ -98,6 +98,31 @@ TEST_P(ChainSolverThreads, ReachesCeresSolutionOnAWardProblem) {
 
 INSTANTIATE_TEST_SUITE_P(OneAndTwo, ChainSolverThreads, ::testing::Values(1, 2));
 
+// The blocks are summed in the same runs whatever the number of threads: the solution is the same
+// to its last digit on one, two and three.
+TEST(ChainSolver, TheSolutionDoesNotDependOnTheThreads) {
+  const WardCase c;
+  std::vector<std::unique_ptr<WardProblem>> solved;
+  std::vector<double> final_costs;
+  for (const int threads : {1, 2, 3}) {
+    solved.push_back(c.Problem());
+    ChainSolverOptions options;
+    options.threads = threads;
+    options.max_iterations = 50;
+    ceres::Solver::Summary summary;
+    ASSERT_TRUE(SolveOnChain(solved.back()->problem.get(), States(solved.back().get()),
+                             {solved.back()->offsets.data()}, options, &summary))
+        << summary.message;
+    final_costs.push_back(summary.final_cost);
+  }
+  ASSERT_GT(solved.front()->states.size(), 64u * 2);  // more than one run of states
+  for (size_t t = 1; t < solved.size(); ++t) {
+    EXPECT_EQ(final_costs[t], final_costs[0]) << t + 1 << " threads";
+    EXPECT_EQ(solved[t]->states, solved[0]->states) << t + 1 << " threads";
+    EXPECT_EQ(solved[t]->offsets, solved[0]->offsets) << t + 1 << " threads";
+  }
+}
+
 TEST(ChainSolver, StopsWithinTheToleranceInSd) {
   const WardCase c;
   std::unique_ptr<WardProblem> chain = c.Problem(), reference = c.Problem();

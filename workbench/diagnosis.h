@@ -55,8 +55,9 @@ struct DiagnosisOptions {
   // terrain change and slope slip on a drive whose hill comes after the change) the fit tells
   // them apart.
   int fit_candidates = -1;
-  // Candidates tested and fitted at once. Each test reads the solution only and each fit is one
-  // single-threaded solve from it, so the results do not depend on the count.
+  // Threads: the solution's solve, then the candidates tested and fitted at once (each test
+  // reads the solution only, each fit is one single-threaded solve from it). The results do not
+  // depend on the count.
   int threads = 2;
   // A fit starts one term away from the solution: Gauss-Newton-sized steps at once
   // (BatchSmootherOptions::initial_trust_region_radius): 2-5 iterations against 7-9 at Ceres's
