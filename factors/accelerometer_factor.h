@@ -14,9 +14,9 @@
 // The law, the stiffness and the effects exclude each other (the effects' slip and traction
 // terms see the model's law). Inputs: the attitude at the sample (REP-103 roll
 // and pitch, rad); sd_a includes the tire law's uncertainty (ModelConfig::tire_uncertainty) when
-// the accelerometer also drives the velocity. The balance with the model's law takes f_tire's
-// partials from 4-wide Jets, with the law or the stiffness it is differentiated automatically;
-// the effect terms by Jets of the state and every magnitude
+// the accelerometer also drives the velocity. With the model's law the balance's Jacobian comes
+// from f_tire's partials (4-wide Jets); with the law or the stiffness as unknowns, by automatic
+// differentiation; the effect terms by Jets of the state and every magnitude
 // (tests/accelerometer_factor_test.cpp checks every block's Jacobian numerically).
 #pragma once
 

@@ -1,8 +1,10 @@
 // The tire forces' accelerations of Ward & Iagnemma eqs. (1)-(2), f_tire (body x) and g_tire
 // (yaw), with their partials with respect to the only states the tire forces read: v_bx,
 // yaw_rate, w_l and w_r. One pass of 4-wide Jets through the shared tire physics
-// (ComputeTireForces) serves both; the EKF's prediction and the dynamics and accelerometer
-// factors take their Jacobians from it instead of a Jet of the whole state.
+// (ComputeTireForces) serves both. In the accelerometer-driven form (the default) the EKF's
+// prediction and the dynamics factor take their Jacobians from it, and so does the
+// accelerometer factor with the model's law, instead of a Jet of the whole state; eq. (10) as
+// printed still goes through Jets of the state.
 #pragma once
 
 #include <ceres/jet.h>
@@ -13,6 +15,8 @@
 namespace slipgraph {
 namespace ward {
 
+// An acceleration a (m/s^2 for f_tire, rad/s^2 for g_tire) and its partials: d a / d v_bx (per
+// m/s), d a / d yaw_rate and d a / d w_l, d a / d w_r (per rad/s).
 struct TireAccelerationPartials {
   double value;
   double d_v_bx;

@@ -30,6 +30,13 @@
 namespace slipgraph {
 
 bool WardProblemOptions::IsValid(std::string* error) const {
+  for (const std::string& kind : only_kinds) {
+    const std::vector<std::string>& known = WardFactorKinds();
+    if (std::find(known.begin(), known.end(), kind) == known.end()) {
+      *error = "WardProblemOptions.only_kinds: '" + kind + "' is not a factor kind";
+      return false;
+    }
+  }
   return OptionCheck("WardProblemOptions", error)
       .Positive("gnss_gate_chi2", gnss_gate_chi2)
       .NonNegative("gnss_max_consecutive_rejections", gnss_max_consecutive_rejections)

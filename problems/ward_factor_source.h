@@ -123,8 +123,9 @@ struct WardProblemOptions {
   // The effect terms the model's `effects` may name (factors/effect_term.h); null: the
   // catalogue's (CatalogueTerms()). Not owned: it outlives the problem.
   const EffectTerms* effect_terms = nullptr;
-  // The factor kinds to build ("dynamics", "accelerometer", ...); empty: every kind. The law's
-  // consider covariance builds only the kinds the law enters. FactorCounts count every kind.
+  // The factor kinds to build (of WardFactorKinds()); empty: every kind. The law's consider
+  // covariance builds only the kinds the law enters. FactorCounts describe a problem of every
+  // kind.
   std::vector<std::string> only_kinds;
   bool Builds(const std::string& kind) const {
     return only_kinds.empty() ||
@@ -133,6 +134,18 @@ struct WardProblemOptions {
   // Each field in its range; the first that is not is named in *error.
   bool IsValid(std::string* error) const;
 };
+
+// Every factor kind a Ward problem is built of (tests/ward_factor_source_test.cpp checks that a
+// problem holds no other).
+inline const std::vector<std::string>& WardFactorKinds() {
+  static const std::vector<std::string> kinds = {
+      "accelerometer",  "act_quickly",       "at_rest",    "body_velocity",
+      "bound",          "disturbance_walk",  "dynamics",   "effect_prior",
+      "encoder",        "first_state_prior", "gnss",       "gyro",
+      "offset_prior",   "oppose_motion",     "rate_bound", "stiffness_prior",
+      "stiffness_walk", "wheel_speed_walk"};
+  return kinds;
+}
 
 // The factor kinds the tire and rolling law (and the slip stiffness that scales it) enters; every
 // other kind has the same residuals with any law (tests/ward_factor_source_test.cpp).

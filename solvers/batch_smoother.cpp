@@ -8,7 +8,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "factors/catalogue_terms.h"
@@ -108,11 +107,12 @@ std::vector<ceres::ResidualBlockId> LawBlocks(const WardProblem& problem) {
   return ids;
 }
 
-// A block's residuals as Problem::Evaluate gives them (loss-corrected).
-void BlockResiduals(const ceres::Problem& problem, ceres::ResidualBlockId id,
+// A block's residuals as Problem::Evaluate gives them (loss-corrected); false when the block
+// cannot be evaluated.
+bool BlockResiduals(const ceres::Problem& problem, ceres::ResidualBlockId id,
                     std::vector<double>* r) {
   r->resize(problem.GetCostFunctionForResidualBlock(id)->num_residuals());
-  problem.EvaluateResidualBlock(id, true, nullptr, r->data(), nullptr);
+  return problem.EvaluateResidualBlock(id, true, nullptr, r->data(), nullptr);
 }
 
 // The consider covariance of the law's stated uncertainty (BatchSmootherOptions::
@@ -131,7 +131,10 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
   shifts.blocks = LawBlocks(*problem);
   std::vector<double> base, r;
   for (const ceres::ResidualBlockId id : shifts.blocks) {
-    BlockResiduals(*problem->problem, id, &r);
+    if (!BlockResiduals(*problem->problem, id, &r)) {
+      notes->push_back("the law's uncertainty is not in the sd: a residual could not be evaluated");
+      return {};
+    }
     base.insert(base.end(), r.begin(), r.end());
   }
   WardProblemOptions law_options = problem_options;
@@ -158,13 +161,18 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
       return {};
     }
     Eigen::VectorXd shift(static_cast<Eigen::Index>(base.size()));
-    Eigen::Index row = 0;
+    size_t row = 0;
     for (const ceres::ResidualBlockId id : theirs) {
-      BlockResiduals(*other->problem, id, &r);
+      if (!BlockResiduals(*other->problem, id, &r) || row + r.size() > base.size()) break;
       for (const double value : r) {
-        shift[row] = weight * (value - base[static_cast<size_t>(row)]);
+        shift[static_cast<Eigen::Index>(row)] = weight * (value - base[row]);
         ++row;
       }
+    }
+    if (row != base.size()) {
+      notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
+                       " has other residuals");
+      return {};
     }
     shifts.columns.push_back(std::move(shift));
     names += (names.empty() ? "" : ", ") + name;

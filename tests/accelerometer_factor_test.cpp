@@ -78,6 +78,7 @@ TEST(AccelerometerFactor, PlainJacobiansAsAutomaticDifferentiation) {
     double* ref[] = {k0, k1};
     ASSERT_TRUE(factor->Evaluate(blocks, &r, jac));
     ASSERT_TRUE(reference.Evaluate(blocks, &r_ref, ref));
+    // The same arithmetic on Jets of other widths: equal to rounding.
     EXPECT_NEAR(r, r_ref, 1e-12 * (1.0 + std::abs(r_ref)));
     for (int i = 0; i < 7; ++i) EXPECT_NEAR(j0[i], k0[i], 1e-12 * (1.0 + std::abs(k0[i])));
     for (int i = 0; i < 2; ++i) EXPECT_NEAR(j1[i], k1[i], 1e-12 * (1.0 + std::abs(k1[i])));

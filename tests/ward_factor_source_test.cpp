@@ -12,10 +12,12 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "problems/ward_batch_problem.h"
 #include "solvers/ekf_runner.h"
 #include "tests/sim_test_util.h"
 
@@ -171,6 +173,33 @@ TEST(WardFactorSource, OnlyTheKindsAskedForAreBuilt) {
   EXPECT_EQ(built["dynamics"], b.counts.dynamics);
   EXPECT_EQ(built["accelerometer"], b.counts.accelerometer);
   EXPECT_EQ(problem.NumResidualBlocks(), static_cast<int>(b.added.size()));
+}
+
+// WardFactorKinds() names every kind a batch problem is built of (with the stiffness walk, and
+// with an effect term), and only_kinds takes no other.
+TEST(WardFactorSource, WardFactorKindsNameEveryKindBuilt) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  WardProblemOptions with_stiffness;
+  with_stiffness.stiffness_prior_sd = 0.15;
+  std::set<std::string> kinds;
+  const auto add_kinds = [&](const WardProblem& problem) {
+    for (const auto& [kind, ids] : problem.blocks) kinds.insert(kind);
+  };
+  add_kinds(*BuildWardBatchProblem(log, model, front.estimates, with_stiffness));
+  model.effects.push_back("quadratic_drag");
+  add_kinds(*BuildWardBatchProblem(log, model, front.estimates));
+  const std::vector<std::string>& known = WardFactorKinds();
+  for (const std::string& kind : kinds) {
+    EXPECT_NE(std::find(known.begin(), known.end(), kind), known.end()) << kind;
+  }
+  EXPECT_TRUE(kinds.count("stiffness_walk") && kinds.count("effect_prior"));
+  WardProblemOptions misspelt;
+  misspelt.only_kinds = {"dynamic"};
+  std::string error;
+  EXPECT_FALSE(misspelt.IsValid(&error));
+  EXPECT_NE(error.find("'dynamic'"), std::string::npos) << error;
 }
 
 TEST(WardFactorSource, AnEmptyFrontEndIsRefused) {

@@ -268,7 +268,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
   d.model_effects = model.effects;
   BatchSmootherOptions smoother = options.smoother;
   smoother.filter.ekf.record_innovations = true;
-  smoother.threads = options.threads;  // the solution is the same on any number
+  smoother.threads = options.threads;  // the chain solver's solution is the same on any number
   d.solution = SmoothBatch(log, model, smoother);
   for (const auto& [name, series] : d.solution.ekf.stats.innovations) {
     InnovationReport f;

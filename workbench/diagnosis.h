@@ -57,7 +57,8 @@ struct DiagnosisOptions {
   int fit_candidates = -1;
   // Threads: the solution's solve, then the candidates tested and fitted at once (each test
   // reads the solution only, each fit is one single-threaded solve from it). The results do not
-  // depend on the count.
+  // depend on the count where the batch's chain solver solves (Ceres, where the problem is not a
+  // chain, sums per thread).
   int threads = 2;
   // A fit starts one term away from the solution: Gauss-Newton-sized steps at once
   // (BatchSmootherOptions::initial_trust_region_radius): 2-5 iterations against 7-9 at Ceres's
