@@ -154,22 +154,18 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
     other->offsets = problem->offsets;
     other->effects = problem->effects;
     std::copy(problem->stiffness.begin(), problem->stiffness.end(), other->stiffness.begin());
+    // Its law's blocks, one for one with the problem's, fill the shift's rows exactly.
     const std::vector<ceres::ResidualBlockId> theirs = LawBlocks(*other);
-    if (theirs.size() != shifts.blocks.size()) {
-      notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
-                       " has other residuals");
-      return {};
-    }
     Eigen::VectorXd shift(static_cast<Eigen::Index>(base.size()));
     size_t row = 0;
-    for (const ceres::ResidualBlockId id : theirs) {
-      if (!BlockResiduals(*other->problem, id, &r) || row + r.size() > base.size()) break;
-      for (const double value : r) {
-        shift[static_cast<Eigen::Index>(row)] = weight * (value - base[row]);
-        ++row;
+    bool same = theirs.size() == shifts.blocks.size();
+    for (size_t b = 0; same && b < theirs.size(); ++b) {
+      same = BlockResiduals(*other->problem, theirs[b], &r) && row + r.size() <= base.size();
+      for (size_t i = 0; same && i < r.size(); ++i, ++row) {
+        shift[static_cast<Eigen::Index>(row)] = weight * (r[i] - base[row]);
       }
     }
-    if (row != base.size()) {
+    if (!same || row != base.size()) {
       notes->push_back("the law's uncertainty is not in the sd: the problem with " + name +
                        " has other residuals");
       return {};
