@@ -59,6 +59,7 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   Sparse S(J_.cols(), c);
   S.setFromTriplets(select.begin(), select.end());
   N_ = J_ * S;
+  N_rows_ = N_;
 
   // N'N, with a relative ridge of 1e-10 on its diagonal (and 1e-12 where a column is empty) for
   // directions no factor constrains: they carry no information about any term either.
@@ -120,38 +121,66 @@ std::vector<GraphScore> GraphProjector::EffectScores() const {
   return out;
 }
 
-Eigen::VectorXd GraphProjector::ForceColumn(const std::vector<double>& h) const {
+void GraphProjector::AddForceColumn(const std::vector<double>& h, int column,
+                                    std::vector<Eigen::Triplet<double>>* entries) const {
   // An external force enters where a_dist does in the model's equations: t = sum_k h_k
   // J(:, a_dist_k) over the accelerometer and dynamics rows.
-  Eigen::VectorXd t = Eigen::VectorXd::Zero(J_.rows());
   for (size_t k = 0; k < states_ && k < h.size(); ++k) {
     if (h[k] == 0.0 || !std::isfinite(h[k])) continue;
     for (Sparse::InnerIterator it(J_, ward::kStateSize * k + ward::kAdist); it; ++it) {
-      if (row_is_model_[it.row()]) t[it.row()] += h[k] * it.value();
+      if (row_is_model_[it.row()]) entries->emplace_back(it.row(), column, h[k] * it.value());
     }
   }
-  return t;
+}
+
+Eigen::VectorXd GraphProjector::ForceColumn(const std::vector<double>& h) const {
+  std::vector<Eigen::Triplet<double>> entries;
+  AddForceColumn(h, 0, &entries);
+  Sparse t(J_.rows(), 1);
+  t.setFromTriplets(entries.begin(), entries.end());
+  return Eigen::VectorXd(t);
 }
 
 GraphScore GraphProjector::TestForce(const std::vector<double>& h) const {
   return Test(ForceColumn(h));
 }
 
-ProjectedBasis GraphProjector::Project(const Eigen::MatrixXd& T) const {
+ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<double>>& shapes,
+                                             const Eigen::VectorXd* column) const {
+  const Eigen::Index columns = static_cast<Eigen::Index>(shapes.size()) + (column ? 1 : 0);
   ProjectedBasis out;
-  out.score = Eigen::VectorXd::Zero(T.cols());
-  out.gram = Eigen::MatrixXd::Zero(T.cols(), T.cols());
-  if (!ok_ || T.cols() == 0) return out;
-  const Eigen::MatrixXd W = ProjectOut(T);
-  out.score = W.transpose() * r_perp_;
-  out.gram = W.transpose() * W;
+  out.score = Eigen::VectorXd::Zero(columns);
+  out.gram = Eigen::MatrixXd::Zero(columns, columns);
+  if (!ok_ || columns == 0) return out;
+  // T: a basis's columns touch a few states' rows each.
+  std::vector<Eigen::Triplet<double>> entries;
+  for (size_t j = 0; j < shapes.size(); ++j) {
+    AddForceColumn(shapes[j], static_cast<int>(j), &entries);
+  }
+  if (column != nullptr) {
+    const int last = static_cast<int>(columns - 1);
+    for (Eigen::Index i = 0; i < column->size(); ++i) {
+      if ((*column)[i] != 0.0) entries.emplace_back(static_cast<int>(i), last, (*column)[i]);
+    }
+  }
+  RowSparse T(J_.rows(), columns);
+  T.setFromTriplets(entries.begin(), entries.end());
+  // W = T - N X with X = (N'N)^-1 N'T, formed explicitly (W'W from T'T - T'N X would lose the
+  // part of T the nuisance cannot mimic to cancellation), a band of rows at a time: W's row i
+  // is N's row i's few entries times rows of X, and the band's W'W and W'r are summed at once.
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const RowMajorMatrix x = solver_.solve(Eigen::MatrixXd(N_.transpose() * T));
+  constexpr Eigen::Index kBand = 2048;
+  RowMajorMatrix w;
+  for (Eigen::Index first = 0; first < T.rows(); first += kBand) {
+    const Eigen::Index rows = std::min(kBand, T.rows() - first);
+    w = T.middleRows(first, rows);
+    w.noalias() -= N_rows_.middleRows(first, rows) * x;
+    out.score.noalias() += w.transpose() * r_perp_.segment(first, rows);
+    out.gram.selfadjointView<Eigen::Lower>().rankUpdate(w.transpose());
+  }
+  out.gram = Eigen::MatrixXd(out.gram.selfadjointView<Eigen::Lower>());
   return out;
-}
-
-ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<double>>& shapes) const {
-  Eigen::MatrixXd T(J_.rows(), static_cast<Eigen::Index>(shapes.size()));
-  for (Eigen::Index j = 0; j < T.cols(); ++j) T.col(j) = ForceColumn(shapes[j]);
-  return Project(T);
 }
 
 std::vector<GraphScore> GraphScoreTests(WardProblem& problem, const std::vector<int>& in_model) {

@@ -69,10 +69,10 @@ class GraphProjector {
   std::vector<GraphScore> EffectScores() const;
   // An external force of shape h (one value per state, m/s^2 per unit magnitude).
   GraphScore TestForce(const std::vector<double>& h) const;
-  // A basis of external force shapes (each one value per state), projected.
-  ProjectedBasis ProjectForces(const std::vector<std::vector<double>>& shapes) const;
-  // Any raw columns (one per tested term, over the graph's residual rows), projected.
-  ProjectedBasis Project(const Eigen::MatrixXd& columns) const;
+  // A basis of external force shapes (each one value per state), projected; with `column` (a
+  // raw column over the graph's residual rows, as EffectColumn's) appended last when not null.
+  ProjectedBasis ProjectForces(const std::vector<std::vector<double>>& shapes,
+                               const Eigen::VectorXd* column = nullptr) const;
   // Raw columns: a model effect's (its weak prior's rows zeroed: not data) and an external
   // force shape's.
   Eigen::VectorXd EffectColumn(int effect) const;
@@ -80,9 +80,13 @@ class GraphProjector {
 
  private:
   using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
   GraphScore Test(const Eigen::VectorXd& t) const;
   // (I - N (N'N)^-1 N') T: the columns' part the nuisance cannot mimic.
   Eigen::MatrixXd ProjectOut(const Eigen::MatrixXd& T) const;
+  // The force shape's column's entries (row, value) added to `entries` as column `column`.
+  void AddForceColumn(const std::vector<double>& h, int column,
+                      std::vector<Eigen::Triplet<double>>* entries) const;
 
   bool ok_ = false;
   size_t states_ = 0;
@@ -91,6 +95,7 @@ class GraphProjector {
   std::vector<bool> row_is_model_;  // accelerometer and dynamics rows: where a force enters
   std::vector<bool> row_is_prior_;  // the effects' weak prior: not data
   Sparse J_, N_;
+  RowSparse N_rows_;  // N again, row by row (ProjectForces)
   Eigen::VectorXd r_perp_;
   int effect_column_ = 0;
   size_t effect_count_ = 0;

@@ -50,10 +50,7 @@ PathForceTest TestForceAlongPath(const ModelResiduals& m, const Eigen::VectorXd*
   // One projection serves the basis alone (its leading block) and, with the candidate's column
   // appended, the joint test.
   const bool with_candidate = candidate_column != nullptr;
-  Eigen::MatrixXd T(m.graph->rows(), static_cast<Eigen::Index>(cells) + (with_candidate ? 1 : 0));
-  for (size_t j = 0; j < cells; ++j) T.col(j) = m.graph->ForceColumn(basis[j]);
-  if (with_candidate) T.col(cells) = *candidate_column;
-  const ProjectedBasis joint = m.graph->Project(T);
+  const ProjectedBasis joint = m.graph->ProjectForces(basis, candidate_column);
   const Eigen::Index nc = static_cast<Eigen::Index>(cells);
   const ProjectedBasis projected{joint.score.head(nc), joint.gram.topLeftCorner(nc, nc)};
   const auto [x2, rank] = ChiSquareOfScores(projected.score, projected.gram);
