@@ -179,13 +179,15 @@ struct Layout {
     int state, first, size, ambient;  // state -1: a global, first: its first index among them
     const Eigen::MatrixXd* plus_jacobian = nullptr;  // ambient x tangent; null: no manifold
   };
-  // The states are m-vectors without a manifold (Sizes checks it).
+  // The states are m-vectors without a manifold (Sizes checks it). places: the states in order,
+  // then the globals.
   Layout(const ceres::Problem& problem, const std::vector<double*>& states,
          const std::vector<double*>& globals, int m) {
-    where.reserve(states.size() + globals.size());
-    for (size_t k = 0; k < states.size(); ++k) where[states[k]] = {static_cast<int>(k), 0, m, m};
-    const auto add = [&](double* p, int state, int first) {
-      Place place{state, first, problem.ParameterBlockTangentSize(p), problem.ParameterBlockSize(p),
+    places.reserve(states.size() + globals.size());
+    for (size_t k = 0; k < states.size(); ++k) places.push_back({static_cast<int>(k), 0, m, m});
+    int offset = 0;
+    for (double* p : globals) {
+      Place place{-1, offset, problem.ParameterBlockTangentSize(p), problem.ParameterBlockSize(p),
                   nullptr};
       if (const ceres::Manifold* manifold = problem.GetManifold(p)) {
         // Ceres' Jacobians are row-major.
@@ -195,14 +197,62 @@ struct Layout {
         plus_jacobians.emplace_back(j);
         place.plus_jacobian = &plus_jacobians.back();
       }
-      where[p] = place;
-      return place.size;
-    };
-    int offset = 0;
-    for (double* p : globals) offset += add(p, -1, offset);
+      places.push_back(place);
+      offset += place.size;
+    }
+    where.reserve(places.size());
+    for (size_t k = 0; k < states.size(); ++k) where[states[k]] = static_cast<int>(k);
+    for (size_t j = 0; j < globals.size(); ++j) {
+      where[globals[j]] = static_cast<int>(states.size() + j);
+    }
   }
-  std::unordered_map<const double*, Place> where;
+  // The place of a parameter block, -1 when it is neither a state nor a global (held constant).
+  int Find(const double* p) const {
+    const auto it = where.find(p);
+    return it == where.end() ? -1 : it->second;
+  }
+  std::vector<Place> places;
+  std::unordered_map<const double*, int> where;
   std::deque<Eigen::MatrixXd> plus_jacobians;  // stable addresses
+};
+
+// Residual blocks as their evaluation needs them, read from the problem once: each block's cost
+// and loss functions, its parameter blocks and their places in a Layout of the same states and
+// globals. A solve evaluates every block tens of times; going through Ceres' own blocks and a
+// hash of the parameters each time costs more than some of the factors do.
+struct BlockTable {
+  std::vector<ceres::ResidualBlockId> ids;
+  std::vector<const ceres::CostFunction*> functions;
+  std::vector<const ceres::LossFunction*> losses;
+  std::vector<size_t> first{0};     // block b's parameters: [first[b], first[b + 1])
+  std::vector<double*> parameters;  // as the cost function takes them
+  std::vector<int> places;          // Layout::places index, -1: held constant
+
+  size_t size() const { return ids.size(); }
+  void Add(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
+    ids.push_back(id);
+    functions.push_back(problem.GetCostFunctionForResidualBlock(id));
+    losses.push_back(problem.GetLossFunctionForResidualBlock(id));
+    std::vector<double*> blocks;
+    problem.GetParameterBlocksForResidualBlock(id, &blocks);
+    for (double* p : blocks) {
+      parameters.push_back(p);
+      places.push_back(layout.Find(p));
+    }
+    first.push_back(parameters.size());
+  }
+  // Block b's cost, rho(|r|^2) / 2, into *cost; false when it cannot be evaluated.
+  bool Cost(size_t b, std::vector<double>* residuals, double* cost) const {
+    residuals->resize(functions[b]->num_residuals());
+    if (!functions[b]->Evaluate(parameters.data() + first[b], residuals->data(), nullptr)) {
+      return false;
+    }
+    double squared = 0.0;
+    for (const double r : *residuals) squared += r * r;
+    double rho[3];
+    *cost = LossCost(losses[b], squared, rho);
+    return true;
+  }
 };
 
 // One residual block evaluated as Ceres' solver sees it, with scratch of its own so that threads
@@ -218,19 +268,25 @@ class BlockEvaluation {
  public:
   // False when the cost function fails or returns a value that is not finite.
   bool Evaluate(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
-    problem.GetParameterBlocksForResidualBlock(id, &blocks_);
-    const ceres::CostFunction* function = problem.GetCostFunctionForResidualBlock(id);
+    single_ = BlockTable{};
+    single_.Add(problem, id, layout);
+    return Evaluate(single_, 0, layout);
+  }
+  // Block b of a table built with a Layout of the same states and globals.
+  bool Evaluate(const BlockTable& table, size_t b, const Layout& layout) {
+    const ceres::CostFunction* function = table.functions[b];
+    double* const* parameters = table.parameters.data() + table.first[b];
+    const int* place_of = table.places.data() + table.first[b];
     rows = function->num_residuals();
-    const size_t count_blocks = blocks_.size();
+    const size_t count_blocks = table.first[b + 1] - table.first[b];
     ambient_.resize(count_blocks);
     pointers_.assign(count_blocks, nullptr);
     places_.assign(count_blocks, nullptr);
     block.clear();
     index.clear();
     for (size_t i = 0; i < count_blocks; ++i) {
-      const auto it = layout.where.find(blocks_[i]);
-      if (it == layout.where.end()) continue;  // held constant
-      const Layout::Place& place = it->second;
+      if (place_of[i] < 0) continue;  // held constant
+      const Layout::Place& place = layout.places[place_of[i]];
       places_[i] = &place;
       ambient_[i].resize(static_cast<size_t>(rows) * place.ambient);
       pointers_[i] = ambient_[i].data();
@@ -240,7 +296,7 @@ class BlockEvaluation {
       }
     }
     residuals.resize(rows);
-    if (!function->Evaluate(blocks_.data(), residuals.data(), pointers_.data())) return false;
+    if (!function->Evaluate(parameters, residuals.data(), pointers_.data())) return false;
     count = static_cast<int>(block.size());
     jb.resize(static_cast<size_t>(rows) * count);
     int column = 0;
@@ -267,7 +323,7 @@ class BlockEvaluation {
     double squared = 0.0;
     for (const double r : residuals) squared += r * r;
     if (!std::isfinite(squared)) return false;
-    CorrectForLoss(problem.GetLossFunctionForResidualBlock(id), squared);
+    CorrectForLoss(table.losses[b], squared);
     const auto finite = [](double v) { return std::isfinite(v); };
     return std::isfinite(cost) && std::all_of(jb.begin(), jb.end(), finite) &&
            std::all_of(residuals.begin(), residuals.end(), finite);
@@ -303,7 +359,7 @@ class BlockEvaluation {
     for (double& r : residuals) r *= scale;
   }
 
-  std::vector<double*> blocks_;
+  BlockTable single_;  // Evaluate(problem, id, layout)'s
   std::vector<std::vector<double>> ambient_;
   std::vector<double*> pointers_;
   std::vector<const Layout::Place*> places_;
@@ -318,7 +374,7 @@ class BlockEvaluation {
 // added after them.
 // `partition` (may be null): the blocks each run takes, from an earlier call on the same
 // problem; filled when empty.
-using Partition = std::vector<std::vector<ceres::ResidualBlockId>>;
+using Partition = std::vector<BlockTable>;
 // The blocks are summed in this many runs (at most), whatever the number of threads that take
 // them, so that the sums, and so the solution to its last digit, do not depend on the threads.
 constexpr int kAssemblyRuns = 8;
@@ -333,41 +389,41 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
   const int parts = std::max(1, std::min(kAssemblyRuns, n / 64));
   Partition own;
   Partition& taken = partition != nullptr ? *partition : own;
-  if (taken.size() != static_cast<size_t>(parts) + 1 && parts == 1) {
-    taken.assign(2, {});
-    problem->GetResidualBlocks(&taken[0]);
-  } else if (taken.size() != static_cast<size_t>(parts) + 1) {
+  if (taken.size() != static_cast<size_t>(parts) + 1) {
     taken.assign(parts + 1, {});
     std::vector<ceres::ResidualBlockId> ids;
     problem->GetResidualBlocks(&ids);
     std::vector<double*> blocks;
     for (const ceres::ResidualBlockId id : ids) {
-      problem->GetParameterBlocksForResidualBlock(id, &blocks);
-      int lowest = n, highest = -1;
-      for (double* p : blocks) {
-        const auto it = layout.where.find(p);
-        if (it == layout.where.end() || it->second.state < 0) continue;
-        lowest = std::min(lowest, it->second.state);
-        highest = std::max(highest, it->second.state);
+      int part = 0;
+      if (parts > 1) {
+        problem->GetParameterBlocksForResidualBlock(id, &blocks);
+        int lowest = n, highest = -1;
+        for (double* p : blocks) {
+          const int place = layout.Find(p);
+          if (place < 0 || layout.places[place].state < 0) continue;
+          lowest = std::min(lowest, layout.places[place].state);
+          highest = std::max(highest, layout.places[place].state);
+        }
+        part = highest < 0 ? parts : static_cast<int>(static_cast<long>(lowest) * parts / n);
+        const int end = static_cast<int>(static_cast<long>(n) * (part + 1) / parts);
+        if (highest >= end) part = parts;
       }
-      const int part =
-          highest < 0 ? parts : static_cast<int>(static_cast<long>(lowest) * parts / n);
-      const int end = static_cast<int>(static_cast<long>(n) * (part + 1) / parts);
-      taken[highest < end ? part : parts].push_back(id);
+      taken[part].Add(*problem, id, layout);
     }
   }
   std::vector<double> Cs(static_cast<size_t>(parts) * g * g, 0.0);
   std::vector<double> globals_gradient(static_cast<size_t>(parts) * g, 0.0);
   std::vector<double> costs(parts, 0.0);
   std::vector<std::string> errors(parts);
-  const auto assemble = [&](const std::vector<ceres::ResidualBlockId>& list, double* C,
-                            double* gradient_globals, double* part_cost, std::string* error) {
+  const auto assemble = [&](const BlockTable& list, double* C, double* gradient_globals,
+                            double* part_cost, std::string* error) {
     BlockEvaluation e;
     Information::Part part;
     part.C = C;
     std::vector<double> hb;
-    for (const ceres::ResidualBlockId id : list) {
-      if (!e.Evaluate(*problem, id, layout)) {
+    for (size_t b = 0; b < list.size(); ++b) {
+      if (!e.Evaluate(list, b, layout)) {
         *error = "a residual block could not be evaluated";
         return;
       }
@@ -708,9 +764,11 @@ struct ChainLinearization::Impl {
   Information info{0, 0, 0};
   std::vector<double> gradient;
   double cost = 0.0;
-  // Which blocks each run takes, kept while the problem's shape is the same.
+  // Which blocks each run takes, kept while the problem's shape is the same, and the states'
+  // and the globals' sizes.
   Partition partition;
   std::tuple<const ceres::Problem*, const double*, const double*, size_t, int> partition_of{};
+  int m = 0, g = 0;
   // The last step's factorization, its storage reused by the next (7: the Ward state).
   ChainFactorization<7> factorization7;
   ChainFactorization<Eigen::Dynamic> factorization;
@@ -724,14 +782,26 @@ ChainLinearization& ChainLinearization::operator=(ChainLinearization&&) noexcept
 bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                                    const std::vector<double*>& globals, std::string* error,
                                    int threads) {
-  int m = 0, g = 0;
-  if (!Sizes(problem, states, globals, &m, &g, error)) return false;
-  impl_->info.Reset(static_cast<int>(states.size()), m, g);
+  if (states.empty()) {
+    *error = "no states";
+    return false;
+  }
   const auto shape = std::make_tuple(
       static_cast<const ceres::Problem*>(problem), static_cast<const double*>(states.front()),
       static_cast<const double*>(states.back()), globals.size(), problem->NumResidualBlocks());
-  if (shape != impl_->partition_of) impl_->partition.clear();
-  impl_->partition_of = shape;
+  if (shape != impl_->partition_of) {
+    // Every state's size is checked once per shape (a map lookup each).
+    if (!Sizes(problem, states, globals, &impl_->m, &impl_->g, error)) return false;
+    impl_->partition.clear();
+    impl_->partition_of = shape;
+  }
+  int g = 0;
+  for (double* p : globals) g += problem->ParameterBlockTangentSize(p);
+  if (g != impl_->g) {
+    *error = "the globals' tangent size changed";
+    return false;
+  }
+  impl_->info.Reset(static_cast<int>(states.size()), impl_->m, g);
   if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
                           threads, &impl_->partition)) {
     *error = impl_->info.error;
@@ -741,6 +811,30 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
 }
 
 double ChainLinearization::cost() const { return impl_->cost; }
+
+bool ChainLinearization::Cost(double* cost, int threads) const {
+  const Partition& taken = impl_->partition;
+  if (taken.empty()) return false;
+  std::vector<double> costs(taken.size(), 0.0);
+  std::vector<char> ok(taken.size(), 1);
+  RunConcurrently(taken.size(), threads, [&](size_t p) {
+    std::vector<double> residuals;
+    for (size_t b = 0; b < taken[p].size(); ++b) {
+      double block_cost = 0.0;
+      if (!taken[p].Cost(b, &residuals, &block_cost)) {
+        ok[p] = 0;
+        return;
+      }
+      costs[p] += block_cost;
+    }
+  });
+  *cost = 0.0;
+  for (size_t p = 0; p < taken.size(); ++p) {
+    if (!ok[p]) return false;
+    *cost += costs[p];
+  }
+  return std::isfinite(*cost);
+}
 
 const std::vector<double>& ChainLinearization::gradient() const { return impl_->gradient; }
 

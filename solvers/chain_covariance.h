@@ -79,6 +79,10 @@ class ChainLinearization {
   bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                  const std::vector<double*>& globals, std::string* error, int threads = 1);
   double cost() const;  // 0.5 |r|^2, loss-corrected
+  // The cost at the problem's current values, over the blocks the last Linearize read (they must
+  // not have changed since), summed in the same runs whatever the number of threads; false when
+  // none was read, a block cannot be evaluated or the cost is not finite.
+  bool Cost(double* cost, int threads = 1) const;
   // J'r: each state's tangent coordinates in turn, then the globals', stacked.
   const std::vector<double>& gradient() const;
   // The step of (H + mu diag(H)) d = -J'r (mu = 0: Gauss-Newton); false with step->error when

@@ -270,7 +270,7 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
     const double predicted = linearization.PredictedDecrease(step.states, step.globals);
     double new_cost = 0.0;
     const bool evaluated =
-        ChainCost(*problem, &new_cost, options.threads) && std::isfinite(new_cost);
+        linearization.Cost(&new_cost, options.threads) && std::isfinite(new_cost);
     const double rho = evaluated && predicted > 0.0 ? (cost - new_cost) / predicted : -1.0;
     if (step_norm <= options.parameter_tolerance * (x_norm + options.parameter_tolerance)) {
       parameters.SetValues(before);
@@ -303,7 +303,7 @@ bool SolveOnChain(ceres::Problem* problem, const std::vector<double*>& states,
         parameters.SetValues(before);
         parameters.Apply(&longer, &longer_globals);
         double longer_cost = 0.0;
-        if (ChainCost(*problem, &longer_cost, options.threads) && longer_cost < new_cost) {
+        if (linearization.Cost(&longer_cost, options.threads) && longer_cost < new_cost) {
           new_cost = longer_cost;
           taken_length = length;
           ++summary->num_line_search_steps;

@@ -12,7 +12,9 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
+#include <cmath>
 
+#include "factors/ward_state.h"
 #include "problems/ward_batch_problem.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
@@ -114,6 +116,34 @@ TEST(ChainCovariance, LinearizationIsCeresEvaluationOnOneThreadOrTwo) {
     for (size_t i = 0; i < gradient.size(); ++i) {
       ASSERT_NEAR(linearization.gradient()[i], gradient[i], 1e-9 * largest) << threads << " " << i;
     }
+  }
+}
+
+TEST(ChainCovariance, TheLinearizationsCostIsCeresCostWhereverTheStatesMove) {
+  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
+  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult ekf = RunEkf(log, model);
+  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf.estimates);
+  std::vector<double*> states;
+  for (auto& x : problem->states) states.push_back(x.data());
+  ChainLinearization linearization;
+  double unread = 0.0;
+  EXPECT_FALSE(linearization.Cost(&unread));  // no blocks read yet
+  std::string error;
+  ASSERT_TRUE(
+      linearization.Linearize(problem->problem.get(), states, {problem->offsets.data()}, &error))
+      << error;
+  // Moved after the blocks were read, as a trial step moves them.
+  for (size_t k = 0; k < states.size(); ++k) states[k][ward::kVbx] += 0.01 * std::sin(0.1 * k);
+  problem->offsets[0] += 0.003;
+  double ceres_cost = 0.0;
+  ASSERT_TRUE(problem->problem->Evaluate({}, &ceres_cost, nullptr, nullptr, nullptr));
+  ASSERT_GT(std::abs(ceres_cost - linearization.cost()), 1e-3 * ceres_cost);  // it did move
+  for (const int threads : {1, 2}) {
+    double cost = 0.0;
+    ASSERT_TRUE(linearization.Cost(&cost, threads));
+    EXPECT_NEAR(cost, ceres_cost, 1e-12 * ceres_cost) << threads;
   }
 }
 
