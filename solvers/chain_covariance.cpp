@@ -742,22 +742,6 @@ ChainCovariance CovarianceAt(ceres::Problem* problem, const std::vector<double*>
   return Marginals(f);
 }
 
-template <int M>
-ChainStep StepAt(ceres::Problem* problem, const std::vector<double*>& states,
-                 const std::vector<double*>& globals, int m, int g, bool with_covariance,
-                 int covariance_states) {
-  ChainStep out;
-  ChainFactorization<M> f;
-  std::vector<double> gradient;
-  if (!Linearize(problem, states, globals, m, g, &out.cost, &gradient, &f, &out.error)) {
-    return out;
-  }
-  Solve(f, gradient, &out.states, &out.globals);
-  if (with_covariance) out.covariance = Marginals(f, covariance_states);
-  out.ok = true;
-  return out;
-}
-
 }  // namespace
 
 struct ChainLinearization::Impl {
@@ -772,6 +756,7 @@ struct ChainLinearization::Impl {
   // The last step's factorization, its storage reused by the next (7: the Ward state).
   ChainFactorization<7> factorization7;
   ChainFactorization<Eigen::Dynamic> factorization;
+  bool factored = false;  // the last Step succeeded
 };
 
 ChainLinearization::ChainLinearization() : impl_(std::make_unique<Impl>()) {}
@@ -802,6 +787,7 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
     return false;
   }
   impl_->info.Reset(static_cast<int>(states.size()), impl_->m, g);
+  impl_->factored = false;
   if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
                           threads, &impl_->partition)) {
     *error = impl_->info.error;
@@ -873,7 +859,18 @@ bool ChainLinearization::Step(double mu, ChainStep* step, const std::vector<char
                                                 &impl_->factorization7, step)
                                 : DampedStep<Eigen::Dynamic>(impl_->info, impl_->gradient, mu, held,
                                                              &impl_->factorization, step);
+  impl_->factored = step->ok;
   return step->ok;
+}
+
+ChainCovariance ChainLinearization::LastStepCovariance(int states) const {
+  if (!impl_->factored) {
+    ChainCovariance out;
+    out.error = "no step factored";
+    return out;
+  }
+  return impl_->info.m == 7 ? Marginals(impl_->factorization7, states)
+                            : Marginals(impl_->factorization, states);
 }
 
 double ChainLinearization::Slope(const std::vector<Eigen::VectorXd>& states,
@@ -921,38 +918,6 @@ double ChainLinearization::PredictedDecrease(const std::vector<Eigen::VectorXd>&
   return -(linear + 0.5 * quadratic);
 }
 
-bool ChainCost(const ceres::Problem& problem, double* cost, int threads) {
-  std::vector<ceres::ResidualBlockId> ids;
-  problem.GetResidualBlocks(&ids);
-  const size_t parts =
-      static_cast<size_t>(std::max(1, std::min<int>(kAssemblyRuns, ids.size() / 256)));
-  std::vector<double> costs(parts, 0.0);
-  std::vector<char> ok(parts, 1);
-  RunConcurrently(parts, threads, [&](size_t p) {
-    std::vector<double*> blocks;
-    std::vector<double> residuals;
-    for (size_t i = ids.size() * p / parts; i < ids.size() * (p + 1) / parts; ++i) {
-      problem.GetParameterBlocksForResidualBlock(ids[i], &blocks);
-      const ceres::CostFunction* function = problem.GetCostFunctionForResidualBlock(ids[i]);
-      residuals.resize(function->num_residuals());
-      if (!function->Evaluate(blocks.data(), residuals.data(), nullptr)) {
-        ok[p] = 0;
-        return;
-      }
-      double squared = 0.0;
-      for (const double r : residuals) squared += r * r;
-      double rho[3];
-      costs[p] += LossCost(problem.GetLossFunctionForResidualBlock(ids[i]), squared, rho);
-    }
-  });
-  *cost = 0.0;
-  for (size_t p = 0; p < parts; ++p) {
-    if (!ok[p]) return false;
-    *cost += costs[p];
-  }
-  return std::isfinite(*cost);
-}
-
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
                                        const std::vector<double*>& globals, int threads) {
   int m = 0, g = 0;
@@ -960,17 +925,6 @@ ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vecto
   if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
   return m == 7 ? CovarianceAt<7>(problem, states, globals, m, g, threads)
                 : CovarianceAt<Eigen::Dynamic>(problem, states, globals, m, g, threads);
-}
-
-ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
-                           const std::vector<double*>& globals, bool with_covariance,
-                           int covariance_states) {
-  int m = 0, g = 0;
-  ChainStep out;
-  if (!Sizes(problem, states, globals, &m, &g, &out.error)) return out;
-  return m == 7 ? StepAt<7>(problem, states, globals, m, g, with_covariance, covariance_states)
-                : StepAt<Eigen::Dynamic>(problem, states, globals, m, g, with_covariance,
-                                         covariance_states);
 }
 
 }  // namespace slipgraph

@@ -39,11 +39,11 @@ struct ChainCovariance {
 ChainCovariance ComputeChainCovariance(ceres::Problem* problem, const std::vector<double*>& states,
                                        const std::vector<double*>& globals, int threads = 1);
 
-// One Gauss-Newton step on the same structure: the same factorization of H = J'J solves
-// H dx = -J'r (the residuals and Jacobian loss-corrected, as Ceres' own step sees them), and the
-// marginal covariances at the linearization point come with it when asked for. The sliding
-// window's low-latency solver (solvers/window_smoother.h, WindowSolver::kChainGaussNewton):
-// Ceres rebuilds the program, the Jacobian's structure, J'J's structure and the sparse
+// One (damped) Gauss-Newton step on the same structure, from ChainLinearization::Step: the
+// factorization of H (+ mu diag(H)) solves H dx = -J'r, the residuals and Jacobian
+// loss-corrected as Ceres' own step sees them. The sliding window's low-latency solver
+// (solvers/window_smoother.h, WindowSolver::kChainGaussNewton) and the batch's chain solver take
+// it: Ceres rebuilds the program, the Jacobian's structure, J'J's structure and the sparse
 // Cholesky's symbolic analysis on every Solve; a chain needs none of them.
 struct ChainStep {
   bool ok = false;
@@ -51,13 +51,7 @@ struct ChainStep {
   double cost = 0.0;                    // 0.5 |r|^2 at the linearization point (loss-corrected)
   std::vector<Eigen::VectorXd> states;  // dx_k
   Eigen::VectorXd globals;              // dx of the globals, stacked
-  ChainCovariance covariance;           // filled when asked for
 };
-// covariance_states >= 0: the covariance of the first covariance_states states only (the others'
-// and `next` left empty; the window needs its leaving states'); -1: all.
-ChainStep ComputeChainStep(ceres::Problem* problem, const std::vector<double*>& states,
-                           const std::vector<double*>& globals, bool with_covariance,
-                           int covariance_states = -1);
 
 // The chain's Gauss-Newton model at the problem's current values, kept so that it can be solved
 // with several dampings: Levenberg-Marquardt (solvers/chain_solver) retries a rejected step with
@@ -91,6 +85,10 @@ class ChainLinearization {
   // a parameter at a bound that the gradient pushes against, whose step is 0 and whose coupling is
   // left out of the others'.
   bool Step(double mu, ChainStep* step, const std::vector<char>* held = nullptr) const;
+  // The marginal covariances of the first `states` states (-1: all; the others' and `next` left
+  // empty unless all) from the last Step's factorization: the linearization's own when that
+  // step was undamped (mu 0) and held nothing. Not ok before a Step has succeeded.
+  ChainCovariance LastStepCovariance(int states = -1) const;
   // -(J'r . d + d'H d / 2): the cost decrease the linear model predicts for the step d.
   double PredictedDecrease(const std::vector<Eigen::VectorXd>& states,
                            const Eigen::VectorXd& globals) const;
@@ -101,12 +99,6 @@ class ChainLinearization {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// The problem's cost, 0.5 |r|^2 loss-corrected, as Problem::Evaluate gives it, summed block by
-// block (no program built; the cost functions called directly, shares of the blocks on
-// `threads` threads, summed in the same order whatever their number); false when a block cannot
-// be evaluated or the cost is not finite.
-bool ChainCost(const ceres::Problem& problem, double* cost, int threads = 1);
 
 // How the solution would move if the residuals moved by t (one column per perturbation): at a
 // minimum, where J'r = 0, the first-order shift is dx = -H^-1 J' t. With t the change a model

@@ -266,17 +266,23 @@ class Window {
     for (auto& x : states_) states.push_back(x.data());
     const bool want_sd = options_.covariance && leaving > 0;
     const int iterations = std::max(1, options_.max_iterations);
+    // This update's blocks, read from the problem once for its iterations and their costs.
+    ChainLinearization linearization;
+    ChainStep step;
     for (int iteration = 0; iteration < iterations; ++iteration) {
-      const ChainStep step =
-          ComputeChainStep(&problem_, states, Globals(), want_sd, static_cast<int>(leaving));
-      if (!step.ok) {
-        if (result_->chain_fallbacks == 0) Note("chain Gauss-Newton: " + step.error + "; Ceres");
+      std::string error;
+      if (!linearization.Linearize(&problem_, states, Globals(), &error) ||
+          !linearization.Step(0.0, &step)) {
+        if (error.empty()) error = step.error;
+        if (result_->chain_fallbacks == 0) Note("chain Gauss-Newton: " + error + "; Ceres");
         return false;
       }
       if (want_sd) {  // at this step's linearization point (the last one's, after the loop)
+        const ChainCovariance covariance =
+            linearization.LastStepCovariance(static_cast<int>(leaving));
         for (size_t i = 0; i < leaving; ++i) {
           for (int j = 0; j < kStateSize; ++j) {
-            (*sd)[i][j] = std::sqrt(std::max(0.0, step.covariance.states[i](j, j)));
+            (*sd)[i][j] = std::sqrt(std::max(0.0, covariance.states[i](j, j)));
           }
         }
         *have_sd = true;
@@ -293,7 +299,7 @@ class Window {
             std::max(source_.options().stiffness_min, stiffness_[j] + step.globals[g++]);
       }
       double cost = 0.0;
-      if (!ChainCost(problem_, &cost) || !std::isfinite(cost) ||
+      if (!linearization.Cost(&cost) || !std::isfinite(cost) ||
           cost > step.cost * (1.0 + 1e-9) + 1e-12) {
         return false;  // the step made it worse: a nonlinearity Levenberg-Marquardt handles
       }

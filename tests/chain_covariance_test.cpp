@@ -256,18 +256,32 @@ TEST(ChainCovariance, GaussNewtonStepSolvesALinearChainWithABorder) {
 
   std::vector<double*> states;
   for (auto& s : x) states.push_back(s.data());
-  const ChainStep step = ComputeChainStep(&problem, states, {&c}, true);
-  ASSERT_TRUE(step.ok) << step.error;
+  ChainLinearization linearization;
+  std::string error;
+  ASSERT_TRUE(linearization.Linearize(&problem, states, {&c}, &error)) << error;
+  ChainStep step;
+  ASSERT_TRUE(linearization.Step(0.0, &step)) << step.error;
   EXPECT_GT(step.cost, summary.final_cost);
   for (int k = 0; k < n; ++k) {
     for (int i = 0; i < 2; ++i) EXPECT_NEAR(x[k][i] + step.states[k][i], x_ceres[k][i], 1e-7);
   }
   EXPECT_NEAR(c + step.globals[0], c_ceres, 1e-7);  // Ceres stops within its tolerances
   const ChainCovariance covariance = ComputeChainCovariance(&problem, states, {&c});
-  ASSERT_TRUE(step.covariance.ok);
+  const ChainCovariance from_step = linearization.LastStepCovariance();
+  ASSERT_TRUE(from_step.ok);
   for (int k = 0; k < n; ++k) {
-    EXPECT_LT((step.covariance.states[k] - covariance.states[k]).norm(), 1e-12);
+    EXPECT_LT((from_step.states[k] - covariance.states[k]).norm(), 1e-12);
   }
+  EXPECT_LT((from_step.globals - covariance.globals).norm(), 1e-12);
+  // The first two states' only (as the window asks for the states that leave it).
+  const ChainCovariance first_two = linearization.LastStepCovariance(2);
+  ASSERT_TRUE(first_two.ok);
+  ASSERT_EQ(first_two.states.size(), static_cast<size_t>(n));
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT((first_two.states[k] - covariance.states[k]).norm(), 1e-12);
+  }
+  EXPECT_EQ(first_two.states[2].size(), 0);  // not asked for
+  EXPECT_TRUE(first_two.next.empty());
 }
 
 // Ceres' loss correction where the loss curves up (rho'' > 0: TolerantLoss), the one case that
@@ -348,7 +362,7 @@ TEST(ChainCovariance, PredictedDecreaseIsTheDecreaseOnALinearChain) {
     }
     c += step.globals[0];
     double cost = 0.0;
-    ASSERT_TRUE(ChainCost(problem, &cost));
+    ASSERT_TRUE(linearization.Cost(&cost));
     EXPECT_NEAR(linearization.PredictedDecrease(step.states, step.globals),
                 linearization.cost() - cost, 1e-9 * linearization.cost())
         << "mu " << mu;
