@@ -310,16 +310,32 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     e.gyro_offset_radps = problem->offsets[1];
   }
   if (options.covariance) {
-    const ChainCovariance covariance =
-        ComputeChainCovariance(problem->problem.get(), states, globals, options.threads);
-    result.covariance_ok = covariance.ok;
-    if (covariance.ok) {
-      for (size_t j = 0; j < problem->stiffness.size(); ++j) {
-        result.stiffness_sd.push_back(std::sqrt(std::max(0.0, covariance.globals(2 + j, 2 + j))));
+    std::vector<Eigen::Matrix<double, kStateSize, 1>> variance(n);  // the states' marginal ones
+    {
+      const ChainCovariance covariance =
+          ComputeChainCovariance(problem->problem.get(), states, globals, options.threads);
+      result.covariance_ok = covariance.ok;
+      if (covariance.ok) {
+        for (size_t j = 0; j < problem->stiffness.size(); ++j) {
+          result.stiffness_sd.push_back(std::sqrt(std::max(0.0, covariance.globals(2 + j, 2 + j))));
+        }
+        for (size_t e = 0; e < result.effects.size(); ++e) {
+          result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));
+        }
+        for (size_t k = 0; k < n; ++k) variance[k] = covariance.states[k].diagonal();
+        result.velocity_next_correlation.assign(n, 0.0);
+        for (size_t k = 0; k + 1 < n; ++k) {
+          const double var =
+              covariance.states[k](kVbx, kVbx) * covariance.states[k + 1](kVbx, kVbx);
+          result.velocity_next_correlation[k] =
+              var > 0.0 ? covariance.next[k](kVbx, kVbx) / std::sqrt(var) : 0.0;
+        }
+      } else {
+        result.notes.push_back("covariance recovery failed (" + covariance.error +
+                               "): EKF sd reported");
       }
-      for (size_t e = 0; e < result.effects.size(); ++e) {
-        result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));
-      }
+    }  // the covariance's blocks freed before the law's consider builds its own problems
+    if (result.covariance_ok) {
       std::vector<Eigen::Matrix<double, kStateSize, 1>> law;
       if (options.consider_law_uncertainty) {
         law = LawConsiderVariance(log, model, result.ekf, problem_options, problem.get(), states,
@@ -328,19 +344,9 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
       for (size_t k = 0; k < n; ++k) {
         for (int i = 0; i < kStateSize; ++i) {
           const double consider = law.empty() ? 0.0 : law[k](i);
-          result.estimates[k].sd[i] =
-              std::sqrt(std::max(0.0, covariance.states[k](i, i)) + consider);
+          result.estimates[k].sd[i] = std::sqrt(std::max(0.0, variance[k](i)) + consider);
         }
       }
-      result.velocity_next_correlation.assign(n, 0.0);
-      for (size_t k = 0; k + 1 < n; ++k) {
-        const double var = covariance.states[k](kVbx, kVbx) * covariance.states[k + 1](kVbx, kVbx);
-        result.velocity_next_correlation[k] =
-            var > 0.0 ? covariance.next[k](kVbx, kVbx) / std::sqrt(var) : 0.0;
-      }
-    } else {
-      result.notes.push_back("covariance recovery failed (" + covariance.error +
-                             "): EKF sd reported");
     }
   }
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
