@@ -191,16 +191,18 @@ std::vector<Eigen::Matrix<double, kStateSize, 1>> LawConsiderVariance(
 SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
                                const FilterResult& ekf, const BatchSmootherOptions& options) {
   SmootherResult result;
-  result.ekf = ekf;
-  result.estimates = result.ekf.estimates;
-  if (result.ekf.estimates.size() < 2) {
+  // The front end's run is copied into the result once the solve is done (a copy held through
+  // the solve would add to its peak memory).
+  result.estimates = ekf.estimates;
+  if (ekf.estimates.size() < 2) {
+    result.ekf = ekf;
     result.used_fallback = true;
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
     return result;
   }
   const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   std::unique_ptr<WardProblem> problem =
-      BuildWardBatchProblem(log, model, result.ekf.estimates, problem_options);
+      BuildWardBatchProblem(log, model, ekf.estimates, problem_options);
   for (const std::string& effect : problem->ignored_effects) {
     result.notes.push_back("effect '" + effect +
                            "' is named in the model but has no model term yet: ignored");
@@ -277,6 +279,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     result.used_fallback = true;
     result.notes.push_back("the solve failed (" + result.summary.message +
                            "): EKF estimates reported instead");
+    result.ekf = ekf;
     return result;
   }
   if (result.summary.termination_type == ceres::NO_CONVERGENCE) {
@@ -338,8 +341,8 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     if (result.covariance_ok) {
       std::vector<Eigen::Matrix<double, kStateSize, 1>> law;
       if (options.consider_law_uncertainty) {
-        law = LawConsiderVariance(log, model, result.ekf, problem_options, problem.get(), states,
-                                  globals, options.threads, &result.notes);
+        law = LawConsiderVariance(log, model, ekf, problem_options, problem.get(), states, globals,
+                                  options.threads, &result.notes);
       }
       for (size_t k = 0; k < n; ++k) {
         for (int i = 0; i < kStateSize; ++i) {
@@ -352,6 +355,8 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   DetectImmobilizationOnSmoothedStates(model, log.vehicle, options.min_immobilized_s,
                                        &result.estimates);
   result.notes.insert(result.notes.begin(), problem->counts.Describe());
+  problem.reset();
+  result.ekf = ekf;
   return result;
 }
 
@@ -364,8 +369,9 @@ SmootherResult SmoothBatchRegated(const DriveLog& log, const ModelConfig& model,
   }
   BatchSmootherOptions first_options = options;
   first_options.covariance = false;
-  const SmootherResult first = SmoothBatchOnce(log, model, ekf, first_options);
+  SmootherResult first = SmoothBatchOnce(log, model, ekf, first_options);
   if (first.used_fallback) return first;  // the EKF's estimates, sd included (no covariance ran)
+  first.ekf = FilterResult{};  // the caller's `ekf` (not held twice through the second solve)
   // The smoothed slip (DetectImmobilizationOnSmoothedStates leaves the mean of the two sides in
   // slip_ema) gates the second solve, which starts from the first.
   BatchSmootherOptions second_options = options;
@@ -374,7 +380,7 @@ SmootherResult SmoothBatchRegated(const DriveLog& log, const ModelConfig& model,
   long changed = 0;
   for (size_t k = 0; k < first.estimates.size(); ++k) {
     gate.push_back(first.estimates[k].slip.slip_ema);
-    changed += (gate.back() >= threshold) != (first.ekf.estimates[k].slip.slip_ema >= threshold);
+    changed += (gate.back() >= threshold) != (ekf.estimates[k].slip.slip_ema >= threshold);
   }
   second_options.start = &first.estimates;
   SmootherResult second = SmoothBatchOnce(log, model, ekf, second_options);
