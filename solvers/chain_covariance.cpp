@@ -180,9 +180,9 @@ struct Layout {
     const Eigen::MatrixXd* plus_jacobian = nullptr;  // ambient x tangent; null: no manifold
   };
   // The states are m-vectors without a manifold (Sizes checks it). places: the states in order,
-  // then the globals.
+  // then the globals. indexed: Find works (a hash of every block; needed only to read blocks).
   Layout(const ceres::Problem& problem, const std::vector<double*>& states,
-         const std::vector<double*>& globals, int m) {
+         const std::vector<double*>& globals, int m, bool indexed) {
     places.reserve(states.size() + globals.size());
     for (size_t k = 0; k < states.size(); ++k) places.push_back({static_cast<int>(k), 0, m, m});
     int offset = 0;
@@ -200,6 +200,7 @@ struct Layout {
       places.push_back(place);
       offset += place.size;
     }
+    if (!indexed) return;
     where.reserve(places.size());
     for (size_t k = 0; k < states.size(); ++k) where[states[k]] = static_cast<int>(k);
     for (size_t j = 0; j < globals.size(); ++j) {
@@ -229,6 +230,14 @@ struct BlockTable {
   std::vector<int> places;          // Layout::places index, -1: held constant
 
   size_t size() const { return ids.size(); }
+  void Clear() {
+    ids.clear();
+    functions.clear();
+    losses.clear();
+    first.assign(1, 0);
+    parameters.clear();
+    places.clear();
+  }
   void Add(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
     ids.push_back(id);
     functions.push_back(problem.GetCostFunctionForResidualBlock(id));
@@ -268,7 +277,7 @@ class BlockEvaluation {
  public:
   // False when the cost function fails or returns a value that is not finite.
   bool Evaluate(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
-    single_ = BlockTable{};
+    single_.Clear();
     single_.Add(problem, id, layout);
     return Evaluate(single_, 0, layout);
   }
@@ -372,8 +381,9 @@ class BlockEvaluation {
 // (on `threads` threads; the globals' block of H and of the gradient summed after, in the runs'
 // order); the blocks that cross from one run to the next, and those on the globals alone, are
 // added after them.
-// `partition` (may be null): the blocks each run takes, from an earlier call on the same
-// problem; filled when empty.
+// `partition` (may be null): the blocks each run takes, read from the problem when it does not
+// hold a table per run and one for after them; kept, it must come from a call on the same
+// problem, states and globals (ChainLinearization keys it on them).
 using Partition = std::vector<BlockTable>;
 // The blocks are summed in this many runs (at most), whatever the number of threads that take
 // them, so that the sums, and so the solution to its last digit, do not depend on the threads.
@@ -383,13 +393,14 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
                         std::vector<double>* gradient, int threads = 1,
                         Partition* partition = nullptr) {
   const int m = info->m, g = info->g, n = info->n, state_columns = n * m;
-  const Layout layout(*problem, states, globals, m);
   gradient->assign(static_cast<size_t>(state_columns + g), 0.0);
   // The runs of states, and the blocks each takes (the last list: after them).
   const int parts = std::max(1, std::min(kAssemblyRuns, n / 64));
   Partition own;
   Partition& taken = partition != nullptr ? *partition : own;
-  if (taken.size() != static_cast<size_t>(parts) + 1) {
+  const bool read = taken.size() != static_cast<size_t>(parts) + 1;
+  const Layout layout(*problem, states, globals, m, read);
+  if (read) {
     taken.assign(parts + 1, {});
     std::vector<ceres::ResidualBlockId> ids;
     problem->GetResidualBlocks(&ids);
@@ -678,7 +689,7 @@ void SensitivityAt(ceres::Problem* problem, const std::vector<double*>& states,
   const size_t columns = shifts.columns.size();
   const int n = static_cast<int>(states.size()), state_columns = n * m;
   std::vector<std::vector<double>> jt(columns, std::vector<double>(state_columns + g, 0.0));
-  const Layout layout(*problem, states, globals, m);
+  const Layout layout(*problem, states, globals, m, true);
   BlockEvaluation e;
   Eigen::Index row = 0;
   for (const ceres::ResidualBlockId id : shifts.blocks) {
@@ -751,7 +762,18 @@ struct ChainLinearization::Impl {
   // Which blocks each run takes, kept while the problem's shape is the same, and the states'
   // and the globals' sizes.
   Partition partition;
-  std::tuple<const ceres::Problem*, const double*, const double*, size_t, int> partition_of{};
+  struct Shape {
+    const ceres::Problem* problem = nullptr;
+    const double *first = nullptr, *last = nullptr;
+    size_t states = 0;
+    std::vector<double*> globals;
+    int residual_blocks = 0;
+    bool operator==(const Shape& o) const {
+      return problem == o.problem && first == o.first && last == o.last && states == o.states &&
+             globals == o.globals && residual_blocks == o.residual_blocks;
+    }
+  };
+  Shape partition_of;
   int m = 0, g = 0;
   // The last step's factorization, its storage reused by the next (7: the Ward state).
   ChainFactorization<7> factorization7;
@@ -767,27 +789,31 @@ ChainLinearization& ChainLinearization::operator=(ChainLinearization&&) noexcept
 bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                                    const std::vector<double*>& globals, std::string* error,
                                    int threads) {
+  impl_->factored = false;
   if (states.empty()) {
+    impl_->partition.clear();
+    impl_->partition_of = Impl::Shape{};
     *error = "no states";
     return false;
   }
-  const auto shape = std::make_tuple(
-      static_cast<const ceres::Problem*>(problem), static_cast<const double*>(states.front()),
-      static_cast<const double*>(states.back()), globals.size(), problem->NumResidualBlocks());
-  if (shape != impl_->partition_of) {
+  const Impl::Shape shape{problem,       states.front(), states.back(),
+                          states.size(), globals,        problem->NumResidualBlocks()};
+  if (!(shape == impl_->partition_of)) {
     // Every state's size is checked once per shape (a map lookup each).
-    if (!Sizes(problem, states, globals, &impl_->m, &impl_->g, error)) return false;
     impl_->partition.clear();
+    impl_->partition_of = Impl::Shape{};
+    if (!Sizes(problem, states, globals, &impl_->m, &impl_->g, error)) return false;
     impl_->partition_of = shape;
   }
   int g = 0;
   for (double* p : globals) g += problem->ParameterBlockTangentSize(p);
   if (g != impl_->g) {
+    impl_->partition.clear();
+    impl_->partition_of = Impl::Shape{};
     *error = "the globals' tangent size changed";
     return false;
   }
   impl_->info.Reset(static_cast<int>(states.size()), impl_->m, g);
-  impl_->factored = false;
   if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
                           threads, &impl_->partition)) {
     *error = impl_->info.error;
@@ -814,8 +840,12 @@ bool ChainLinearization::Cost(double* cost, int threads) const {
       costs[p] += block_cost;
     }
   });
-  *cost = 0.0;
-  for (size_t p = 0; p < taken.size(); ++p) {
+  // In AssembleFromBlocks' order (the blocks after the runs first), so that at the point of
+  // linearization this is cost() to its last digit.
+  const size_t last = taken.size() - 1;
+  if (!ok[last]) return false;
+  *cost = costs[last];
+  for (size_t p = 0; p < last; ++p) {
     if (!ok[p]) return false;
     *cost += costs[p];
   }

@@ -67,9 +67,10 @@ class ChainLinearization {
   // the sums, and so the result to its last digit, do not depend on their number); false with
   // *error when a block cannot be evaluated or links states that are not neighbours. The cost
   // functions must be callable from several threads at once, as Ceres' own multi-threaded
-  // evaluation requires. Which blocks each run takes is kept for the next call with the same
-  // problem, states and number of blocks: a problem whose blocks change between calls needs a
-  // new ChainLinearization.
+  // evaluation requires. The blocks each run takes (their cost and loss functions and
+  // parameters) are kept for the next call with the same problem, states, globals and number
+  // of blocks: a problem whose blocks change between calls, their number kept, needs a new
+  // ChainLinearization.
   bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                  const std::vector<double*>& globals, std::string* error, int threads = 1);
   double cost() const;  // 0.5 |r|^2, loss-corrected

@@ -134,6 +134,12 @@ TEST(ChainCovariance, TheLinearizationsCostIsCeresCostWhereverTheStatesMove) {
   ASSERT_TRUE(
       linearization.Linearize(problem->problem.get(), states, {problem->offsets.data()}, &error))
       << error;
+  // Where it linearized: the linearization's own cost, summed in the same order.
+  for (const int threads : {1, 2}) {
+    double here = 0.0;
+    ASSERT_TRUE(linearization.Cost(&here, threads));
+    EXPECT_EQ(here, linearization.cost()) << threads;
+  }
   // Moved after the blocks were read, as a trial step moves them.
   for (size_t k = 0; k < states.size(); ++k) states[k][ward::kVbx] += 0.01 * std::sin(0.1 * k);
   problem->offsets[0] += 0.003;
@@ -143,6 +149,7 @@ TEST(ChainCovariance, TheLinearizationsCostIsCeresCostWhereverTheStatesMove) {
   for (const int threads : {1, 2}) {
     double cost = 0.0;
     ASSERT_TRUE(linearization.Cost(&cost, threads));
+    // Ceres sums the same blocks' costs in another order: rounding over some 10^5 terms.
     EXPECT_NEAR(cost, ceres_cost, 1e-12 * ceres_cost) << threads;
   }
 }
@@ -257,8 +264,10 @@ TEST(ChainCovariance, GaussNewtonStepSolvesALinearChainWithABorder) {
   std::vector<double*> states;
   for (auto& s : x) states.push_back(s.data());
   ChainLinearization linearization;
+  EXPECT_FALSE(linearization.LastStepCovariance().ok);  // nothing factored yet
   std::string error;
   ASSERT_TRUE(linearization.Linearize(&problem, states, {&c}, &error)) << error;
+  EXPECT_FALSE(linearization.LastStepCovariance().ok);  // linearized, not yet stepped
   ChainStep step;
   ASSERT_TRUE(linearization.Step(0.0, &step)) << step.error;
   EXPECT_GT(step.cost, summary.final_cost);
@@ -282,6 +291,11 @@ TEST(ChainCovariance, GaussNewtonStepSolvesALinearChainWithABorder) {
   }
   EXPECT_EQ(first_two.states[2].size(), 0);  // not asked for
   EXPECT_TRUE(first_two.next.empty());
+  // A linearization that fails leaves nothing of the last one to read.
+  EXPECT_FALSE(linearization.Linearize(&problem, {}, {&c}, &error));
+  EXPECT_FALSE(linearization.LastStepCovariance().ok);
+  double cost = 0.0;
+  EXPECT_FALSE(linearization.Cost(&cost));
 }
 
 // Ceres' loss correction where the loss curves up (rho'' > 0: TolerantLoss), the one case that

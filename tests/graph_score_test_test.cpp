@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <stdexcept>
 
 #include "factors/catalogue_terms.h"
 #include "factors/ward_state.h"
@@ -149,6 +150,20 @@ TEST(GraphScoreTest, AForceShapeScoresLikeTheEffectItIs) {
   const double score = basis.score.sum(), information = basis.gram.sum();
   EXPECT_NEAR(-score / information, effect.magnitude, 1e-6 * effect.model_sd);
   EXPECT_NEAR(1.0 / std::sqrt(information), effect.model_sd, 1e-9 * effect.model_sd);
+
+  // The effect's own column appended to the basis: its entries are its single test's, and it
+  // is the basis's sum (cross terms and all). The graph spans several of the projection's bands
+  // of rows.
+  ASSERT_GT(graph.rows(), 2 * 2048);
+  const Eigen::VectorXd column = graph.EffectColumn(kQuadraticDrag);
+  const ProjectedBasis joint = graph.ProjectForces({first, second}, &column);
+  ASSERT_EQ(joint.score.size(), 3);
+  EXPECT_NEAR(1.0 / std::sqrt(joint.gram(2, 2)), effect.model_sd, 1e-9 * effect.model_sd);
+  EXPECT_NEAR(-joint.score[2] / joint.gram(2, 2), effect.magnitude, 1e-6 * effect.model_sd);
+  EXPECT_NEAR(joint.gram(2, 0) + joint.gram(2, 1), joint.gram(2, 2), 1e-9 * joint.gram(2, 2));
+  EXPECT_EQ(joint.gram(0, 2), joint.gram(2, 0));  // symmetric
+  const Eigen::VectorXd short_column = column.head(column.size() - 1);
+  EXPECT_THROW(graph.ProjectForces({first}, &short_column), std::invalid_argument);
 }
 
 TEST(GraphScoreTest, NothingToTestWithEveryEffectInTheModel) {

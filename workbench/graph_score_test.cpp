@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "factors/ward_state.h"
 #include "workbench/robust_statistics.h"
@@ -158,6 +159,11 @@ ProjectedBasis GraphProjector::ProjectForces(const std::vector<std::vector<doubl
     AddForceColumn(shapes[j], static_cast<int>(j), &entries);
   }
   if (column != nullptr) {
+    if (column->size() != J_.rows()) {
+      throw std::invalid_argument("graph score test: a column of " +
+                                  std::to_string(column->size()) + " rows, the graph has " +
+                                  std::to_string(J_.rows()));
+    }
     const int last = static_cast<int>(columns - 1);
     for (Eigen::Index i = 0; i < column->size(); ++i) {
       if ((*column)[i] != 0.0) entries.emplace_back(static_cast<int>(i), last, (*column)[i]);

@@ -71,6 +71,7 @@ class GraphProjector {
   GraphScore TestForce(const std::vector<double>& h) const;
   // A basis of external force shapes (each one value per state), projected; with `column` (a
   // raw column over the graph's residual rows, as EffectColumn's) appended last when not null.
+  // Throws std::invalid_argument when that column's length is not rows().
   ProjectedBasis ProjectForces(const std::vector<std::vector<double>>& shapes,
                                const Eigen::VectorXd* column = nullptr) const;
   // Raw columns: a model effect's (its weak prior's rows zeroed: not data) and an external
