@@ -24,6 +24,20 @@
 namespace slipgraph {
 namespace {
 
+// The Ward batch problem on fig5 (seed 1), from the EKF's estimates, and its states' blocks.
+struct Fig5Problem {
+  std::unique_ptr<WardProblem> problem;
+  std::vector<double*> states;
+};
+Fig5Problem MakeFig5Problem() {
+  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
+  const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  Fig5Problem out{BuildWardBatchProblem(log, model, RunEkf(log, model).estimates), {}};
+  for (auto& x : out.problem->states) out.states.push_back(x.data());
+  return out;
+}
+
 TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
   DriveLog log = testing::SimulatedScenario("fig5");
   testing::CutLog(&log, 2.0, 6.0);  // around the start of motion: 400 states, for SPARSE_QR
@@ -83,13 +97,9 @@ TEST(ChainCovariance, MatchesCeresCovarianceOnAWardProblem) {
 // without Ceres, their robust losses (Huber, Cauchy) corrected as Ceres' solver corrects them,
 // on one thread and on two (each over its own run of states, the blocks between them after).
 TEST(ChainCovariance, LinearizationIsCeresEvaluationOnOneThreadOrTwo) {
-  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
-  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  const ModelConfig model = DefaultModelConfig(log.vehicle);
-  const FilterResult ekf = RunEkf(log, model);
-  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf.estimates);
-  std::vector<double*> states;
-  for (auto& x : problem->states) states.push_back(x.data());
+  const Fig5Problem fig5 = MakeFig5Problem();
+  WardProblem* problem = fig5.problem.get();
+  const std::vector<double*>& states = fig5.states;
   ceres::Problem::EvaluateOptions options;
   options.parameter_blocks = states;
   options.parameter_blocks.push_back(problem->offsets.data());
@@ -120,13 +130,9 @@ TEST(ChainCovariance, LinearizationIsCeresEvaluationOnOneThreadOrTwo) {
 }
 
 TEST(ChainCovariance, TheLinearizationsCostIsCeresCostWhereverTheStatesMove) {
-  const sim::ScenarioRun run = sim::ExpandScenario("fig5", 1).at(0);
-  DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-  const ModelConfig model = DefaultModelConfig(log.vehicle);
-  const FilterResult ekf = RunEkf(log, model);
-  std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(log, model, ekf.estimates);
-  std::vector<double*> states;
-  for (auto& x : problem->states) states.push_back(x.data());
+  const Fig5Problem fig5 = MakeFig5Problem();
+  WardProblem* problem = fig5.problem.get();
+  const std::vector<double*>& states = fig5.states;
   ChainLinearization linearization;
   double unread = 0.0;
   EXPECT_FALSE(linearization.Cost(&unread));  // no blocks read yet
