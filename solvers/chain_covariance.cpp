@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -238,16 +237,14 @@ struct BlockTable {
     parameters.clear();
     places.clear();
   }
-  void Add(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
+  // Block `id`, its parameter blocks `blocks` (as the problem lists them) at `at` (Layout::Find).
+  void Add(const ceres::Problem& problem, ceres::ResidualBlockId id,
+           const std::vector<double*>& blocks, const std::vector<int>& at) {
     ids.push_back(id);
     functions.push_back(problem.GetCostFunctionForResidualBlock(id));
     losses.push_back(problem.GetLossFunctionForResidualBlock(id));
-    std::vector<double*> blocks;
-    problem.GetParameterBlocksForResidualBlock(id, &blocks);
-    for (double* p : blocks) {
-      parameters.push_back(p);
-      places.push_back(layout.Find(p));
-    }
+    parameters.insert(parameters.end(), blocks.begin(), blocks.end());
+    places.insert(places.end(), at.begin(), at.end());
     first.push_back(parameters.size());
   }
   // Block b's cost, rho(|r|^2) / 2, into *cost; false when it cannot be evaluated.
@@ -277,8 +274,11 @@ class BlockEvaluation {
  public:
   // False when the cost function fails or returns a value that is not finite.
   bool Evaluate(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
+    problem.GetParameterBlocksForResidualBlock(id, &blocks_);
+    at_.clear();
+    for (const double* p : blocks_) at_.push_back(layout.Find(p));
     single_.Clear();
-    single_.Add(problem, id, layout);
+    single_.Add(problem, id, blocks_, at_);
     return Evaluate(single_, 0, layout);
   }
   // Block b of a table built with a Layout of the same states and globals.
@@ -368,7 +368,10 @@ class BlockEvaluation {
     for (double& r : residuals) r *= scale;
   }
 
-  BlockTable single_;  // Evaluate(problem, id, layout)'s
+  // Evaluate(problem, id, layout)'s: the block's parameters, their places, the table of it.
+  std::vector<double*> blocks_;
+  std::vector<int> at_;
+  BlockTable single_;
   std::vector<std::vector<double>> ambient_;
   std::vector<double*> pointers_;
   std::vector<const Layout::Place*> places_;
@@ -405,13 +408,15 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
     std::vector<ceres::ResidualBlockId> ids;
     problem->GetResidualBlocks(&ids);
     std::vector<double*> blocks;
+    std::vector<int> at;
     for (const ceres::ResidualBlockId id : ids) {
+      problem->GetParameterBlocksForResidualBlock(id, &blocks);
+      at.clear();
+      for (const double* p : blocks) at.push_back(layout.Find(p));
       int part = 0;
       if (parts > 1) {
-        problem->GetParameterBlocksForResidualBlock(id, &blocks);
         int lowest = n, highest = -1;
-        for (double* p : blocks) {
-          const int place = layout.Find(p);
+        for (const int place : at) {
           if (place < 0 || layout.places[place].state < 0) continue;
           lowest = std::min(lowest, layout.places[place].state);
           highest = std::max(highest, layout.places[place].state);
@@ -420,7 +425,7 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
         const int end = static_cast<int>(static_cast<long>(n) * (part + 1) / parts);
         if (highest >= end) part = parts;
       }
-      taken[part].Add(*problem, id, layout);
+      taken[part].Add(*problem, id, blocks, at);
     }
   }
   std::vector<double> Cs(static_cast<size_t>(parts) * g * g, 0.0);
@@ -764,16 +769,18 @@ struct ChainLinearization::Impl {
   Partition partition;
   struct Shape {
     const ceres::Problem* problem = nullptr;
-    const double *first = nullptr, *last = nullptr;
-    size_t states = 0;
-    std::vector<double*> globals;
+    std::vector<double*> states, globals;
     int residual_blocks = 0;
     bool operator==(const Shape& o) const {
-      return problem == o.problem && first == o.first && last == o.last && states == o.states &&
-             globals == o.globals && residual_blocks == o.residual_blocks;
+      return problem == o.problem && residual_blocks == o.residual_blocks && states == o.states &&
+             globals == o.globals;
     }
   };
   Shape partition_of;
+  void Forget() {
+    partition.clear();
+    partition_of = Shape{};
+  }
   int m = 0, g = 0;
   // The last step's factorization, its storage reused by the next (7: the Ward state).
   ChainFactorization<7> factorization7;
@@ -790,26 +797,17 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
                                    const std::vector<double*>& globals, std::string* error,
                                    int threads) {
   impl_->factored = false;
-  if (states.empty()) {
-    impl_->partition.clear();
-    impl_->partition_of = Impl::Shape{};
-    *error = "no states";
-    return false;
-  }
-  const Impl::Shape shape{problem,       states.front(), states.back(),
-                          states.size(), globals,        problem->NumResidualBlocks()};
+  Impl::Shape shape{problem, states, globals, problem->NumResidualBlocks()};
   if (!(shape == impl_->partition_of)) {
     // Every state's size is checked once per shape (a map lookup each).
-    impl_->partition.clear();
-    impl_->partition_of = Impl::Shape{};
+    impl_->Forget();
     if (!Sizes(problem, states, globals, &impl_->m, &impl_->g, error)) return false;
-    impl_->partition_of = shape;
+    impl_->partition_of = std::move(shape);
   }
   int g = 0;
   for (double* p : globals) g += problem->ParameterBlockTangentSize(p);
   if (g != impl_->g) {
-    impl_->partition.clear();
-    impl_->partition_of = Impl::Shape{};
+    impl_->Forget();
     *error = "the globals' tangent size changed";
     return false;
   }
