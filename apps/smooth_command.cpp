@@ -1,3 +1,5 @@
+#include <utility>
+
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "evaluation/progress.h"
@@ -66,7 +68,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
             log.wheels.size() > 1
                 ? (log.wheels.size() - 1) / (log.wheels.back().t - log.wheels.front().t)
                 : 100.0;
-        const WindowSmootherResult result = SmoothWindowed(
+        WindowSmootherResult result = SmoothWindowed(
             log, model,
             ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
         if (options->stiffness_sd > 0.0) {
@@ -74,7 +76,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
                     "whole-log solve)\n";
         }
         report << DescribeWindowRun(result);
-        return EstimatorOutput{result.estimates, {}};
+        return EstimatorOutput{std::move(result.estimates), {}};
       }
       const SmootherResult result = SmoothBatch(log, model, smoother_options);
       report << DescribeSmootherRun(result);

@@ -22,6 +22,7 @@
 //   --single-law: one filter also where vehicle.yaml lists law samples;
 //   --stiffness-sd SD, --stiffness-margin M: the batch's slip-stiffness prior (0: the law as
 //     given) and its check against GNSS (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
+//   --runs: list each run with false alarms (seed, run, estimator, samples, v RMSE);
 //   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
 //     trying a setting on seeds the figures are not reported on.
 #include <algorithm>
@@ -30,6 +31,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "evaluation/evaluation.h"
@@ -61,6 +63,8 @@ struct SuiteResult {
   std::vector<double> window_ratio;
   std::vector<std::string> window_above;  // "run: EKF v RMSE, window's" where the ratio > 1.05
   long window_failed_updates = 0;
+  // --runs: per run with false alarms, "seed run estimator: false samples, v RMSE".
+  std::vector<std::string> false_runs;
 };
 
 // --without: the mismatch ingredients taken back out of a mismatch suite's scenarios, each
@@ -74,6 +78,8 @@ FilterRunOptions g_front;
 // (as `smooth` and `compare` run them by default).
 double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
 double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
+// --runs: list the runs with false alarms.
+bool g_list_runs = false;
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -100,8 +106,18 @@ sim::Scenario Ablate(sim::Scenario sc, const sim::Scenario& matched) {
 SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool smoother) {
   SuiteResult out;
   std::vector<Evaluation> runs[kEstimatorCount], trusted_runs[kEstimatorCount];
+  std::string run_name;
   const auto score = [&](int e, const DriveLog& log, const std::vector<WardEstimate>& estimates) {
     runs[e].push_back(Evaluate(log, EstimateTable(estimates)));
+    const Evaluation& ev = runs[e].back();
+    if (g_list_runs && ev.false_immobilized_samples > 0) {
+      char line[200];
+      std::snprintf(line, sizeof(line), "seed %llu %s %s: %ld false samples (%.2f %%), v RMSE %.4f",
+                    static_cast<unsigned long long>(seed), run_name.c_str(), kNames[e],
+                    ev.false_immobilized_samples, 100.0 * ev.false_immobilized_fraction(),
+                    ev.velocity_rmse);
+      out.false_runs.push_back(line);
+    }
     if (CheckTrust(log, estimates).trusted) {
       trusted_runs[e].push_back(runs[e].back());
     } else {
@@ -120,6 +136,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     const sim::Scenario scenario =
         matched.empty() ? run.scenario : Ablate(run.scenario, matched[r].scenario);
     const DriveLog log = sim::Simulate(scenario, run.seed).log;
+    run_name = run.relative_directory;
     const ModelConfig model = g_model_path.empty()
                                   ? DefaultModelConfig(log.vehicle)
                                   : ParseModelYaml(g_model_path, g_model_text, log.vehicle);
@@ -134,7 +151,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     if (window) {
       WindowSmootherOptions options;
       options.filter = g_front;
-      const WindowSmootherResult result = SmoothWindowed(log, model, with_gnss, options);
+      const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
       out.window_failed_updates += result.failed_updates;
       score(kWindowGnss, log, result.estimates);
       const double ekf = runs[kEkfGnss].back().velocity_rmse;
@@ -222,6 +239,8 @@ int main(int argc, char** argv) {
       window = true;
     } else if (std::strcmp(argv[i], "--smoother") == 0) {
       smoother = true;
+    } else if (std::strcmp(argv[i], "--runs") == 0) {
+      g_list_runs = true;
     } else {
       std::fprintf(stderr, "mismatch_report: unknown argument '%s'\n", argv[i]);
       return 2;
@@ -300,6 +319,12 @@ int main(int argc, char** argv) {
         mean, worst, above, ratios.size(), failed);
     for (const SuiteResult& r : results) {
       for (const std::string& line : r.window_above) std::printf("  %s\n", line.c_str());
+    }
+  }
+  if (g_list_runs) {
+    std::printf("runs with false alarms:\n");
+    for (const SuiteResult& r : results) {
+      for (const std::string& line : r.false_runs) std::printf("  %s\n", line.c_str());
     }
   }
   if (smoother) {

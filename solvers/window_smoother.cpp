@@ -9,6 +9,7 @@
 #include <deque>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "model/option_check.h"
 #include "solvers/chain_covariance.h"
@@ -359,14 +360,19 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   return SmoothWindowed(log, model, RunEkf(log, model, options.filter), options);
 }
 
-WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
-                                    const FilterResult& ekf, const WindowSmootherOptions& options) {
+WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model, FilterResult ekf,
+                                    const WindowSmootherOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   WindowSmootherResult result;
-  result.ekf = ekf;
-  result.estimates = result.ekf.estimates;
+  result.ekf = std::move(ekf);
   const size_t n = result.ekf.estimates.size();
+  if (options.keep_front_end_estimates) {
+    result.estimates = result.ekf.estimates;
+  } else {
+    result.estimates = std::move(result.ekf.estimates);
+    result.ekf.estimates.clear();
+  }
   result.lag_s.assign(n, 0.0);
   result.from_filter.assign(n, true);
   for (const std::string& effect : model.effects) {
@@ -387,7 +393,12 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   const bool soils = model.law_samples.size() >= 2;
   problem_options.stiffness_prior_sd = soils ? options.stiffness_prior_sd : 0.0;
 
-  const WardFactorSource source(log, model, result.ekf.estimates, problem_options);
+  // The states' initial values. Without the front end's estimates kept, they are the result's
+  // own, which the window overwrites only as a state leaves, after its last read of that state's
+  // initial value.
+  const WardFactorSource source(
+      log, model, options.keep_front_end_estimates ? result.ekf.estimates : result.estimates,
+      problem_options);
   Window window(source, options, &result);
   const size_t every = static_cast<size_t>(std::max(1, options.update_every));
   const long total = static_cast<long>((n - 1) / every + 1);
@@ -433,6 +444,7 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.min_immobilized_s = batch.min_immobilized_s;
   options.progress = batch.progress;
   options.progress_stage = "chunk";
+  options.keep_front_end_estimates = false;
   return options;
 }
 

@@ -73,6 +73,11 @@ struct WindowSmootherOptions {
   // Told after each update (done of total), as `progress_stage` ("chunk" in chunked mode).
   ProgressCallback progress;
   std::string progress_stage = "window update";
+  // Keep the front end's estimates in the result (WindowSmootherResult::ekf.estimates) beside the
+  // window's. False (the chunked mode): the front end's estimates become the result's estimates,
+  // each replaced by the window's as its state leaves, and ekf.estimates is left empty: one
+  // estimate per sample held instead of two, on a log of hours.
+  bool keep_front_end_estimates = true;
   // Each field in its range; the first that is not is named in *error.
   bool IsValid(std::string* error) const;
 };
@@ -102,8 +107,9 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
                                     const WindowSmootherOptions& options = {});
 // The window behind a front end's run over the same log (`ekf`, run with options.filter's
 // settings): a caller that has the run (compare) passes it down instead of running it again.
-WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model,
-                                    const FilterResult& ekf,
+// The run is kept in the result (WindowSmootherResult::ekf): pass it with std::move where the
+// caller has no further use for it, so that a long log holds one copy of it.
+WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& model, FilterResult ekf,
                                     const WindowSmootherOptions& options = {});
 
 // Chunked batch mode for logs too long for one problem: the window machinery with chunks of
