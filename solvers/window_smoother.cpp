@@ -495,20 +495,25 @@ std::string DescribeWindowRun(const WindowSmootherResult& result) {
 }
 
 std::vector<ExtraColumn> OnlineColumns(const WindowSmootherResult& result) {
-  std::vector<ExtraColumn> extra = {
-      {"ekf_v_bx", {}},     {"ekf_sd_v_bx", {}},     {"ekf_a_dist", {}},      {"ekf_sd_a_dist", {}},
-      {"ekf_slip_ema", {}}, {"ekf_immobilized", {}}, {"lag_s", result.lag_s}, {"from_filter", {}}};
+  std::vector<ExtraColumn> extra = {{"lag_s", result.lag_s}, {"from_filter", {}}};
   for (size_t k = 0; k < result.estimates.size(); ++k) {
-    const WardEstimate& e = result.ekf.estimates[k];
-    extra[0].values.push_back(e.x[kVbx]);
-    extra[1].values.push_back(e.sd[kVbx]);
-    extra[2].values.push_back(e.x[kAdist]);
-    extra[3].values.push_back(e.sd[kAdist]);
-    extra[4].values.push_back(e.slip.slip_ema);
-    extra[5].values.push_back(e.slip.immobilized ? 1.0 : 0.0);
-    extra[7].values.push_back(result.from_filter[k] ? 1.0 : 0.0);
+    extra[1].values.push_back(result.from_filter[k] ? 1.0 : 0.0);
   }
-  return extra;
+  // A run that did not keep the front end's estimates (the chunked mode) has none to show.
+  if (result.ekf.estimates.size() != result.estimates.size()) return extra;
+  std::vector<ExtraColumn> ekf = {{"ekf_v_bx", {}},     {"ekf_sd_v_bx", {}},
+                                  {"ekf_a_dist", {}},   {"ekf_sd_a_dist", {}},
+                                  {"ekf_slip_ema", {}}, {"ekf_immobilized", {}}};
+  for (const WardEstimate& e : result.ekf.estimates) {
+    ekf[0].values.push_back(e.x[kVbx]);
+    ekf[1].values.push_back(e.sd[kVbx]);
+    ekf[2].values.push_back(e.x[kAdist]);
+    ekf[3].values.push_back(e.sd[kAdist]);
+    ekf[4].values.push_back(e.slip.slip_ema);
+    ekf[5].values.push_back(e.slip.immobilized ? 1.0 : 0.0);
+  }
+  ekf.insert(ekf.end(), extra.begin(), extra.end());
+  return ekf;
 }
 
 }  // namespace slipgraph

@@ -126,7 +126,8 @@ std::string DescribeWindowRun(const WindowSmootherResult& result);
 // The columns `online` adds to the estimate file (docs/estimate-file.md), per estimate: the front
 // end's own at the same sample (ekf_v_bx, ekf_sd_v_bx, ekf_a_dist, ekf_sd_a_dist, ekf_slip_ema,
 // ekf_immobilized), lag_s (when the refined estimate became final) and from_filter (1 where a
-// failed window left the front end's estimate).
+// failed window left the front end's estimate). Without the front end's estimates kept
+// (WindowSmootherOptions::keep_front_end_estimates) only lag_s and from_filter.
 std::vector<ExtraColumn> OnlineColumns(const WindowSmootherResult& result);
 
 }  // namespace slipgraph

@@ -186,6 +186,16 @@ TEST(ChunkedSmoother, OneCopyOfTheEstimatesGivesTheSameEstimates) {
   EXPECT_LT(worst_sd, 1e-5);
   EXPECT_EQ(flags_differ, 0);
   EXPECT_GT(refined, static_cast<int>(kept.estimates.size()) / 2);  // not the EKF's
+  // The estimate file's extra columns: the front end's only where they were kept.
+  const auto names = [](const std::vector<ExtraColumn>& columns) {
+    std::vector<std::string> out;
+    for (const ExtraColumn& c : columns) out.push_back(c.name);
+    return out;
+  };
+  EXPECT_EQ(names(OnlineColumns(single)), (std::vector<std::string>{"lag_s", "from_filter"}));
+  EXPECT_EQ(names(OnlineColumns(kept)),
+            (std::vector<std::string>{"ekf_v_bx", "ekf_sd_v_bx", "ekf_a_dist", "ekf_sd_a_dist",
+                                      "ekf_slip_ema", "ekf_immobilized", "lag_s", "from_filter"}));
 }
 
 // The low-latency solver (Gauss-Newton on the chain, WindowSolver::kChainGaussNewton, the
