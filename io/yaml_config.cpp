@@ -269,7 +269,8 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"slip_threshold", &im.slip_threshold, false},
         {"low_speed_threshold_add", &im.low_speed_threshold_add, false},
         {"low_speed", &im.low_speed_mps, false},
-        {"min_wheel_speed", &im.min_wheel_speed_mps, false}}},
+        {"min_wheel_speed", &im.min_wheel_speed_mps, false},
+        {"velocity_sd_margin", &im.velocity_sd_margin, false}}},
       {"offsets",
        {{"init_samples", &init_samples, false},
         {"ema_samples", &m.offset_ema_samples, false},
@@ -505,7 +506,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                              {"slip_threshold", im.slip_threshold},
                              {"low_speed_threshold_add", im.low_speed_threshold_add},
                              {"low_speed", im.low_speed_mps},
-                             {"min_wheel_speed", im.min_wheel_speed_mps}});
+                             {"min_wheel_speed", im.min_wheel_speed_mps},
+                             {"velocity_sd_margin", im.velocity_sd_margin}});
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
                       {"ema_samples", m.offset_ema_samples},
                       {"rest_guard", m.offset_rest_guard_s}});

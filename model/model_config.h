@@ -75,6 +75,10 @@ struct ImmobilizationConfig {
   double low_speed_mps = 0.2;             // wheel surface speed below which the addition fades in
   double min_wheel_speed_mps = 0.05;      // never flagged below this wheel surface speed: the
                                           // wheels are not "spinning" (and slip is noise there)
+  // Flag only when the slip is above the threshold also with the velocity moved this many of its
+  // sd toward the wheels' surface speed (a second EMA of that slip; slip_ema, which the weak
+  // constraints read, stays the estimate's). 0: the paper's detector on the estimate alone.
+  double velocity_sd_margin = 0.0;
 };
 
 // How far the tire law (eqs. 8-9) with the nominal coefficients may be from the terrain's, as

@@ -153,7 +153,7 @@ void DisturbanceImm::Combine(double t) {
   }
   const bool fresh = t - last_wheels_t_ <= encoder_timeout_s_;
   estimate_.slip = detector_.Update(mean(ward::kVbx), mean(ward::kYawRate), mean(ward::kOmegaLeft),
-                                    mean(ward::kOmegaRight), fresh);
+                                    mean(ward::kOmegaRight), fresh, estimate_.sd[ward::kVbx]);
   // Missing encoder data is never reported as immobilization.
   if (!fresh) estimate_.slip.immobilized = false;
 }

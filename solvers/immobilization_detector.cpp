@@ -31,10 +31,12 @@ ImmobilizationDetector::ImmobilizationDetector(const ImmobilizationConfig& confi
     : config_(config),
       wheel_radius_m_(wheel_radius_m),
       track_width_m_(track_width_m),
-      ema_(config.ema_samples) {}
+      ema_(config.ema_samples),
+      margin_ema_(config.ema_samples) {}
 
 const SlipEstimate& ImmobilizationDetector::Update(double v_bx, double yaw_rate, double omega_left,
-                                                   double omega_right, bool encoders_fresh) {
+                                                   double omega_right, bool encoders_fresh,
+                                                   double v_bx_sd) {
   if (!encoders_fresh) {
     latest_.immobilized = false;
     return latest_;
@@ -45,6 +47,17 @@ const SlipEstimate& ImmobilizationDetector::Update(double v_bx, double yaw_rate,
   latest_.slip_ema = ema_.Add(0.5 * (latest_.slip_left + latest_.slip_right));
   latest_.immobilized =
       instant.wheels_turning && !latest_.braking && latest_.slip_ema > latest_.threshold;
+  if (config_.velocity_sd_margin > 0.0) {
+    // The velocity moved toward the wheels' surface speed by the margin, not past it.
+    const double surface = 0.5 * wheel_radius_m_ * (omega_left + omega_right);
+    const double reach = config_.velocity_sd_margin * std::max(0.0, v_bx_sd);
+    const double moved = v_bx + std::clamp(surface - v_bx, -reach, reach);
+    const InstantSlip margin = ComputeInstantSlip(config_, wheel_radius_m_, track_width_m_, moved,
+                                                  yaw_rate, omega_left, omega_right);
+    const double margin_ema =
+        margin_ema_.Add(0.5 * (margin.estimate.slip_left + margin.estimate.slip_right));
+    latest_.immobilized = latest_.immobilized && margin_ema > latest_.threshold;
+  }
   return latest_;
 }
 

@@ -26,10 +26,12 @@ class ImmobilizationDetector {
   ImmobilizationDetector(const ImmobilizationConfig& config, double wheel_radius_m,
                          double track_width_m);
 
-  // One filter cycle: the estimated v_bx, yaw rate and wheel speeds. encoders_fresh false
-  // (encoder data missing) holds the EMA and never flags.
+  // One filter cycle: the estimated v_bx, yaw rate and wheel speeds, and v_bx's sd (for
+  // ImmobilizationConfig::velocity_sd_margin). encoders_fresh false (encoder data missing) holds
+  // the EMAs and never flags.
   const SlipEstimate& Update(double v_bx_mps, double yaw_rate_radps, double omega_left_radps,
-                             double omega_right_radps, bool encoders_fresh);
+                             double omega_right_radps, bool encoders_fresh,
+                             double v_bx_sd_mps = 0.0);
   const SlipEstimate& latest() const { return latest_; }
 
  private:
@@ -37,6 +39,7 @@ class ImmobilizationDetector {
   double wheel_radius_m_;
   double track_width_m_;
   ExponentialMovingAverage ema_;
+  ExponentialMovingAverage margin_ema_;  // of the slip with the velocity moved by the margin
   SlipEstimate latest_;
 };
 

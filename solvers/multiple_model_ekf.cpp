@@ -69,7 +69,8 @@ void MultipleModelEkf::AddWheels(double t, double omega_left, double omega_right
   if (std::isfinite(omega_left) && std::isfinite(omega_right)) last_wheels_t_ = t;
   const WardEstimate e = Estimate();
   slip_ = detector_.Update(e.x[ward::kVbx], e.x[ward::kYawRate], e.x[ward::kOmegaLeft],
-                           e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_);
+                           e.x[ward::kOmegaRight], t - last_wheels_t_ <= encoder_timeout_s_,
+                           e.sd[ward::kVbx]);
 }
 
 LawSample MultipleModelEkf::Law() const {

@@ -226,7 +226,8 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
   if (offsets_.ready()) ApplyWeakConstraints(dt_cycle);
   const bool fresh = t_ - last_wheels_t_ <= options_.encoder_timeout_s;
   previous_slip_ema_ = detector_.latest().slip_ema;
-  detector_.Update(x_(kVbx), x_(kYawRate), x_(kOmegaLeft), x_(kOmegaRight), fresh);
+  detector_.Update(x_(kVbx), x_(kYawRate), x_(kOmegaLeft), x_(kOmegaRight), fresh,
+                   std::sqrt(std::max(0.0, P_(kVbx, kVbx))));
   x_previous_cycle_ = x_;
   t_previous_cycle_ = t_;
   have_previous_cycle_ = true;
