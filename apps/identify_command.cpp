@@ -47,7 +47,7 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
 
 void RegisterIdentifyCommand(CLI::App* app, int* status) {
   struct Options {
-    std::vector<std::string> logs;
+    std::vector<std::string> logs, validate;
     std::string model, out;
     JsonOutput json;
     double train = 0.5;
@@ -76,6 +76,10 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
                   "fraction; the other part is scored")
       ->check(CLI::IsMember({"first", "last"}))
       ->capture_default_str();
+  cmd->add_option("--validate", options->validate,
+                  "Further logs of the same robot, not fitted on: each scored whole (e.g. another "
+                  "day's drive, with --train 1)")
+      ->check(NonEmptyPath());
   cmd->add_flag("--no-gps", options->no_gps, "Leave GNSS out");
   cmd->add_flag("--fit-radius", options->identify.fit_radius,
                 "Fit each side's rolling radius with the law (seen only against GNSS ground "
@@ -88,6 +92,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
   cmd->callback([options, status]() {
     namespace fs = std::filesystem;
     std::vector<DriveLog> train, held_out;
+    std::vector<std::string> held_out_names;
     ModelConfig model;
     for (size_t i = 0; i < options->logs.size(); ++i) {
       const DriveLog log = ReadLogWithWarnings(options->logs[i], options->read);
@@ -110,6 +115,11 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       DriveLog before = SliceLog(log, -1e300, split), after = SliceLog(log, split, 1e300);
       train.push_back(first ? before : after);
       held_out.push_back(first ? after : before);
+      held_out_names.push_back(options->logs[i]);
+    }
+    for (const std::string& path : options->validate) {
+      held_out.push_back(ReadLogWithWarnings(path, options->read));
+      held_out_names.push_back(path + " (whole)");
     }
     options->identify.use_gps = !options->no_gps;
     std::cerr << "identify: fitting on " << train.size() << " log(s)"
@@ -134,8 +144,8 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
           const ModelScore nominal = ScoreModel(held_out[i], model, !options->no_gps, fading);
           const ModelScore identified =
               ScoreModel(held_out[i], result.model, !options->no_gps, fading);
-          PrintScores(options->logs[i], nominal, identified, text);
-          json[key].push_back({{"log", options->logs[i]},
+          PrintScores(held_out_names[i], nominal, identified, text);
+          json[key].push_back({{"log", held_out_names[i]},
                                {"nominal", ToJson(nominal)},
                                {"identified", ToJson(identified)}});
         }

@@ -1,5 +1,7 @@
 // slipgraph: wheel slip, immobilization and sinkage estimation for ground robots.
 // Thin command-line front end; the work is done by the libraries.
+#include <glog/logging.h>
+
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
@@ -16,6 +18,12 @@ std::string DefaultHiddenEffectLogPath() { return SLIPGRAPH_DEFAULT_HIDDEN_LOG; 
 }  // namespace slipgraph
 
 int main(int argc, char** argv) {
+  // Ceres' own log lines (e.g. "Jacobian matrix is rank deficient" from its covariance) are left
+  // out: each command says in its own words what failed (a covariance not recovered, a solve
+  // that did not converge). Errors still print.
+  google::InitGoogleLogging(argv[0]);
+  FLAGS_logtostderr = true;
+  FLAGS_minloglevel = google::GLOG_ERROR;
   CLI::App app{"slipgraph: wheel slip, immobilization and sinkage estimation for ground robots"};
   app.set_version_flag("--version", std::string("slipgraph ") + SLIPGRAPH_VERSION);
   app.require_subcommand(1);

@@ -59,6 +59,33 @@ TEST_F(MatlabImport, ShippedMappingImportsAndPassesThePlausibilityChecks) {
   EXPECT_GT(p.figures.wheel_gyro_yaw_correlation, 0.5);
 }
 
+// test17run.mat has no GNSS stamps: the s5t1 mapping names the missing variable, its own mapping
+// takes the fixes at the odometry's stamps (docs/real_logs.md).
+TEST_F(MatlabImport, TheSecondLogImportsWithItsOwnMapping) {
+  const std::string source =
+      std::string(SLIPGRAPH_SOURCE_DIR) + "/../shared/data/real/wvu_pathfinder/test17run.mat";
+  if (!std::filesystem::exists(source)) GTEST_SKIP() << source << " not present";
+  std::vector<std::string> warnings;
+  const Vehicle vehicle = ReadVehicleYaml(kVehicle, &warnings);
+  ImportReport report;
+  try {
+    ImportMatlab(source, kMapping, vehicle, &report);
+    ADD_FAILURE() << "the s5t1 mapping imported test17run.mat";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("tTGPS"), std::string::npos) << e.what();
+  }
+  const DriveLog log = ImportMatlab(
+      source, std::string(SLIPGRAPH_SOURCE_DIR) + "/data/mappings/wvu_pathfinder_test17.yaml",
+      vehicle, &report);
+  EXPECT_EQ(log.imu.size(), 17611u);
+  EXPECT_EQ(log.wheels.size(), 705u);
+  ASSERT_EQ(log.gps.size(), 705u);
+  EXPECT_EQ(log.gps[100].t, log.wheels[100].t);
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_TRUE(p.problems.empty()) << p.problems.front();
+  EXPECT_NEAR(p.figures.rest_az_mps2, 9.8, 0.3);
+}
+
 TEST_F(MatlabImport, WrongMappingsAreNamed) {
   EXPECT_TRUE(Mentions(CheckPlausibility(Import(Altered("frame: z_down", "frame: z_up"))),
                        "z axis points down"));
