@@ -9,6 +9,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/component_autodiff.h"
 #include "factors/ward_state.h"
 
 namespace slipgraph {
@@ -25,8 +26,13 @@ struct AtRestPrior {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 3> kComponents{
+        {{0, ward::kAccelBias}, {0, ward::kAdist}, {0, ward::kGyroBias}}};
+  };
   static ceres::CostFunction* Create(double sd_mps2, double sd_gyro_radps) {
-    return new ceres::AutoDiffCostFunction<AtRestPrior, 3, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<AtRestPrior, Reads, 3, ward::kStateSize>(
         new AtRestPrior(sd_mps2, sd_gyro_radps));
   }
 

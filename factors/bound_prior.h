@@ -10,6 +10,7 @@
 
 #include <array>
 
+#include "factors/component_autodiff.h"
 #include "factors/smooth_hinge.h"
 #include "factors/ward_state.h"
 
@@ -31,8 +32,13 @@ struct BoundPrior {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 4> kComponents{
+        {{0, ward::kVbx}, {0, ward::kAccelBias}, {0, ward::kAdist}, {0, ward::kGyroBias}}};
+  };
   static ceres::CostFunction* Create(const std::array<double, 4>& max_abs, double sd) {
-    return new ceres::AutoDiffCostFunction<BoundPrior, 4, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<BoundPrior, Reads, 4, ward::kStateSize>(
         new BoundPrior(max_abs, sd));
   }
 

@@ -12,6 +12,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/component_autodiff.h"
 #include "factors/ward_state.h"
 
 namespace slipgraph {
@@ -25,8 +26,12 @@ struct DisturbanceDecayPrior {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 1> kComponents{{{0, ward::kAdist}}};
+  };
   static ceres::CostFunction* Create(double sd_mps2) {
-    return new ceres::AutoDiffCostFunction<DisturbanceDecayPrior, 1, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<DisturbanceDecayPrior, Reads, 1, ward::kStateSize>(
         new DisturbanceDecayPrior(sd_mps2));
   }
 

@@ -7,6 +7,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/component_autodiff.h"
 #include "factors/ward_state.h"
 
 namespace slipgraph {
@@ -22,9 +23,14 @@ struct EncoderFactor {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 2> kComponents{
+        {{0, ward::kOmegaLeft}, {0, ward::kOmegaRight}}};
+  };
   static ceres::CostFunction* Create(double omega_left_radps, double omega_right_radps,
                                      double sd_radps) {
-    return new ceres::AutoDiffCostFunction<EncoderFactor, 2, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<EncoderFactor, Reads, 2, ward::kStateSize>(
         new EncoderFactor(omega_left_radps, omega_right_radps, sd_radps));
   }
 

@@ -8,6 +8,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/component_autodiff.h"
 #include "factors/ward_state.h"
 
 namespace slipgraph {
@@ -22,8 +23,12 @@ struct GnssVelocityFactor {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 1> kComponents{{{0, ward::kVbx}}};
+  };
   static ceres::CostFunction* Create(double v_along_body_x_mps, double sd_mps) {
-    return new ceres::AutoDiffCostFunction<GnssVelocityFactor, 1, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<GnssVelocityFactor, Reads, 1, ward::kStateSize>(
         new GnssVelocityFactor(v_along_body_x_mps, sd_mps));
   }
 

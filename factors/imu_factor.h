@@ -8,6 +8,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/component_autodiff.h"
 #include "factors/ward_measurement.h"
 
 namespace slipgraph {
@@ -46,8 +47,13 @@ struct YawGyroFactor {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 3> kComponents{
+        {{0, ward::kYawRate}, {0, ward::kGyroBias}, {1, 1}}};
+  };
   static ceres::CostFunction* Create(double gyro_z_radps, double sd_radps) {
-    return new ceres::AutoDiffCostFunction<YawGyroFactor, 1, ward::kStateSize, 2>(
+    return new ComponentAutoDiffCostFunction<YawGyroFactor, Reads, 1, ward::kStateSize, 2>(
         new YawGyroFactor(gyro_z_radps, sd_radps));
   }
 

@@ -10,6 +10,7 @@
 
 #include <ceres/autodiff_cost_function.h>
 
+#include "factors/component_autodiff.h"
 #include "factors/smooth_hinge.h"
 #include "factors/ward_state.h"
 
@@ -27,8 +28,12 @@ struct OpposeMotionPrior {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 1> kComponents{{{0, ward::kAdist}}};
+  };
   static ceres::CostFunction* Create(double vel_dir, double sd_mps2) {
-    return new ceres::AutoDiffCostFunction<OpposeMotionPrior, 1, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<OpposeMotionPrior, Reads, 1, ward::kStateSize>(
         new OpposeMotionPrior(vel_dir, sd_mps2));
   }
 

@@ -11,6 +11,7 @@
 
 #include <array>
 
+#include "factors/component_autodiff.h"
 #include "factors/smooth_hinge.h"
 #include "factors/ward_state.h"
 
@@ -32,9 +33,15 @@ struct RateBoundPrior {
     return true;
   }
 
+  // The components operator() reads (factors/component_autodiff.h).
+  struct Reads {
+    static constexpr std::array<BlockComponent, 4> kComponents{
+        {{0, ward::kVbx}, {0, ward::kAccelBias}, {1, ward::kVbx}, {1, ward::kAccelBias}}};
+  };
   static ceres::CostFunction* Create(const std::array<double, 2>& max_rate, double dt_s,
                                      double sd) {
-    return new ceres::AutoDiffCostFunction<RateBoundPrior, 2, ward::kStateSize, ward::kStateSize>(
+    return new ComponentAutoDiffCostFunction<RateBoundPrior, Reads, 2, ward::kStateSize,
+                                             ward::kStateSize>(
         new RateBoundPrior(max_rate, dt_s, sd));
   }
 

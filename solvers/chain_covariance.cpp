@@ -82,9 +82,8 @@ struct Information {
   // column a is index[a] of state block[a] (-1: of the globals, stacked), the globals' part to
   // part->C. False (with part->error) when the block links states that are not neighbours.
   // Parts that touch different states may add at once.
-  bool Add(const std::vector<int>& block, const std::vector<int>& index,
-           const std::vector<double>& hb, Part* part) {
-    const int count = static_cast<int>(block.size());
+  bool Add(const int* block, const int* index, int count, const std::vector<double>& hb,
+           Part* part) {
     const int mm = m * m;
     std::vector<Segment>& segments = part->segments;
     std::string& error = part->error;
@@ -227,6 +226,10 @@ struct BlockTable {
   std::vector<size_t> first{0};     // block b's parameters: [first[b], first[b + 1])
   std::vector<double*> parameters;  // as the cost function takes them
   std::vector<int> places;          // Layout::places index, -1: held constant
+  // Block b's free columns, [column_first[b], column_first[b + 1]): each one's state (-1: the
+  // globals) and its index there (IndexColumns; a block's evaluation needs them every time).
+  std::vector<size_t> column_first{0};
+  std::vector<int> column_block, column_index;
 
   size_t size() const { return ids.size(); }
   void Clear() {
@@ -236,6 +239,9 @@ struct BlockTable {
     first.assign(1, 0);
     parameters.clear();
     places.clear();
+    column_first.assign(1, 0);
+    column_block.clear();
+    column_index.clear();
   }
   // Block `id`, its parameter blocks `blocks` (as the problem lists them) at `at` (Layout::Find).
   void Add(const ceres::Problem& problem, ceres::ResidualBlockId id,
@@ -246,6 +252,23 @@ struct BlockTable {
     parameters.insert(parameters.end(), blocks.begin(), blocks.end());
     places.insert(places.end(), at.begin(), at.end());
     first.push_back(parameters.size());
+  }
+  // The free columns of every block (after the last Add), in `layout`, which gave the places.
+  void IndexColumns(const Layout& layout) {
+    column_first.assign(1, 0);
+    column_block.clear();
+    column_index.clear();
+    for (size_t b = 0; b < size(); ++b) {
+      for (size_t i = first[b]; i < first[b + 1]; ++i) {
+        if (places[i] < 0) continue;  // held constant
+        const Layout::Place& place = layout.places[places[i]];
+        for (int j = 0; j < place.size; ++j) {
+          column_block.push_back(place.state);
+          column_index.push_back(place.first + j);
+        }
+      }
+      column_first.push_back(column_block.size());
+    }
   }
   // Block b's cost, rho(|r|^2) / 2, into *cost; false when it cannot be evaluated.
   bool Cost(size_t b, std::vector<double>* residuals, double* cost) const {
@@ -279,34 +302,36 @@ class BlockEvaluation {
     for (const double* p : blocks_) at_.push_back(layout.Find(p));
     single_.Clear();
     single_.Add(problem, id, blocks_, at_);
+    single_.IndexColumns(layout);
     return Evaluate(single_, 0, layout);
   }
-  // Block b of a table built with a Layout of the same states and globals.
+  // Block b of a table built (and its columns indexed) with a Layout of the same states and
+  // globals.
   bool Evaluate(const BlockTable& table, size_t b, const Layout& layout) {
     const ceres::CostFunction* function = table.functions[b];
     double* const* parameters = table.parameters.data() + table.first[b];
     const int* place_of = table.places.data() + table.first[b];
     rows = function->num_residuals();
     const size_t count_blocks = table.first[b + 1] - table.first[b];
-    ambient_.resize(count_blocks);
-    pointers_.assign(count_blocks, nullptr);
-    places_.assign(count_blocks, nullptr);
-    block.clear();
-    index.clear();
+    if (ambient_.size() < count_blocks) ambient_.resize(count_blocks);
+    pointers_.resize(count_blocks);
+    places_.resize(count_blocks);
     for (size_t i = 0; i < count_blocks; ++i) {
-      if (place_of[i] < 0) continue;  // held constant
+      if (place_of[i] < 0) {  // held constant
+        pointers_[i] = nullptr;
+        places_[i] = nullptr;
+        continue;
+      }
       const Layout::Place& place = layout.places[place_of[i]];
       places_[i] = &place;
       ambient_[i].resize(static_cast<size_t>(rows) * place.ambient);
       pointers_[i] = ambient_[i].data();
-      for (int j = 0; j < place.size; ++j) {
-        block.push_back(place.state);
-        index.push_back(place.first + j);
-      }
     }
+    block = table.column_block.data() + table.column_first[b];
+    index = table.column_index.data() + table.column_first[b];
+    count = static_cast<int>(table.column_first[b + 1] - table.column_first[b]);
     residuals.resize(rows);
     if (!function->Evaluate(parameters, residuals.data(), pointers_.data())) return false;
-    count = static_cast<int>(block.size());
     jb.resize(static_cast<size_t>(rows) * count);
     int column = 0;
     for (size_t i = 0; i < count_blocks; ++i) {
@@ -338,8 +363,10 @@ class BlockEvaluation {
            std::all_of(residuals.begin(), residuals.end(), finite);
   }
 
-  int rows = 0, count = 0;            // residuals, free columns
-  std::vector<int> block, index;      // each free column's state (-1: globals) and index in it
+  int rows = 0, count = 0;  // residuals, free columns
+  // Each free column's state (-1: globals) and index in it (count of each; the table's).
+  const int* block = nullptr;
+  const int* index = nullptr;
   std::vector<double> residuals, jb;  // loss-corrected; jb row-major, rows x count
   double cost = 0.0;
 
@@ -427,6 +454,7 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
       }
       taken[part].Add(*problem, id, blocks, at);
     }
+    for (BlockTable& table : taken) table.IndexColumns(layout);
   }
   std::vector<double> Cs(static_cast<size_t>(parts) * g * g, 0.0);
   std::vector<double> globals_gradient(static_cast<size_t>(parts) * g, 0.0);
@@ -457,7 +485,7 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
         }
       }
       AddOuterProducts(e.jb.data(), e.rows, e.count, &hb);
-      if (!info->Add(e.block, e.index, hb, &part)) {
+      if (!info->Add(e.block, e.index, e.count, hb, &part)) {
         *error = part.error;
         return;
       }

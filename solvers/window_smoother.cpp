@@ -270,9 +270,10 @@ class Window {
     // This update's blocks, read from the problem once for its iterations and their costs.
     ChainLinearization linearization;
     ChainStep step;
+    bool linearized = false;  // at the current values, by the previous iteration's check
     for (int iteration = 0; iteration < iterations; ++iteration) {
       std::string error;
-      if (!linearization.Linearize(&problem_, states, Globals(), &error) ||
+      if ((!linearized && !linearization.Linearize(&problem_, states, Globals(), &error)) ||
           !linearization.Step(0.0, &step)) {
         if (error.empty()) error = step.error;
         if (result_->chain_fallbacks == 0) Note("chain Gauss-Newton: " + error + "; Ceres");
@@ -299,9 +300,17 @@ class Window {
         stiffness_[j] =
             std::max(source_.options().stiffness_min, stiffness_[j] + step.globals[g++]);
       }
+      // The step's cost: before another step, from the linearization that step needs anyway
+      // (one evaluation of the blocks instead of two); after the last, the cost alone.
       double cost = 0.0;
-      if (!linearization.Cost(&cost) || !std::isfinite(cost) ||
-          cost > step.cost * (1.0 + 1e-9) + 1e-12) {
+      if (iteration + 1 < iterations) {
+        std::string ignored;
+        linearized = linearization.Linearize(&problem_, states, Globals(), &ignored);
+        cost = linearized ? linearization.cost() : std::nan("");
+      } else if (!linearization.Cost(&cost)) {
+        cost = std::nan("");
+      }
+      if (!std::isfinite(cost) || cost > step.cost * (1.0 + 1e-9) + 1e-12) {
         return false;  // the step made it worse: a nonlinearity Levenberg-Marquardt handles
       }
       if (step.cost - cost <= 1e-10 * step.cost) break;  // converged
