@@ -226,10 +226,6 @@ struct BlockTable {
   std::vector<size_t> first{0};     // block b's parameters: [first[b], first[b + 1])
   std::vector<double*> parameters;  // as the cost function takes them
   std::vector<int> places;          // Layout::places index, -1: held constant
-  // Block b's free columns, [column_first[b], column_first[b + 1]): each one's state (-1: the
-  // globals) and its index there (IndexColumns; a block's evaluation needs them every time).
-  std::vector<size_t> column_first{0};
-  std::vector<int> column_block, column_index;
 
   size_t size() const { return ids.size(); }
   void Clear() {
@@ -239,9 +235,6 @@ struct BlockTable {
     first.assign(1, 0);
     parameters.clear();
     places.clear();
-    column_first.assign(1, 0);
-    column_block.clear();
-    column_index.clear();
   }
   // Block `id`, its parameter blocks `blocks` (as the problem lists them) at `at` (Layout::Find).
   void Add(const ceres::Problem& problem, ceres::ResidualBlockId id,
@@ -252,23 +245,6 @@ struct BlockTable {
     parameters.insert(parameters.end(), blocks.begin(), blocks.end());
     places.insert(places.end(), at.begin(), at.end());
     first.push_back(parameters.size());
-  }
-  // The free columns of every block (after the last Add), in `layout`, which gave the places.
-  void IndexColumns(const Layout& layout) {
-    column_first.assign(1, 0);
-    column_block.clear();
-    column_index.clear();
-    for (size_t b = 0; b < size(); ++b) {
-      for (size_t i = first[b]; i < first[b + 1]; ++i) {
-        if (places[i] < 0) continue;  // held constant
-        const Layout::Place& place = layout.places[places[i]];
-        for (int j = 0; j < place.size; ++j) {
-          column_block.push_back(place.state);
-          column_index.push_back(place.first + j);
-        }
-      }
-      column_first.push_back(column_block.size());
-    }
   }
   // Block b's cost, rho(|r|^2) / 2, into *cost; false when it cannot be evaluated.
   bool Cost(size_t b, std::vector<double>* residuals, double* cost) const {
@@ -302,11 +278,9 @@ class BlockEvaluation {
     for (const double* p : blocks_) at_.push_back(layout.Find(p));
     single_.Clear();
     single_.Add(problem, id, blocks_, at_);
-    single_.IndexColumns(layout);
     return Evaluate(single_, 0, layout);
   }
-  // Block b of a table built (and its columns indexed) with a Layout of the same states and
-  // globals.
+  // Block b of a table built with a Layout of the same states and globals.
   bool Evaluate(const BlockTable& table, size_t b, const Layout& layout) {
     const ceres::CostFunction* function = table.functions[b];
     double* const* parameters = table.parameters.data() + table.first[b];
@@ -316,6 +290,7 @@ class BlockEvaluation {
     if (ambient_.size() < count_blocks) ambient_.resize(count_blocks);
     pointers_.resize(count_blocks);
     places_.resize(count_blocks);
+    count = 0;
     for (size_t i = 0; i < count_blocks; ++i) {
       if (place_of[i] < 0) {  // held constant
         pointers_[i] = nullptr;
@@ -326,10 +301,23 @@ class BlockEvaluation {
       places_[i] = &place;
       ambient_[i].resize(static_cast<size_t>(rows) * place.ambient);
       pointers_[i] = ambient_[i].data();
+      count += place.size;
     }
-    block = table.column_block.data() + table.column_first[b];
-    index = table.column_index.data() + table.column_first[b];
-    count = static_cast<int>(table.column_first[b + 1] - table.column_first[b]);
+    // Each free column's state and index, written in place (the buffers only grow).
+    if (block_.size() < static_cast<size_t>(count)) {
+      block_.resize(count);
+      index_.resize(count);
+    }
+    int column_at = 0;
+    for (size_t i = 0; i < count_blocks; ++i) {
+      if (places_[i] == nullptr) continue;
+      for (int j = 0; j < places_[i]->size; ++j, ++column_at) {
+        block_[column_at] = places_[i]->state;
+        index_[column_at] = places_[i]->first + j;
+      }
+    }
+    block = block_.data();
+    index = index_.data();
     residuals.resize(rows);
     if (!function->Evaluate(parameters, residuals.data(), pointers_.data())) return false;
     jb.resize(static_cast<size_t>(rows) * count);
@@ -364,7 +352,7 @@ class BlockEvaluation {
   }
 
   int rows = 0, count = 0;  // residuals, free columns
-  // Each free column's state (-1: globals) and index in it (count of each; the table's).
+  // Each free column's state (-1: globals) and index in it (count of each).
   const int* block = nullptr;
   const int* index = nullptr;
   std::vector<double> residuals, jb;  // loss-corrected; jb row-major, rows x count
@@ -400,6 +388,7 @@ class BlockEvaluation {
   std::vector<int> at_;
   BlockTable single_;
   std::vector<std::vector<double>> ambient_;
+  std::vector<int> block_, index_;
   std::vector<double*> pointers_;
   std::vector<const Layout::Place*> places_;
 };
@@ -454,7 +443,6 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
       }
       taken[part].Add(*problem, id, blocks, at);
     }
-    for (BlockTable& table : taken) table.IndexColumns(layout);
   }
   std::vector<double> Cs(static_cast<size_t>(parts) * g * g, 0.0);
   std::vector<double> globals_gradient(static_cast<size_t>(parts) * g, 0.0);
