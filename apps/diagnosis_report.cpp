@@ -76,6 +76,17 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
                   f.whiteness.p_value, f.white ? "yes" : "NO");
     out << line;
   }
+  for (const NoiseScaleFinding& f : d.noise_scales) {
+    if (!f.significant) continue;
+    char line[400];
+    std::snprintf(line, sizeof(line),
+                  "  NOISE STATED TOO SMALL? %s: the innovations are x%.3g the stated sd (NIS mean "
+                  "%.3g over %zu updates, p %.2g): the stated sd is too small, or the model misses "
+                  "what this sensor sees (`slipgraph identify` estimates the sd from the signal "
+                  "alone); settle it before reading the effects below\n",
+                  f.key.c_str(), f.sd_scale(), f.nis_mean, f.updates, f.p_value);
+    out << line;
+  }
   out << "  where it fails (" << d.failures.size() << " segments):\n";
   for (const FailureSegment& f : d.failures) {
     char line[200];

@@ -61,7 +61,7 @@ InnovationDistance DistanceOf(const MeasurementRows& rows, const StateMatrix& P)
 }
 
 double ApplySequentialUpdate(const MeasurementRows& rows, bool want_likelihood, StateVector* x,
-                             StateMatrix* P, double* normalized) {
+                             StateMatrix* P, double* normalized, double* measurement_share) {
   // Each row in Joseph form P = A P A' + r k k', A = I - k h', evaluated in O(n^2):
   // A P = P - k (P h)', (A P) A' = A P - (A P h) k'.
   double log_likelihood = 0.0;
@@ -79,6 +79,7 @@ double ApplySequentialUpdate(const MeasurementRows& rows, bool want_likelihood, 
       log_likelihood -= 0.5 * (innovation * innovation / s + std::log(2.0 * M_PI * s));
     }
     if (normalized != nullptr) normalized[i] = innovation / std::sqrt(s);
+    if (measurement_share != nullptr) measurement_share[i] = r / s;
     *x += k * innovation;
     P->noalias() -= k * Ph.transpose();  // A P
     const StateVector APh = unit >= 0 ? StateVector(P->col(unit)) : StateVector(*P * h);

@@ -55,9 +55,11 @@ InnovationDistance DistanceOf(const MeasurementRows& rows, const StateMatrix& P)
 
 // Applies the rows to (x, P). Returns the sum of the rows' conditional log-likelihoods
 // -0.5 (nu_i^2 / s_i + log 2 pi s_i) when `want_likelihood` (else 0: no logarithm taken);
-// writes each row's normalized innovation nu_i / sqrt(s_i) to normalized[i] when given.
+// writes each row's normalized innovation nu_i / sqrt(s_i) to normalized[i] when given, and the
+// measurement's share of its variance, r_i / s_i, to measurement_share[i] when given.
 double ApplySequentialUpdate(const MeasurementRows& rows, bool want_likelihood, StateVector* x,
-                             StateMatrix* P, double* normalized = nullptr);
+                             StateMatrix* P, double* normalized = nullptr,
+                             double* measurement_share = nullptr);
 
 }  // namespace ekf
 }  // namespace slipgraph

@@ -88,6 +88,13 @@ bool WardEkf::Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamC
     if (d.mahalanobis > gate->chi2) {
       if (++gate->consecutive_rejections <= gate->max_consecutive_rejections) {
         ++counters->rejected;
+        if (options_.record_innovations && m == 1 && rows.name(0) != nullptr) {
+          const ekf::StateVector h = rows.jacobian(0).transpose();
+          const double s = h.dot(P_ * h) + rows.variance(0);
+          EkfStats::InnovationSeries& series = stats_.innovations[rows.name(0)];
+          series.gated_normalized.push_back(rows.innovation(0) / std::sqrt(s));
+          series.gated_measurement_share.push_back(rows.variance(0) / s);
+        }
         // A measurement gated out still happened: it counts against the model in the likelihood.
         if (score) log_likelihood_ += d.LogLikelihood(m);
         return false;
@@ -96,15 +103,17 @@ bool WardEkf::Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamC
     }
   }
   if (gate != nullptr) gate->consecutive_rejections = 0;
-  double normalized[ekf::kMaxRows];
-  log_likelihood_ += ekf::ApplySequentialUpdate(rows, score, &x_, &P_,
-                                                options_.record_innovations ? normalized : nullptr);
+  double normalized[ekf::kMaxRows], share[ekf::kMaxRows];
+  const bool record = options_.record_innovations;
+  log_likelihood_ += ekf::ApplySequentialUpdate(
+      rows, score, &x_, &P_, record ? normalized : nullptr, record ? share : nullptr);
   if (options_.record_innovations) {
     for (int i = 0; i < m; ++i) {
       if (rows.name(i) == nullptr) continue;
       EkfStats::InnovationSeries& series = stats_.innovations[rows.name(i)];
       series.t.push_back(t_);
       series.normalized.push_back(normalized[i]);
+      series.measurement_share.push_back(share[i]);
     }
   }
   ++counters->used;

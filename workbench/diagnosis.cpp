@@ -11,6 +11,7 @@
 #include "model/option_check.h"
 #include "solvers/run_concurrently.h"
 #include "workbench/effect_signatures.h"
+#include "workbench/noise_scale.h"
 
 namespace slipgraph {
 namespace {
@@ -284,6 +285,7 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
     f.white = f.whiteness.p_value >= options.alpha;
     d.filter.push_back(f);
   }
+  d.noise_scales = TestNoiseScales(d.solution.ekf.stats, options.alpha);
   // The innovation series stay in d.solution.ekf.stats for diagnose --series.
   d.used_fallback = d.solution.used_fallback;
   d.trust = CheckTrust(log, d.solution.estimates);

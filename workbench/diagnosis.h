@@ -20,6 +20,7 @@
 #include "solvers/trust_check.h"
 #include "workbench/effect_signatures.h"
 #include "workbench/model_residuals.h"
+#include "workbench/noise_scale.h"
 #include "workbench/path_force_test.h"
 #include "workbench/robust_statistics.h"
 
@@ -161,6 +162,9 @@ struct Diagnosis {
   std::vector<std::string> model_effects;
   std::vector<StreamReport> streams;
   std::vector<InnovationReport> filter;  // the EKF front end's innovations, per measurement
+  // Each measurement's stated noise tested from those innovations: a noise stated too small is
+  // a parameter off, not a missing force (workbench/noise_scale.h).
+  std::vector<NoiseScaleFinding> noise_scales;
   std::vector<FailureSegment> failures;
   std::vector<CandidateScore> candidates;  // best first
   // The effects already in the model (terms or corrections) scored by their own signatures,

@@ -28,6 +28,17 @@ nlohmann::json ToJson(const Diagnosis& d) {
                            {"whiteness_p", f.whiteness.p_value},
                            {"white", f.white}};
   }
+  j["noise_scales"] = nlohmann::json::array();
+  for (const NoiseScaleFinding& f : d.noise_scales) {
+    j["noise_scales"].push_back({{"key", f.key},
+                                 {"measurements", f.measurements},
+                                 {"updates", f.updates},
+                                 {"nis_mean", f.nis_mean},
+                                 {"sd_scale", f.sd_scale()},
+                                 {"statistic", f.statistic},
+                                 {"p_value", f.p_value},
+                                 {"significant", f.significant}});
+  }
   j["failures"] = nlohmann::json::array();
   for (const FailureSegment& f : d.failures) {
     j["failures"].push_back({{"t_start", f.t_start},
