@@ -78,13 +78,15 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   }
   for (const NoiseScaleFinding& f : d.noise_scales) {
     if (!f.significant) continue;
-    char line[400];
-    std::snprintf(line, sizeof(line),
-                  "  NOISE STATED TOO SMALL? %s: the innovations are x%.3g the stated sd (NIS mean "
-                  "%.3g over %zu updates, p %.2g): the stated sd is too small, or the model misses "
-                  "what this sensor sees (`slipgraph identify` estimates the sd from the signal "
-                  "alone); settle it before reading the effects below\n",
-                  f.key.c_str(), f.sd_scale(), f.nis_mean, f.updates, f.p_value);
+    char line[480];
+    std::snprintf(
+        line, sizeof(line),
+        "  NOISE STATED TOO SMALL? %s%s: the ML noise sd is x%.3g the stated (NIS mean "
+        "%.3g over %zu innovations, p %.2g): the stated sd is too small, or the model misses "
+        "what this sensor sees (`slipgraph identify` estimates the sd from the signal "
+        "alone); settle it before reading the effects below\n",
+        f.key.c_str(), f.key == "measurement_noise.gps_sd_v" ? " (or the log's sd_v column)" : "",
+        f.sd_scale(), f.nis_mean, f.updates, f.p_value);
     out << line;
   }
   out << "  where it fails (" << d.failures.size() << " segments):\n";

@@ -68,7 +68,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
   cmd->add_option("--out", options->out, "Model YAML to write (default ./<first log>_model.yaml)");
   cmd->add_option("--train", options->train,
                   "Fraction of each log (from its start) to fit on; the rest is held out and "
-                  "scored. 1: fit on everything, no score")
+                  "scored. 1: fit on everything (only --validate logs scored)")
       ->check(CLI::Range(0.05, 1.0))
       ->capture_default_str();
   cmd->add_option("--train-part", options->part,
@@ -118,7 +118,18 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
       held_out_names.push_back(options->logs[i]);
     }
     for (const std::string& path : options->validate) {
-      held_out.push_back(ReadLogWithWarnings(path, options->read));
+      DriveLog log = ReadLogWithWarnings(path, options->read);
+      if (log.wheels.size() < 2) {
+        std::cerr << "identify: " << path << ": no wheel data\n";
+        *status = 1;
+        return;
+      }
+      if (!train.empty() && log.vehicle.name != train.front().vehicle.name) {
+        std::cerr << "identify: warning: " << path << " is vehicle '" << log.vehicle.name
+                  << "', the fitted logs '" << train.front().vehicle.name
+                  << "': scored with their model all the same\n";
+      }
+      held_out.push_back(std::move(log));
       held_out_names.push_back(path + " (whole)");
     }
     options->identify.use_gps = !options->no_gps;

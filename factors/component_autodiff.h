@@ -39,6 +39,21 @@ class ComponentAutoDiffCostFunction final
   static_assert(kBlocks == 1 || kBlocks == 2, "one or two parameter blocks");
   static constexpr int kRead = static_cast<int>(Read::kComponents.size());
   static constexpr std::array<int, kBlocks> kSizes{kBlockSizes...};
+  // Each listed component inside its block, and listed once (a repeat would leave a column
+  // written by one Jet direction and differentiated along two).
+  static constexpr bool ValidComponents() {
+    for (int k = 0; k < kRead; ++k) {
+      const BlockComponent c = Read::kComponents[k];
+      if (c.block < 0 || c.block >= kBlocks) return false;
+      if (c.component < 0 || c.component >= kSizes[c.block]) return false;
+      for (int j = 0; j < k; ++j) {
+        const BlockComponent d = Read::kComponents[j];
+        if (d.block == c.block && d.component == c.component) return false;
+      }
+    }
+    return true;
+  }
+  static_assert(ValidComponents(), "a component outside its block, or listed twice");
 
  public:
   explicit ComponentAutoDiffCostFunction(Functor* functor) : functor_(functor) {}

@@ -37,20 +37,22 @@ struct AccelerometerReading {
 };
 
 struct YawGyroFactor {
+  static constexpr int kGyroOffset = 1;  // c_gz in the offsets block [c_ax, c_gz]
+
   YawGyroFactor(double gyro_z_radps, double sd_radps)
       : measured_(gyro_z_radps), sqrt_information_(1.0 / sd_radps) {}
 
   template <typename T>
   bool operator()(const T* x, const T* offsets, T* residual) const {
-    residual[0] =
-        sqrt_information_ * (measured_ - (x[ward::kYawRate] + offsets[1] + x[ward::kGyroBias]));
+    residual[0] = sqrt_information_ *
+                  (measured_ - (x[ward::kYawRate] + offsets[kGyroOffset] + x[ward::kGyroBias]));
     return true;
   }
 
   // The components operator() reads (factors/component_autodiff.h).
   struct Reads {
     static constexpr std::array<BlockComponent, 3> kComponents{
-        {{0, ward::kYawRate}, {0, ward::kGyroBias}, {1, 1}}};
+        {{0, ward::kYawRate}, {0, ward::kGyroBias}, {1, kGyroOffset}}};
   };
   static ceres::CostFunction* Create(double gyro_z_radps, double sd_radps) {
     return new ComponentAutoDiffCostFunction<YawGyroFactor, Reads, 1, ward::kStateSize, 2>(

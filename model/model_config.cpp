@@ -77,6 +77,11 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "calibration.track_width must be non-negative (0: vehicle.yaml's)";
     return false;
   }
+  if (!(immobilization.velocity_sd_margin >= 0.0 &&
+        std::isfinite(immobilization.velocity_sd_margin))) {
+    *error = "immobilization.velocity_sd_margin must be finite and non-negative (0: off)";
+    return false;
+  }
   if (!(process.a_dist_decay_tau_s >= 0.0)) {
     *error = "process.a_dist_decay_tau must be non-negative (0: a random walk)";
     return false;

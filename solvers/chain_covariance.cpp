@@ -271,6 +271,10 @@ struct BlockTable {
 // Problem::Evaluate's cost and gradient in a test.
 class BlockEvaluation {
  public:
+  BlockEvaluation() = default;
+  // block and index point into its own buffers.
+  BlockEvaluation(const BlockEvaluation&) = delete;
+  BlockEvaluation& operator=(const BlockEvaluation&) = delete;
   // False when the cost function fails or returns a value that is not finite.
   bool Evaluate(const ceres::Problem& problem, ceres::ResidualBlockId id, const Layout& layout) {
     problem.GetParameterBlocksForResidualBlock(id, &blocks_);

@@ -92,6 +92,7 @@ bool WardEkf::Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamC
           const ekf::StateVector h = rows.jacobian(0).transpose();
           const double s = h.dot(P_ * h) + rows.variance(0);
           EkfStats::InnovationSeries& series = stats_.innovations[rows.name(0)];
+          series.gated_t.push_back(t_);
           series.gated_normalized.push_back(rows.innovation(0) / std::sqrt(s));
           series.gated_measurement_share.push_back(rows.variance(0) / s);
         }

@@ -112,11 +112,12 @@ struct EkfStats {
   // innovations nu / sqrt(h P h^T + r) (of the sequential scalar updates, so the rows of one
   // update are decorrelated; their squares sum to its NIS). A consistent filter's are white with
   // unit variance. measurement_share: r / (h P h^T + r), the measurement noise's share of each
-  // innovation's variance (what a scale on the stated noise moves). The gated_ pair: the same of
-  // the one-row measurements the gate left out (not in `normalized`: they did not update).
+  // innovation's variance (what a scale on the stated noise moves). The gated_ series: the same
+  // of the one-row measurements (GNSS) the gate left out (not in `normalized`: they did not
+  // update).
   struct InnovationSeries {
     std::vector<double> t, normalized, measurement_share;
-    std::vector<double> gated_normalized, gated_measurement_share;
+    std::vector<double> gated_t, gated_normalized, gated_measurement_share;
   };
   std::map<std::string, InnovationSeries> innovations;
 };

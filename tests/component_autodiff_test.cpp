@@ -87,6 +87,24 @@ TEST(ComponentAutoDiff, YawGyroFactor) {
   ExpectSameEvaluations(*f, full);
 }
 
+// The offsets held constant (no Jacobian asked for their block): the state's Jacobian alone,
+// the same as with both.
+TEST(ComponentAutoDiff, ABlockWithoutItsJacobian) {
+  const std::unique_ptr<ceres::CostFunction> f(YawGyroFactor::Create(0.2, 0.005));
+  const double x[kX] = {1.0, 0.0, 0.0, 4.0, 4.0, 0.3, 0.002};
+  const double offsets[2] = {0.1, 0.01};
+  const double* parameters[2] = {x, offsets};
+  double r_one, r_both, j_state[kX], j_both_state[kX], j_offsets[2];
+  double* one[2] = {j_state, nullptr};
+  double* both[2] = {j_both_state, j_offsets};
+  ASSERT_TRUE(f->Evaluate(parameters, &r_one, one));
+  ASSERT_TRUE(f->Evaluate(parameters, &r_both, both));
+  EXPECT_EQ(r_one, r_both);
+  for (int i = 0; i < kX; ++i) EXPECT_EQ(j_state[i], j_both_state[i]);
+  EXPECT_EQ(j_offsets[0], 0.0);
+  EXPECT_NE(j_offsets[1], 0.0);
+}
+
 TEST(ComponentAutoDiff, DisturbanceDecayAndOpposeMotionPriors) {
   const std::unique_ptr<ceres::CostFunction> decay(DisturbanceDecayPrior::Create(0.3));
   ceres::AutoDiffCostFunction<DisturbanceDecayPrior, 1, kX> full_decay(

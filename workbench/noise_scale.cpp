@@ -1,6 +1,7 @@
 #include "workbench/noise_scale.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -64,7 +65,8 @@ std::vector<NoiseScaleFinding> TestNoiseScales(const EkfStats& stats, double alp
                                                double sd_tolerance, size_t min_updates) {
   struct Pool {
     NoiseScaleFinding finding;
-    std::vector<double> z, q;
+    std::vector<std::array<double, 3>> rows;  // t, z, q
+    std::vector<double> z, q;                 // in time order
   };
   std::vector<Pool> pools;
   for (const auto& [name, series] : stats.innovations) {
@@ -78,17 +80,23 @@ std::vector<NoiseScaleFinding> TestNoiseScales(const EkfStats& stats, double alp
       it->finding.key = key;
     }
     it->finding.measurements.push_back(name);
-    const auto take = [&](const std::vector<double>& z, const std::vector<double>& q) {
-      for (size_t i = 0; i < z.size() && i < q.size(); ++i) {
+    const auto take = [&](const std::vector<double>& t, const std::vector<double>& z,
+                          const std::vector<double>& q) {
+      for (size_t i = 0; i < z.size() && i < q.size() && i < t.size(); ++i) {
         if (!std::isfinite(z[i]) || !(q[i] > 0.0 && q[i] <= 1.0)) continue;
-        it->z.push_back(z[i]);
-        it->q.push_back(q[i]);
+        it->rows.push_back({t[i], z[i], q[i]});
       }
     };
-    take(series.normalized, series.measurement_share);
+    take(series.t, series.normalized, series.measurement_share);
     // A noise stated too small sends the innovations past the gate: left out, the test would
     // see the ones that happened to be small.
-    take(series.gated_normalized, series.gated_measurement_share);
+    take(series.gated_t, series.gated_normalized, series.gated_measurement_share);
+  }
+  // In time order, for the long-run variance (the two encoders and the gated fixes interleave).
+  for (Pool& pool : pools) {
+    std::stable_sort(pool.rows.begin(), pool.rows.end(),
+                     [](const auto& a, const auto& b) { return a[0] < b[0]; });
+    for (const auto& row : pool.rows) pool.z.push_back(row[1]), pool.q.push_back(row[2]);
   }
   std::vector<NoiseScaleFinding> out;
   for (Pool& pool : pools) {
