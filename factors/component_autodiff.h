@@ -60,7 +60,7 @@ class ComponentAutoDiffCostFunction final
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
-    if (jacobians == nullptr) return Call(parameters, residuals);
+    if (jacobians == nullptr) return Invoke(parameters, residuals);
     using Jet = ceres::Jet<double, kRead>;
     std::array<std::array<Jet, MaxSize()>, kBlocks> values;
     for (int b = 0; b < kBlocks; ++b) {
@@ -70,14 +70,10 @@ class ComponentAutoDiffCostFunction final
       const BlockComponent& c = Read::kComponents[k];
       values[c.block][c.component].v[k] = 1.0;
     }
+    std::array<const Jet*, kBlocks> blocks;
+    for (int b = 0; b < kBlocks; ++b) blocks[b] = values[b].data();
     std::array<Jet, kResiduals> out;
-    bool ok = false;
-    if constexpr (kBlocks == 1) {
-      ok = (*functor_)(values[0].data(), out.data());
-    } else {
-      ok = (*functor_)(values[0].data(), values[1].data(), out.data());
-    }
-    if (!ok) return false;
+    if (!Invoke(blocks.data(), out.data())) return false;
     for (int r = 0; r < kResiduals; ++r) residuals[r] = out[r].a;
     for (int b = 0; b < kBlocks; ++b) {
       if (jacobians[b] == nullptr) continue;
@@ -99,11 +95,13 @@ class ComponentAutoDiffCostFunction final
     for (const int s : kSizes) size = s > size ? s : size;
     return size;
   }
-  bool Call(double const* const* parameters, double* residuals) const {
+  // The functor on one pointer per block, of doubles or of Jets.
+  template <typename T>
+  bool Invoke(const T* const* blocks, T* out) const {
     if constexpr (kBlocks == 1) {
-      return (*functor_)(parameters[0], residuals);
+      return (*functor_)(blocks[0], out);
     } else {
-      return (*functor_)(parameters[0], parameters[1], residuals);
+      return (*functor_)(blocks[0], blocks[1], out);
     }
   }
   std::unique_ptr<Functor> functor_;

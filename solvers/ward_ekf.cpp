@@ -89,12 +89,12 @@ bool WardEkf::Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamC
       if (++gate->consecutive_rejections <= gate->max_consecutive_rejections) {
         ++counters->rejected;
         if (options_.record_innovations && m == 1 && rows.name(0) != nullptr) {
-          const ekf::StateVector h = rows.jacobian(0).transpose();
-          const double s = h.dot(P_ * h) + rows.variance(0);
+          // One row: the gate's distance is nu^2 / s (positive past the gate).
+          const double nu = rows.innovation(0);
           EkfStats::InnovationSeries& series = stats_.innovations[rows.name(0)];
           series.gated_t.push_back(t_);
-          series.gated_normalized.push_back(rows.innovation(0) / std::sqrt(s));
-          series.gated_measurement_share.push_back(rows.variance(0) / s);
+          series.gated_normalized.push_back(std::copysign(std::sqrt(d.mahalanobis), nu));
+          series.gated_measurement_share.push_back(rows.variance(0) * d.mahalanobis / (nu * nu));
         }
         // A measurement gated out still happened: it counts against the model in the likelihood.
         if (score) log_likelihood_ += d.LogLikelihood(m);
@@ -108,7 +108,7 @@ bool WardEkf::Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamC
   const bool record = options_.record_innovations;
   log_likelihood_ += ekf::ApplySequentialUpdate(
       rows, score, &x_, &P_, record ? normalized : nullptr, record ? share : nullptr);
-  if (options_.record_innovations) {
+  if (record) {
     for (int i = 0; i < m; ++i) {
       if (rows.name(i) == nullptr) continue;
       EkfStats::InnovationSeries& series = stats_.innovations[rows.name(i)];
