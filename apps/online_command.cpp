@@ -43,6 +43,12 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
                   "(law_samples); 0: the law as given")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--reject-distance", options->window.reject_distance_sd,
+                  "Reject a window solve whose velocity leaves the front end's by more than this "
+                  "many of its sd (RMS over the window) unless the window's GNSS fits it better: "
+                  "the front end's estimate stands there (from_filter 1); 0: never")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_flag_callback(
       "--no-covariance", [options] { options->window.covariance = false; },
       "Skip the window's marginal covariance (report the EKF's sd)");
@@ -57,7 +63,7 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
   cmd->footer(
       "The estimate file's standard columns are the window's refined estimates; ekf_* columns "
       "hold the front end's estimate at the same sample, lag_s when the refined one became "
-      "final, from_filter 1 where a failed window left the EKF's estimate.");
+      "final, from_filter 1 where a failed or rejected window left the EKF's estimate.");
   cmd->callback([options, status]() {
     options->window.filter.use_gps = !options->no_gps;
     *status = RunEstimatorOverLogs(

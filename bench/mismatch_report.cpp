@@ -9,6 +9,8 @@
 //   --seeds: the suites' seeds (default 1-4);
 //   --window: add the online window (GNSS; `online`'s defaults) behind the EKF's run, and its
 //     velocity RMSE over the EKF's run by run;
+//   --reject-distance SD: the window's rejection of a solve far from the front end
+//     (WindowSmootherOptions::reject_distance_sd; 0: never), for choosing it on other seeds;
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
@@ -62,7 +64,7 @@ struct SuiteResult {
   // updates that were rejected or fell back.
   std::vector<double> window_ratio;
   std::vector<std::string> window_above;  // "run: EKF v RMSE, window's" where the ratio > 1.05
-  long window_failed_updates = 0;
+  long window_failed_updates = 0, window_rejected_updates = 0, window_updates = 0;
   // --runs: per run with false alarms, "seed run estimator: false samples, v RMSE".
   std::vector<std::string> false_runs;
 };
@@ -80,6 +82,7 @@ double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
 double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
 // --runs: list the runs with false alarms.
 bool g_list_runs = false;
+double g_reject_distance_sd = WindowSmootherOptions{}.reject_distance_sd;
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -151,8 +154,11 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     if (window) {
       WindowSmootherOptions options;
       options.filter = g_front;
+      options.reject_distance_sd = g_reject_distance_sd;
       const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
       out.window_failed_updates += result.failed_updates;
+      out.window_rejected_updates += result.rejected_updates;
+      out.window_updates += result.updates;
       score(kWindowGnss, log, result.estimates);
       const double ekf = runs[kEkfGnss].back().velocity_rmse;
       const double refined = runs[kWindowGnss].back().velocity_rmse;
@@ -237,6 +243,8 @@ int main(int argc, char** argv) {
       g_model_text = ReadTextFile(g_model_path);
     } else if (std::strcmp(argv[i], "--window") == 0) {
       window = true;
+    } else if (std::strcmp(argv[i], "--reject-distance") == 0 && has_value) {
+      g_reject_distance_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoother") == 0) {
       smoother = true;
     } else if (std::strcmp(argv[i], "--runs") == 0) {
@@ -303,10 +311,12 @@ int main(int argc, char** argv) {
   }
   if (window) {
     std::vector<double> ratios;
-    long failed = 0;
+    long failed = 0, rejected = 0, updates = 0;
     for (const SuiteResult& r : results) {
       ratios.insert(ratios.end(), r.window_ratio.begin(), r.window_ratio.end());
       failed += r.window_failed_updates;
+      rejected += r.window_rejected_updates;
+      updates += r.window_updates;
     }
     double mean = 0.0;
     for (double ratio : ratios) mean += ratio / ratios.size();
@@ -315,8 +325,8 @@ int main(int argc, char** argv) {
         std::count_if(ratios.begin(), ratios.end(), [](double r) { return r > 1.05; });
     std::printf(
         "window v RMSE over the EKF's, run by run: mean %.3f, worst %.3f, above 1.05 on %ld of "
-        "%zu runs; %ld window updates failed\n",
-        mean, worst, above, ratios.size(), failed);
+        "%zu runs; of %ld window updates %ld failed, %ld rejected\n",
+        mean, worst, above, ratios.size(), updates, failed, rejected);
     for (const SuiteResult& r : results) {
       for (const std::string& line : r.window_above) std::printf("  %s\n", line.c_str());
     }

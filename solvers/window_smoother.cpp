@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <sstream>
 #include <stdexcept>
@@ -28,6 +29,7 @@ bool WindowSmootherOptions::IsValid(std::string* error) const {
              .NonNegative("step_sd_tolerance", step_sd_tolerance)
              .NonNegative("function_tolerance", function_tolerance)
              .NonNegative("stiffness_prior_sd", stiffness_prior_sd)
+             .NonNegative("reject_distance_sd", reject_distance_sd)
              .NonNegative("min_immobilized_s", min_immobilized_s) &&
          filter.IsValid(error) && problem.IsValid(error);
 }
@@ -81,6 +83,7 @@ class Window {
     source_.AddLateBodyVelocity(
         k, [&](size_t j) { return j >= first_ && j < k ? states_[j - first_].data() : nullptr; },
         &problem_, &added_, &counts_);
+    KeepVelocityMeasurements();
     added_.clear();
   }
 
@@ -142,6 +145,25 @@ class Window {
         ++result_->unconverged_updates;
       }
     }
+    if (!failed && options_.reject_distance_sd > 0.0 && !states_.empty()) {
+      const double distance = VelocityDistanceSd();
+      result_->update_distance_sd.push_back(distance);
+      if (distance > options_.reject_distance_sd && !VelocityMeasurementsPreferWindow()) {
+        restore();
+        for (size_t i = 0; i < states_.size(); ++i) {
+          const std::array<double, kStateSize>& x = source_.initial(first_ + i).x;
+          std::copy(x.begin(), x.end(), states_[i].begin());
+        }
+        if (result_->rejected_updates++ == 0) {
+          Note("window ending at t=" + std::to_string(newest) + " s rejected (velocity " +
+               std::to_string(distance) +
+               " front-end sd from the front end's, no better fit to the velocity "
+               "measurements): its leaving states are the EKF's");
+        }
+        failed = true;
+        have_sd = false;
+      }
+    }
     double update_ms = MillisecondsSince(start);
     if (!have_sd) {  // the Gauss-Newton step's factorization gives them; the others do not
       have_sd = !failed && leaving > 0 && options_.covariance && Covariance(leaving, &sd);
@@ -188,6 +210,9 @@ class Window {
       if (m.prior && !m.kept.empty()) problem_.AddResidualBlock(m.prior.release(), nullptr, m.kept);
     }
     if (!final && leaving > 0) MarginalizeStiffnessNodes();
+    velocity_blocks_.erase(std::remove_if(velocity_blocks_.begin(), velocity_blocks_.end(),
+                                          [&](const VelocityBlock& b) { return b.k < first_; }),
+                           velocity_blocks_.end());
     if (failed && !states_.empty() && leaving > 0) {
       source_.AddStatePrior(first_, states_.front().data(), &problem_, &added_);
       added_.clear();
@@ -318,6 +343,54 @@ class Window {
     return true;
   }
 
+  // The velocity factors (GNSS, another estimator's) just added, each with its state's index.
+  void KeepVelocityMeasurements() {
+    std::vector<double*> blocks;
+    for (const AddedFactor& f : added_) {
+      if (std::strcmp(f.kind, "gnss") != 0 && std::strcmp(f.kind, "body_velocity") != 0) continue;
+      problem_.GetParameterBlocksForResidualBlock(f.id, &blocks);
+      for (size_t i = 0; i < states_.size(); ++i) {
+        if (states_[i].data() == blocks.front()) velocity_blocks_.push_back({f.id, first_ + i});
+      }
+    }
+  }
+
+  // How far the window's velocity is from the front end's: the RMS over the window's states of
+  // the difference in the front end's sd.
+  double VelocityDistanceSd() const {
+    double sum = 0.0;
+    for (size_t i = 0; i < states_.size(); ++i) {
+      const WardEstimate& front = source_.initial(first_ + i);
+      const double d = (states_[i][kVbx] - front.x[kVbx]) / std::max(front.sd[kVbx], 1e-9);
+      sum += d * d;
+    }
+    return std::sqrt(sum / states_.size());
+  }
+
+  // Whether the window's velocity measurements fit its solution better than the front end's
+  // estimate at the same states. False when the window holds none: nothing to say which is right.
+  bool VelocityMeasurementsPreferWindow() {
+    if (velocity_blocks_.empty()) return false;
+    const auto cost = [&] {
+      double total = 0.0;
+      for (const VelocityBlock& b : velocity_blocks_) {
+        double c = 0.0;
+        if (!problem_.EvaluateResidualBlock(b.id, true, &c, nullptr, nullptr)) return HUGE_VAL;
+        total += c;
+      }
+      return total;
+    };
+    const double window = cost();
+    const std::deque<std::array<double, kStateSize>> solved = states_;
+    for (size_t i = 0; i < states_.size(); ++i) {
+      const std::array<double, kStateSize>& x = source_.initial(first_ + i).x;
+      std::copy(x.begin(), x.end(), states_[i].begin());
+    }
+    const double front_end = cost();
+    states_ = solved;
+    return window <= front_end;
+  }
+
   // Marginal sd of the `leaving` oldest states, from the window's information.
   bool Covariance(size_t leaving, std::vector<std::array<double, kStateSize>>* sd) {
     const Clock::time_point start = Clock::now();
@@ -358,6 +431,12 @@ class Window {
   size_t first_ = 0;  // log index of states_.front()
   std::vector<AddedFactor> added_;
   FactorCounts counts_;
+  // The window's velocity measurements, each with the log index of its state.
+  struct VelocityBlock {
+    ceres::ResidualBlockId id;
+    size_t k;
+  };
+  std::vector<VelocityBlock> velocity_blocks_;
 };
 
 }  // namespace
@@ -454,6 +533,7 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.progress = batch.progress;
   options.progress_stage = "chunk";
   options.keep_front_end_estimates = false;
+  options.reject_distance_sd = 0.0;  // a chunk is the batch's solution, as the batch's is kept
   return options;
 }
 
@@ -472,9 +552,9 @@ std::string DescribeWindowRun(const WindowSmootherResult& result) {
   std::ostringstream out;
   const long from_filter = std::count(result.from_filter.begin(), result.from_filter.end(), true);
   out << "window smoother: " << result.updates << " updates, " << result.failed_updates
-      << " failed, " << result.unconverged_updates << " at the iteration bound, "
-      << result.failed_marginalizations << " failed marginalizations; " << from_filter
-      << " samples carry the EKF's estimate\n";
+      << " failed, " << result.rejected_updates << " rejected, " << result.unconverged_updates
+      << " at the iteration bound, " << result.failed_marginalizations
+      << " failed marginalizations; " << from_filter << " samples carry the EKF's estimate\n";
   if (result.chain_fallbacks > 0) {
     out << "  chain Gauss-Newton: " << result.chain_fallbacks
         << " updates solved by Ceres instead (a step raised the cost, or the window was not a "

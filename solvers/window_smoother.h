@@ -61,6 +61,13 @@ struct WindowSmootherOptions {
   // law is taken as given, as the front end takes it; 0: always. Overrides
   // problem.stiffness_prior_sd.
   double stiffness_prior_sd = 0.15;
+  // A solve that moves the window's velocity far from the front end's is rejected unless the
+  // velocity measurements in the window (GNSS, another estimator's) fit it better than the front
+  // end's estimate: far is an RMS over the window's states of the difference above this many of
+  // the front end's sd (a smoother's estimate differs from its filter's by less than the filter's
+  // sd). Rejected, the window's states go back to the front end's estimates, its leaving states
+  // keep the front end's (from_filter) and it restarts from a front-end prior. 0: never.
+  double reject_distance_sd = 3.0;
   WindowSolver solver = WindowSolver::kChainGaussNewton;
   // kChainLevenbergMarquardt's: its residual evaluation's threads and its stopping rules
   // (ChainSolverOptions: a step within this of the solution's sd, the cost's relative change).
@@ -90,7 +97,11 @@ struct WindowSmootherResult {
   FilterResult ekf;               // the streaming front end, at every sample
   long updates = 0, failed_updates = 0, unconverged_updates = 0, failed_marginalizations = 0;
   long covariance_failures = 0;
-  long chain_fallbacks = 0;  // chain-solver updates that Ceres had to solve
+  long chain_fallbacks = 0;   // chain-solver updates that Ceres had to solve
+  long rejected_updates = 0;  // solves rejected (WindowSmootherOptions::reject_distance_sd)
+  // Per update that solved (with reject_distance_sd > 0): the velocity's RMS distance from the
+  // front end's in the front end's sd.
+  std::vector<double> update_distance_sd;
   // Per update: solve and marginalization, wall time (with kChainGaussNewton the leaving states'
   // covariance too: it comes from the solve's factorization).
   std::vector<double> update_ms;
