@@ -70,6 +70,12 @@ void RegisterDiagnoseCommand(CLI::App* app, int* status) {
   cmd->add_flag("--parameters", options->parameters,
                 "Also test whether a parameter of the model is off: the tire law's traction level "
                 "and slip stiffness, the rolling resistance");
+  cmd->add_option("--varying-law", options->diagnosis.varying_law_prior_sd,
+                  "A null model whose tire law varies slowly along the path (its slip stiffness "
+                  "as a walk with this prior sd; nodes every 20 s): a patch of softer soil is "
+                  "then not read as an effect; 0: the law as given")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   AddReadOptions(cmd, &options->read);
   cmd->callback([options, status]() {
     for (const std::string& effect : options->with) {

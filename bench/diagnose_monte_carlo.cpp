@@ -9,6 +9,12 @@
 // --mismatch: the hiddenm suites (docs/mismatch.md) instead of hidden.
 // --gnss-fading: the smoother starts from the default front end (GNSS fading memory), not from
 // the paper's filter that DiagnosisOptions starts it from.
+// --known-averaging: with --mismatch, every log's GNSS velocity averaging (one fix interval, an
+// ingredient of the suite) corrected before the diagnosis, as a user who knows the receiver does
+// (diagnose's measurement correction; not a candidate then);
+// --varying-law P,N,W: the null model's tire law varies along the path (diagnose --varying-law;
+// DiagnosisOptions::varying_law_*: prior sd P, nodes every N s, walk density W), for choosing
+// them on seeds the figures are not reported on.
 //
 // With --detectable first: the minimum detectable magnitudes checked. For each effect and seed,
 // the diagnosis of the drive with nothing hidden states the effect's detectable magnitude D
@@ -39,6 +45,20 @@ const CandidateScore* Candidate(const Diagnosis& d, const std::string& effect) {
     if (c.effect == effect) return &c;
   }
   return nullptr;
+}
+
+// The diagnosis of a log whose GNSS velocity is known to average over one fix interval: the
+// averaging corrected in the log first (AddEffects with that magnitude), then not a candidate.
+Diagnosis DiagnoseAveragingKnown(const DriveLog& log, DiagnosisOptions options) {
+  Diagnosis known;
+  CandidateScore averaging;
+  averaging.effect = "gps_velocity_averaging";
+  averaging.magnitude = 1.0;
+  known.candidates.push_back(averaging);
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const ExtendedModel corrected = AddEffects(log, model, known, {averaging.effect});
+  options.corrected = corrected.corrected;
+  return Diagnose(corrected.log, corrected.model, options);
 }
 
 int CheckDetectable(int seeds, double scale, std::vector<std::string> effects,
@@ -93,7 +113,8 @@ int CheckDetectable(int seeds, double scale, std::vector<std::string> effects,
 
 int main(int argc, char** argv_in) {
   // The flags, anywhere; the rest are the positional arguments.
-  bool parameters = false, mismatch = false, fading = false;
+  bool parameters = false, mismatch = false, fading = false, known_averaging = false;
+  double varying_law[3] = {0.0, 0.0, 0.0};
   std::vector<char*> args = {argv_in[0]};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv_in[i];
@@ -103,6 +124,10 @@ int main(int argc, char** argv_in) {
       mismatch = true;
     } else if (a == "--gnss-fading") {
       fading = true;
+    } else if (a == "--known-averaging") {
+      known_averaging = true;
+    } else if (a == "--varying-law" && i + 1 < argc) {
+      std::sscanf(argv_in[++i], "%lf,%lf,%lf", &varying_law[0], &varying_law[1], &varying_law[2]);
     } else {
       args.push_back(argv_in[i]);
     }
@@ -111,6 +136,11 @@ int main(int argc, char** argv_in) {
   char** argv = args.data();
   DiagnosisOptions options;
   if (fading) options.smoother.filter.ekf.gnss_fading_fixes = kGnssFadingFixes;
+  if (varying_law[0] > 0.0) {
+    options.varying_law_prior_sd = varying_law[0];
+    options.varying_law_node_s = varying_law[1];
+    options.varying_law_walk_sd = varying_law[2];
+  }
   options.effects =
       parameters ? &EffectRegistry::CatalogueWithParameters() : &EffectRegistry::Catalogue();
   const std::string suite = mismatch ? "hiddenm/" : "hidden/";
@@ -141,7 +171,8 @@ int main(int argc, char** argv_in) {
     for (int seed = 1; seed <= seeds; ++seed) {
       const sim::ScenarioRun run = sim::ExpandScenario(suite + effect, seed).at(0);
       const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
-      const Diagnosis d = Diagnose(log, DefaultModelConfig(log.vehicle), options);
+      const Diagnosis d = known_averaging ? DiagnoseAveragingKnown(log, options)
+                                          : Diagnose(log, DefaultModelConfig(log.vehicle), options);
       unexplained += !d.explained;
       if (d.candidates.empty()) continue;
       const CandidateScore& top = d.candidates.front();

@@ -11,13 +11,14 @@
 //     relative velocity scaled by 1 + theta, which scales the law's slope at small slip
 //     (C1 At + C2, where a robot drives) and leaves its plateau (C1, which a hold-back reaches);
 //   - effects: the magnitudes of the model's effect terms (factors/effect_term.h), one block.
-// The law, the stiffness and the effects exclude each other (the effects' slip and traction
-// terms see the model's law). Inputs: the attitude at the sample (REP-103 roll
-// and pitch, rad); sd_a includes the tire law's uncertainty (ModelConfig::tire_uncertainty) when
-// the accelerometer also drives the velocity. With the model's law the balance's Jacobian comes
-// from f_tire's partials (4-wide Jets); with the law or the stiffness as unknowns, by automatic
-// differentiation; the effect terms by Jets of the state and every magnitude
-// (tests/accelerometer_factor_test.cpp checks every block's Jacobian numerically).
+// The law excludes the other two; the stiffness walk and the effects go together (the workbench's
+// null model with a law that varies along the path), the effects' slip and traction terms seeing
+// the model's law unscaled (a term of order theta times the effect left out). Inputs: the attitude
+// at the sample (REP-103 roll and pitch, rad); sd_a includes the tire law's uncertainty
+// (ModelConfig::tire_uncertainty) when the accelerometer also drives the velocity. With the model's
+// law the balance's Jacobian comes from f_tire's partials (4-wide Jets); with the law or the
+// stiffness as unknowns, by automatic differentiation; the effect terms by Jets of the state and
+// every magnitude (tests/accelerometer_factor_test.cpp checks every block's Jacobian numerically).
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
@@ -209,9 +210,10 @@ class AccelerometerFactor final : public ceres::CostFunction {
   static ceres::CostFunction* CreateBalance(const AccelerometerReading& reading,
                                             const AccelerometerUnknowns& unknowns) {
     using namespace accelerometer_detail;
-    if (int(unknowns.law) + int(unknowns.stiffness) + int(!unknowns.effects.empty()) > 1) {
+    if (unknowns.law && (unknowns.stiffness || !unknowns.effects.empty())) {
       throw std::invalid_argument(
-          "accelerometer factor: the law, the stiffness walk and effect terms exclude each other");
+          "accelerometer factor: the law as unknowns excludes the stiffness walk and effect "
+          "terms");
     }
     if (unknowns.law) {
       return new ceres::AutoDiffCostFunction<Law, 1, ward::kStateSize, 2, kLawCoefficientCount, 2>(

@@ -51,7 +51,8 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
                              nullptr, effects)});
   }
   double* stiffness = nullptr;
-  if (options.stiffness_prior_sd > 0.0 && effects == nullptr && source.size() > 0) {
+  if (options.stiffness_prior_sd > 0.0 && source.size() > 0 &&
+      (effects == nullptr || options.stiffness_with_effects)) {
     out->stiffness.assign(source.stiffness_node_count(), 0.0);
     stiffness = out->stiffness.data();
     for (size_t j = 0; j < out->stiffness.size(); ++j) {

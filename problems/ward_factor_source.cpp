@@ -360,7 +360,7 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
       if (globals.law != nullptr) {
         unknowns.law = true;
         blocks.insert(blocks.end(), {globals.law, globals.radius_error});
-      } else if (stiffness_nodes != nullptr && effects == nullptr) {
+      } else if (stiffness_nodes != nullptr) {
         size_t j = 0;
         unknowns.stiffness = true;
         StiffnessNodesAt(imu.t, &j, &unknowns.stiffness_share);

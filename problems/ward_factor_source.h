@@ -101,7 +101,7 @@ struct WardProblemOptions {
   // stiffness blocks, factors/accelerometer_factor.h) with a prior of this sd around the user's law
   // on its first node; 0: off (the law's stiffness is taken as exact). Nodes every
   // stiffness_node_s, a random walk of density stiffness_walk_sd (1/sqrt(s)) between them: 0.1 per
-  // minute. Only without model effects (the workbench's diagnoses keep the user's law). Measured
+  // minute. Not with effect terms unless stiffness_with_effects (below). Measured
   // (docs/smoother.md): the sensors see the stiffness only through a slip velocity of about 1 cm/s,
   // so its estimate is weak and pulled low by any velocity bias; a prior of 0.15 took ward21 batch
   // v RMSE from 0.0165/0.0157 to 0.0102/0.0121 (seeds 1/2) and cost fig5, where the law is right,
@@ -115,6 +115,10 @@ struct WardProblemOptions {
   // tenth of the user's). On a real log whose law was guessed (WVU Pathfinder) the data pushed
   // theta to -1.01, a law with no slope at all.
   double stiffness_min = -0.9;
+  // The walk beside the model's effect terms too (the workbench's null model with a law that
+  // varies along the path, DiagnosisOptions::varying_law_prior_sd); by default a model with
+  // effects takes the law as given, as it was fitted.
+  bool stiffness_with_effects = false;
   // The tire and rolling law at each state (one per state; empty: the model's everywhere), e.g.
   // the law a bank of filters weighed at that sample (FilterResult::law): a window behind the
   // bank then holds the law the bank's estimate came from. The stiffness walk and the law
@@ -184,7 +188,7 @@ struct GlobalBlocks {
   // for a model without any.
   double* effects = nullptr;
   // The slip-stiffness nodes (stiffness_node_count() contiguous blocks of one), or null when
-  // the stiffness is the law's (WardProblemOptions::stiffness_prior_sd = 0). Not with effects.
+  // the stiffness is the law's (WardProblemOptions::stiffness_prior_sd = 0).
   double* stiffness = nullptr;
   // The tire and rolling laws' coefficients (kLawCoefficientCount) and the two sides' radius
   // errors as unknowns (factors/tire_law_coefficients.h), or null when they are the model's.

@@ -291,10 +291,11 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   for (size_t j = 0; j < problem->effect_terms.size(); ++j) {
     result.effects.push_back({problem->effect_terms[j]->name, problem->effects[j], std::nan("")});
   }
-  if (options.problem.stiffness_prior_sd > 0.0 && problem->stiffness.empty()) {
+  if (options.problem.stiffness_prior_sd > 0.0 && problem->stiffness.empty() &&
+      !problem->effects.empty()) {
     result.notes.push_back(
-        "the slip stiffness is the law's: it is estimated only without model "
-        "effects");
+        "the slip stiffness is the law's: with model effects it is estimated "
+        "only when asked (WardProblemOptions::stiffness_with_effects)");
   }
   result.stiffness = problem->stiffness;
   if (std::any_of(result.stiffness.begin(), result.stiffness.end(),
@@ -319,8 +320,11 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
           ComputeChainCovariance(problem->problem.get(), states, globals, options.threads);
       result.covariance_ok = covariance.ok;
       if (covariance.ok) {
+        // The globals' order: the offsets (2), the effects, the stiffness nodes.
+        const size_t nodes = 2 + problem->effects.size();
         for (size_t j = 0; j < problem->stiffness.size(); ++j) {
-          result.stiffness_sd.push_back(std::sqrt(std::max(0.0, covariance.globals(2 + j, 2 + j))));
+          result.stiffness_sd.push_back(
+              std::sqrt(std::max(0.0, covariance.globals(nodes + j, nodes + j))));
         }
         for (size_t e = 0; e < result.effects.size(); ++e) {
           result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));

@@ -321,19 +321,44 @@ TEST(AccelerometerFactor, AtMostTheJetsWidthOfEffectTerms) {
                std::invalid_argument);
 }
 
-TEST(AccelerometerFactor, TheLawTheStiffnessAndTheEffectsExcludeEachOther) {
+TEST(AccelerometerFactor, TheLawExcludesTheStiffnessAndTheEffects) {
   EffectFixture f;
   AccelerometerUnknowns law_and_stiffness = WithLaw();
   law_and_stiffness.stiffness = true;
   AccelerometerUnknowns law_and_effects = f.Unknowns();
   law_and_effects.law = true;
-  AccelerometerUnknowns stiffness_and_effects = f.Unknowns();
-  stiffness_and_effects.stiffness = true;
-  for (const AccelerometerUnknowns& u :
-       {law_and_stiffness, law_and_effects, stiffness_and_effects}) {
+  for (const AccelerometerUnknowns& u : {law_and_stiffness, law_and_effects}) {
     EXPECT_THROW(AccelerometerFactor::Create(f.params, f.attitude, 0.3, 0.08, u),
                  std::invalid_argument);
   }
+}
+
+// The stiffness walk with effect terms (the workbench's null model with a varying law): the
+// stiffness factor's residual with the effects' part added as the plain factor adds it, and every
+// block's Jacobian (state, offsets, both nodes, the magnitudes) numerically.
+TEST(AccelerometerFactorWithStiffnessAndEffects, IsTheStiffnessFactorWithTheEffectsAdded) {
+  EffectFixture f;
+  AccelerometerUnknowns both = f.Unknowns();
+  both.stiffness = true;
+  both.stiffness_share = 0.25;
+  const std::vector<double> theta_a = {-0.3}, theta_b = {0.2}, zero(f.theta.size(), 0.0);
+  const std::unique_ptr<ceres::CostFunction> factor(
+      AccelerometerFactor::Create(f.params, f.attitude, 0.35, 0.08, both));
+  ASSERT_EQ(factor->parameter_block_sizes(),
+            (std::vector<int32_t>{ward::kStateSize, 2, 1, 1, static_cast<int32_t>(3)}));
+  const std::unique_ptr<ceres::CostFunction> stiffness(
+      AccelerometerFactor::Create(f.params, f.attitude, 0.35, 0.08, Stiffness(0.25)));
+  const std::vector<const double*> nodes = {f.x.data(), f.offsets.data(), theta_a.data(),
+                                            theta_b.data()};
+  std::vector<const double*> blocks = nodes;
+  blocks.push_back(zero.data());
+  EXPECT_NEAR(testing::Residuals(*factor, blocks).at(0),
+              testing::Residuals(*stiffness, nodes).at(0), 1e-12);
+  blocks.back() = f.theta.data();
+  const double effects_part = f.Residual(f.Unknowns(), f.theta) - f.Residual(f.Unknowns(), zero);
+  EXPECT_NEAR(testing::Residuals(*factor, blocks).at(0),
+              testing::Residuals(*stiffness, nodes).at(0) + effects_part, 1e-12);
+  testing::ExpectJacobiansMatchNumeric(*factor, blocks, 1e-6);
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 
 #include <Eigen/Dense>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "factors/catalogue_terms.h"
 #include "factors/ward_state.h"
@@ -49,18 +51,33 @@ ModelConfig WithAllEffects(ModelConfig model) {
 constexpr int kQuadraticDrag = 0, kTurnSlip = 1;
 const int kEffectCount = static_cast<int>(CatalogueTerms().size());
 
+// With a tire law that varies along the path (the slip-stiffness walk's nodes, nuisance like the
+// states) as without.
 TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
   const ShortLog s = MakeShortLog();
   const ModelConfig all = WithAllEffects(s.model);
-  for (const std::vector<int>& in_model : {std::vector<int>{}, std::vector<int>{kTurnSlip}}) {
-    std::unique_ptr<WardProblem> problem = BuildWardBatchProblem(s.log, all, s.ekf.estimates);
+  WardProblemOptions walk;
+  walk.stiffness_prior_sd = 0.3;
+  walk.stiffness_node_s = 0.5;
+  walk.stiffness_walk_sd = 0.3;
+  walk.stiffness_with_effects = true;
+  const std::vector<std::pair<WardProblemOptions, std::vector<int>>> cases = {
+      {WardProblemOptions{}, {}}, {WardProblemOptions{}, {kTurnSlip}}, {walk, {kTurnSlip}}};
+  for (const auto& [problem_options, in_model] : cases) {
+    std::unique_ptr<WardProblem> problem =
+        BuildWardBatchProblem(s.log, all, s.ekf.estimates, problem_options);
+    const int nodes = static_cast<int>(problem->stiffness.size());
+    ASSERT_EQ(nodes > 0, problem_options.stiffness_prior_sd > 0.0);
+    // At nodes away from zero: the law's scale enters the columns.
+    for (int j = 0; j < nodes; ++j) problem->stiffness[j] = 0.1 * (j % 3) - 0.1;
     const auto scores = GraphScoreTests(*problem, in_model);
 
-    // Dense J and r over the same columns (states, offsets, effects).
+    // Dense J and r over the same columns (states, offsets, effects, stiffness nodes).
     ceres::Problem::EvaluateOptions options;
     for (auto& x : problem->states) options.parameter_blocks.push_back(x.data());
     options.parameter_blocks.push_back(problem->offsets.data());
     options.parameter_blocks.push_back(problem->effects.data());
+    for (double& node : problem->stiffness) options.parameter_blocks.push_back(&node);
     std::vector<bool> prior_row;
     for (const auto& [kind, ids] : problem->blocks) {
       for (ceres::ResidualBlockId id : ids) {
@@ -77,7 +94,7 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
       for (int p = crs.rows[i]; p < crs.rows[i + 1]; ++p) J(i, crs.cols[p]) = crs.values[p];
     }
     const Eigen::VectorXd residuals = Eigen::Map<Eigen::VectorXd>(r.data(), r.size());
-    const int first_effect = crs.num_cols - kEffectCount;
+    const int first_effect = crs.num_cols - kEffectCount - nodes;
 
     for (int e = 0; e < kEffectCount; ++e) {
       const bool in = std::find(in_model.begin(), in_model.end(), e) != in_model.end();
@@ -103,6 +120,7 @@ TEST(GraphScoreTest, MatchesTheFullGaussNewtonStep) {
         const bool f_in = std::find(in_model.begin(), in_model.end(), f) != in_model.end();
         if (f == e || f_in) free.push_back(first_effect + f);
       }
+      for (int j = 0; j < nodes; ++j) free.push_back(first_effect + kEffectCount + j);
       Eigen::MatrixXd Jf(J.rows(), free.size());
       for (size_t c = 0; c < free.size(); ++c) Jf.col(c) = Je.col(free[c]);
       // The same ridge as the test's on the nuisance part: none on the effect's own column.

@@ -253,7 +253,10 @@ bool DiagnosisOptions::IsValid(std::string* error) const {
              .Positive("window_s", window_s)
              .AtLeast("whiteness_lags", whiteness_lags, 1)
              .AtLeast("threads", threads, 1)
-             .Positive("fit_initial_trust_region_radius", fit_initial_trust_region_radius) &&
+             .Positive("fit_initial_trust_region_radius", fit_initial_trust_region_radius)
+             .NonNegative("varying_law_prior_sd", varying_law_prior_sd)
+             .Positive("varying_law_node_s", varying_law_node_s)
+             .NonNegative("varying_law_walk_sd", varying_law_walk_sd) &&
          smoother.IsValid(error);
 }
 
@@ -264,6 +267,15 @@ Diagnosis Diagnose(const DriveLog& log, const ModelConfig& model, const Diagnosi
       given.effects != nullptr ? *given.effects : EffectRegistry::Catalogue();
   DiagnosisOptions options = given;
   options.smoother.problem.effect_terms = &registry.terms();
+  if (options.varying_law_prior_sd > 0.0) {
+    WardProblemOptions& problem = options.smoother.problem;
+    problem.stiffness_prior_sd = options.varying_law_prior_sd;
+    problem.stiffness_node_s = options.varying_law_node_s;
+    problem.stiffness_walk_sd = options.varying_law_walk_sd;
+    problem.stiffness_with_effects = true;
+    // Part of the null model, not a choice against the law as given.
+    options.smoother.stiffness_gnss_margin = std::numeric_limits<double>::infinity();
+  }
   Diagnosis d;
   d.log = log.directory;
   d.model_effects = model.effects;

@@ -21,12 +21,15 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
   effect_count_ = problem.effects.size();
   if (states_ == 0 || effect_count_ == 0) return;
 
-  // Columns: the states, the offsets, the effect terms (in that order).
+  // Columns: the states, the offsets, the effect terms, the law's stiffness nodes (in that
+  // order).
   ceres::Problem::EvaluateOptions options;
   for (auto& x : problem.states) options.parameter_blocks.push_back(x.data());
   options.parameter_blocks.push_back(problem.offsets.data());
   options.parameter_blocks.push_back(problem.effects.data());
+  for (double& node : problem.stiffness) options.parameter_blocks.push_back(&node);
   effect_column_ = static_cast<int>(ward::kStateSize * states_ + 2);
+  const int stiffness_column = effect_column_ + static_cast<int>(effect_count_);
   // Rows: every residual block, remembering its state (global priors count with the first) and
   // whether a force term enters it.
   for (const auto& [kind, ids] : problem.blocks) {
@@ -52,11 +55,15 @@ GraphProjector::GraphProjector(WardProblem& problem, const std::vector<int>& in_
       crs.cols.data(), crs.values.data());
   const Eigen::Map<const Eigen::VectorXd> residuals(r.data(), static_cast<Eigen::Index>(r.size()));
 
-  // Nuisance columns: states, offsets and the effects in the model.
+  // Nuisance columns: states, offsets, the effects in the model and the stiffness nodes (a law
+  // that varies along the path is part of the null model).
   std::vector<Eigen::Triplet<double>> select;
   int c = 0;
   for (; c < effect_column_; ++c) select.emplace_back(c, c, 1.0);
   for (int e : in_model) select.emplace_back(effect_column_ + e, c++, 1.0);
+  for (size_t j = 0; j < problem.stiffness.size(); ++j) {
+    select.emplace_back(stiffness_column + static_cast<int>(j), c++, 1.0);
+  }
   Sparse S(J_.cols(), c);
   S.setFromTriplets(select.begin(), select.end());
   N_ = J_ * S;

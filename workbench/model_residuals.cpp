@@ -89,6 +89,8 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
     if (index >= 0) problem->effects[index] = e.value;
   }
   out.effects = problem->effects;
+  if (problem->stiffness.size() == solution.stiffness.size())
+    problem->stiffness = solution.stiffness;
   for (const GpsSample& g : log.gps) out.gnss_times.push_back(g.t);
 
   out.states.resize(n);
