@@ -151,7 +151,8 @@ py::dict SmoothRun(const LogPtr& log, const std::string& model, bool use_gps, do
 }
 
 py::dict OnlineRun(const LogPtr& log, const std::string& model, bool use_gps, double window_s,
-                   int update_every, int iterations, double stiffness_sd, bool covariance) {
+                   int update_every, int iterations, double stiffness_sd, bool covariance,
+                   double reject_distance) {
   const CalibratedLog run = Calibrate(*log, model);
   WindowSmootherOptions options;
   options.filter.use_gps = use_gps;
@@ -160,6 +161,7 @@ py::dict OnlineRun(const LogPtr& log, const std::string& model, bool use_gps, do
   options.max_iterations = iterations;
   options.stiffness_prior_sd = stiffness_sd;
   options.covariance = covariance;
+  options.reject_distance_sd = reject_distance;
   WindowSmootherResult result;
   {
     py::gil_scoped_release release;
@@ -175,6 +177,7 @@ py::dict OnlineRun(const LogPtr& log, const std::string& model, bool use_gps, do
   };
   out["update_ms_p50"] = percentile(0.5);
   out["update_ms_p99"] = percentile(0.99);
+  out["rejected_updates"] = result.rejected_updates;
   return out;
 }
 
@@ -315,7 +318,8 @@ PYBIND11_MODULE(_core, m) {
         py::arg("window_s") = window.window_s, py::arg("update_every") = window.update_every,
         py::arg("iterations") = window.max_iterations,
         py::arg("stiffness_sd") = window.stiffness_prior_sd,
-        py::arg("covariance") = window.covariance);
+        py::arg("covariance") = window.covariance,
+        py::arg("reject_distance") = window.reject_distance_sd);
   m.def("diagnose", &DiagnoseRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("with_effects") = std::vector<std::string>{}, py::arg("threads") = 2,
         py::arg("parameters") = false);

@@ -49,7 +49,7 @@ class Run:
     last; report: what the CLI prints about the run; trusted and trust_warnings: the check of
     the estimates against the log's own wheels and GNSS; used_fallback: the smoother failed and
     the estimates are the front end's. Smoother runs also give converged, final_cost, iterations;
-    online runs update_ms_p50 and update_ms_p99.
+    online runs update_ms_p50, update_ms_p99 and rejected_updates.
     """
 
     columns: Dict[str, _np.ndarray]
@@ -62,6 +62,7 @@ class Run:
     iterations: Optional[int] = None
     update_ms_p50: Optional[float] = None
     update_ms_p99: Optional[float] = None
+    rejected_updates: Optional[int] = None
 
     def __getitem__(self, name: str) -> _np.ndarray:
         return self.columns[name]
@@ -108,12 +109,14 @@ def smooth(log, model=None, use_gps: bool = True, stiffness_sd: Optional[float] 
 def online(log, model=None, use_gps: bool = True, **window) -> Run:
     """The EKF at every sample and the sliding-window smoother behind it, as ``slipgraph
     online``: the window's estimates with the front end's beside them (ekf_* columns), lag_s and
-    from_filter; window: window_s, update_every, iterations, stiffness_sd, covariance (the CLI's
-    defaults). The run also gives update_ms_p50 and update_ms_p99, the window's latency."""
+    from_filter; window: window_s, update_every, iterations, stiffness_sd, covariance,
+    reject_distance (the CLI's defaults). The run also gives update_ms_p50 and update_ms_p99, the
+    window's latency, and rejected_updates, its solves rejected for leaving the front end."""
     result = _core.online(_log(log), _model(model), use_gps, **window)
-    latency = {k: result.pop(k) for k in ("update_ms_p50", "update_ms_p99")}
+    extra = {k: result.pop(k) for k in ("update_ms_p50", "update_ms_p99", "rejected_updates")}
     run = Run(**result)
-    run.update_ms_p50, run.update_ms_p99 = latency["update_ms_p50"], latency["update_ms_p99"]
+    run.update_ms_p50, run.update_ms_p99 = extra["update_ms_p50"], extra["update_ms_p99"]
+    run.rejected_updates = extra["rejected_updates"]
     return run
 
 

@@ -117,6 +117,7 @@ def test_online_gives_the_estimate_file_the_cli_writes(sample, tmp_path):
     for key in written:
         assert np.allclose(online[key], written[key], rtol=1e-5, atol=1e-5, equal_nan=True), key
     assert 0 < online.update_ms_p50 <= online.update_ms_p99
+    assert online.rejected_updates == 0  # the bundled log's model is its own
     ekf_score = slipgraph.evaluate(sample, slipgraph.filter(sample))
     assert slipgraph.evaluate(sample, online)["velocity_rmse"] < ekf_score["velocity_rmse"]
 
