@@ -45,7 +45,8 @@ void RegisterOnlineCommand(CLI::App* app, int* status) {
       ->capture_default_str();
   cmd->add_option("--reject-distance", options->window.reject_distance_sd,
                   "Reject a window solve whose velocity leaves the front end's by more than this "
-                  "many of its sd (RMS over the window) unless the window's GNSS fits it better: "
+                  "many of its sd (RMS over the window) unless the window's GNSS (or another "
+                  "estimator's velocity) fits it better: "
                   "the front end's estimate stands there (from_filter 1); 0: never")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

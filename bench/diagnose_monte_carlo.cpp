@@ -127,7 +127,11 @@ int main(int argc, char** argv_in) {
     } else if (a == "--known-averaging") {
       known_averaging = true;
     } else if (a == "--varying-law" && i + 1 < argc) {
-      std::sscanf(argv_in[++i], "%lf,%lf,%lf", &varying_law[0], &varying_law[1], &varying_law[2]);
+      if (std::sscanf(argv_in[++i], "%lf,%lf,%lf", &varying_law[0], &varying_law[1],
+                      &varying_law[2]) != 3) {
+        std::fprintf(stderr, "diagnose_monte_carlo: --varying-law PRIOR,NODE_S,WALK\n");
+        return 2;
+      }
     } else {
       args.push_back(argv_in[i]);
     }

@@ -321,10 +321,10 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
       result.covariance_ok = covariance.ok;
       if (covariance.ok) {
         // The globals' order: the offsets (2), the effects, the stiffness nodes.
-        const size_t nodes = 2 + problem->effects.size();
+        const size_t first_node = 2 + problem->effects.size();
         for (size_t j = 0; j < problem->stiffness.size(); ++j) {
-          result.stiffness_sd.push_back(
-              std::sqrt(std::max(0.0, covariance.globals(nodes + j, nodes + j))));
+          const size_t g = first_node + j;
+          result.stiffness_sd.push_back(std::sqrt(std::max(0.0, covariance.globals(g, g))));
         }
         for (size_t e = 0; e < result.effects.size(); ++e) {
           result.effects[e].sd = std::sqrt(std::max(0.0, covariance.globals(2 + e, 2 + e)));

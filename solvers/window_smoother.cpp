@@ -158,7 +158,7 @@ class Window {
           Note("window ending at t=" + std::to_string(newest) + " s rejected (velocity " +
                std::to_string(distance) +
                " front-end sd from the front end's, no better fit to the velocity "
-               "measurements): its leaving states are the EKF's");
+               "measurements): its states are the EKF's again");
         }
         failed = true;
         have_sd = false;

@@ -8,7 +8,9 @@
 //
 // Failures: a solve that is not usable restores the pre-solve values; states that leave a failed
 // window are reported with the EKF's estimate (flagged), are never marginalized, and the window
-// restarts from an EKF prior on its new oldest state. Every such event is counted and noted.
+// restarts from an EKF prior on its new oldest state. A rejected solve (reject_distance_sd) is
+// handled as a failed one, its states set to the EKF's estimates. Every such event is counted and
+// noted.
 //
 // Causality: a state's factors include the IMU samples nearest to it, up to half a wheel cycle
 // after it, so the window runs one wheel cycle behind the newest sample.
@@ -66,7 +68,8 @@ struct WindowSmootherOptions {
   // end's estimate: far is an RMS over the window's states of the difference above this many of
   // the front end's sd (a smoother's estimate differs from its filter's by less than the filter's
   // sd). Rejected, the window's states go back to the front end's estimates, its leaving states
-  // keep the front end's (from_filter) and it restarts from a front-end prior. 0: never.
+  // keep the front end's (from_filter) and, where states left, it restarts from a front-end prior
+  // on its new oldest state. 0: never.
   double reject_distance_sd = 3.0;
   WindowSolver solver = WindowSolver::kChainGaussNewton;
   // kChainLevenbergMarquardt's: its residual evaluation's threads and its stopping rules

@@ -344,8 +344,9 @@ TEST(AccelerometerFactorWithStiffnessAndEffects, IsTheStiffnessFactorWithTheEffe
   const std::vector<double> theta_a = {-0.3}, theta_b = {0.2}, zero(f.theta.size(), 0.0);
   const std::unique_ptr<ceres::CostFunction> factor(
       AccelerometerFactor::Create(f.params, f.attitude, 0.35, 0.08, both));
-  ASSERT_EQ(factor->parameter_block_sizes(),
-            (std::vector<int32_t>{ward::kStateSize, 2, 1, 1, static_cast<int32_t>(3)}));
+  ASSERT_EQ(
+      factor->parameter_block_sizes(),
+      (std::vector<int32_t>{ward::kStateSize, 2, 1, 1, static_cast<int32_t>(f.theta.size())}));
   const std::unique_ptr<ceres::CostFunction> stiffness(
       AccelerometerFactor::Create(f.params, f.attitude, 0.35, 0.08, Stiffness(0.25)));
   const std::vector<const double*> nodes = {f.x.data(), f.offsets.data(), theta_a.data(),

@@ -256,7 +256,7 @@ bool DiagnosisOptions::IsValid(std::string* error) const {
              .Positive("fit_initial_trust_region_radius", fit_initial_trust_region_radius)
              .NonNegative("varying_law_prior_sd", varying_law_prior_sd)
              .Positive("varying_law_node_s", varying_law_node_s)
-             .NonNegative("varying_law_walk_sd", varying_law_walk_sd) &&
+             .Positive("varying_law_walk_sd", varying_law_walk_sd) &&
          smoother.IsValid(error);
 }
 

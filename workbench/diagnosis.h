@@ -72,8 +72,10 @@ struct DiagnosisOptions {
   // not read as a missing effect: the law's slip stiffness as a walk of nodes every
   // varying_law_node_s (WardProblemOptions::stiffness_*: this prior sd on the first node, this
   // walk density between them) in every solve, and the nodes among the score tests' nuisance
-  // parameters. 0: the law as given (the default; docs/workbench.md: on the mismatch suite the
-  // walk trades one false finding for another).
+  // parameters. These set smoother.problem's stiffness_* (and stiffness_with_effects) and leave
+  // out the smoother's check of the walk against the law as given (stiffness_gnss_margin): the
+  // walk is the null model here, not a choice. 0: the law as given (the default;
+  // docs/workbench.md: on the mismatch suite the walk trades one false finding for another).
   double varying_law_prior_sd = 0.0;
   double varying_law_node_s = 20.0;
   double varying_law_walk_sd = 0.1 / std::sqrt(20.0);  // 0.1 over 20 s, 1/sqrt(s)

@@ -89,8 +89,11 @@ ModelResiduals EvaluateModelResiduals(const DriveLog& log, const ModelConfig& mo
     if (index >= 0) problem->effects[index] = e.value;
   }
   out.effects = problem->effects;
-  if (problem->stiffness.size() == solution.stiffness.size())
+  // The law's stiffness walk where the null model has one (DiagnosisOptions::varying_law_*); a
+  // solution without it (a failed solve) leaves the nodes at the law's own stiffness.
+  if (problem->stiffness.size() == solution.stiffness.size()) {
     problem->stiffness = solution.stiffness;
+  }
   for (const GpsSample& g : log.gps) out.gnss_times.push_back(g.t);
 
   out.states.resize(n);
