@@ -51,17 +51,25 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
                              nullptr, effects)});
   }
   double* stiffness = nullptr;
+  // Per factor added so far, the state it counts with (-1: a global prior, counted with the first).
+  std::vector<long> node_state(added.size(), -1);
   if (options.stiffness_prior_sd > 0.0 && source.size() > 0 &&
       (effects == nullptr || options.stiffness_with_effects)) {
     out->stiffness.assign(source.stiffness_node_count(), 0.0);
     stiffness = out->stiffness.data();
+    size_t k = 0;
     for (size_t j = 0; j < out->stiffness.size(); ++j) {
       source.AddStiffnessNode(j, stiffness, &problem, &added);
+      // Each node's prior or walk step counts with the last state at or before the node.
+      const double t = source.time(0) + static_cast<double>(j) * options.stiffness_node_s;
+      while (k + 1 < n && source.time(k + 1) <= t) ++k;
+      node_state.resize(added.size(), static_cast<long>(k));
     }
   }
   source.AddStatePrior(0, out->states[0].data(), &problem, &added);
   source.AddOffsetPrior(out->offsets, out->offsets.data(), &problem, &added);
   std::vector<long> state_of(added.size(), -1);
+  std::copy(node_state.begin(), node_state.end(), state_of.begin());
   for (size_t k = 0; k < n; ++k) {
     source.AddStep(k, k > 0 ? out->states[k - 1].data() : nullptr, out->states[k].data(),
                    {out->offsets.data(), effects, stiffness}, &problem, &added, &out->counts);

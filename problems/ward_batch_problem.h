@@ -37,7 +37,8 @@ struct WardProblem {
   std::unique_ptr<ceres::Problem> problem;
   // Residual blocks by factor kind ("dynamics", "accelerometer", ...), for cost breakdowns.
   std::map<std::string, std::vector<ceres::ResidualBlockId>> blocks;
-  // The state index each of those blocks belongs to (same order; -1 for the global priors).
+  // The state index each of those blocks belongs to (same order; -1 for the global priors; a
+  // stiffness node's prior or walk step, the last state at or before the node).
   std::map<std::string, std::vector<long>> block_states;
   FactorCounts counts;
 };
