@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace slipgraph {
 
@@ -68,8 +69,8 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   }
   source.AddStatePrior(0, out->states[0].data(), &problem, &added);
   source.AddOffsetPrior(out->offsets, out->offsets.data(), &problem, &added);
-  std::vector<long> state_of(added.size(), -1);
-  std::copy(node_state.begin(), node_state.end(), state_of.begin());
+  std::vector<long> state_of = std::move(node_state);
+  state_of.resize(added.size(), -1);
   for (size_t k = 0; k < n; ++k) {
     source.AddStep(k, k > 0 ? out->states[k - 1].data() : nullptr, out->states[k].data(),
                    {out->offsets.data(), effects, stiffness}, &problem, &added, &out->counts);

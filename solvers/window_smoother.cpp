@@ -150,10 +150,7 @@ class Window {
       result_->update_distance_sd.push_back(distance);
       if (distance > options_.reject_distance_sd && !VelocityMeasurementsPreferWindow()) {
         restore();
-        for (size_t i = 0; i < states_.size(); ++i) {
-          const std::array<double, kStateSize>& x = source_.initial(first_ + i).x;
-          std::copy(x.begin(), x.end(), states_[i].begin());
-        }
+        SetStatesToFrontEnd();
         if (result_->rejected_updates++ == 0) {
           Note("window ending at t=" + std::to_string(newest) + " s rejected (velocity " +
                std::to_string(distance) +
@@ -350,7 +347,9 @@ class Window {
       if (std::strcmp(f.kind, "gnss") != 0 && std::strcmp(f.kind, "body_velocity") != 0) continue;
       problem_.GetParameterBlocksForResidualBlock(f.id, &blocks);
       for (size_t i = 0; i < states_.size(); ++i) {
-        if (states_[i].data() == blocks.front()) velocity_blocks_.push_back({f.id, first_ + i});
+        if (states_[i].data() != blocks.front()) continue;
+        velocity_blocks_.push_back({f.id, first_ + i});
+        break;
       }
     }
   }
@@ -382,13 +381,18 @@ class Window {
     };
     const double window = cost();
     const std::deque<std::array<double, kStateSize>> solved = states_;
+    SetStatesToFrontEnd();
+    const double front_end = cost();
+    states_ = solved;
+    return window <= front_end;
+  }
+
+  // The window's states set to the front end's estimates (in place: same addresses).
+  void SetStatesToFrontEnd() {
     for (size_t i = 0; i < states_.size(); ++i) {
       const std::array<double, kStateSize>& x = source_.initial(first_ + i).x;
       std::copy(x.begin(), x.end(), states_[i].begin());
     }
-    const double front_end = cost();
-    states_ = solved;
-    return window <= front_end;
   }
 
   // Marginal sd of the `leaving` oldest states, from the window's information.
