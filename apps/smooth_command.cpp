@@ -20,6 +20,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     bool advance_velocity = false;
     double advance_sd_m = 0.003;
     double stiffness_sd = kPostProcessingStiffnessPriorSd;
+    double function_tolerance = BatchSmootherOptions().function_tolerance;
     double gnss_fading_fixes = EkfOptions().gnss_fading_fixes;  // the front end's
   };
   auto options = std::make_shared<Options>();
@@ -27,6 +28,12 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
       app, "smooth", "Post-process a whole log with the Ceres batch smoother (EKF-initialised)",
       &options->run, &options->no_gps);
   cmd->add_option("--threads", options->threads, "Solver threads")->check(CLI::PositiveNumber);
+  cmd->add_option("--function-tolerance", options->function_tolerance,
+                  "The solve ends when a step lowers the cost by less than this fraction of it "
+                  "(or would move no estimate by 0.01 of its sd); 1e-12 solves on to the optimum "
+                  "where robust losses make it creep (docs/smoother.md)")
+      ->check(CLI::Range(1e-16, 1e-1))
+      ->capture_default_str();
   cmd->add_option("--chunk", options->chunk_min,
                   "Chunked mode for long logs: solve this many minutes at a time, joined to the "
                   "next chunk by a marginal prior (memory bounded by one chunk)")
@@ -50,6 +57,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     base_options.filter.use_gps = !options->no_gps;
     base_options.filter.ekf.gnss_fading_fixes = options->gnss_fading_fixes;
     base_options.threads = options->threads;
+    base_options.function_tolerance = options->function_tolerance;
     *status = RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
                                                      std::ostream& report) {
       BatchSmootherOptions smoother_options = base_options;

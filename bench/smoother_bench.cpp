@@ -2,6 +2,7 @@
 // latency. Prints figures (docs/benchmarks.md records them with this command):
 //
 //   build/bench/smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N]
+//                                  [--function-tolerance F] [--step-sd S] [--against F2]
 //                                                                 one length per process (peak
 //                                                                 RSS); the chain solver or Ceres
 //   build/bench/smoother_bench window [--ceres] [ITERATIONS...]    2 s window at 100 Hz (chain
@@ -10,7 +11,9 @@
 //                                                                 chunked mode, 60 s overlap
 //
 // For the batch it also times a hand-written block-tridiagonal Cholesky of a system with the
-// same number of 7-dimensional states: the floor one Gauss-Newton step could reach.
+// same number of 7-dimensional states: the floor one Gauss-Newton step could reach. --against F2
+// solves the log again to a relative cost change of F2 and prints how far the first solve's
+// states and sd are from that solution's.
 #include <sys/resource.h>
 
 #include <Eigen/Cholesky>
@@ -77,14 +80,11 @@ double BlockTridiagonalCholesky(size_t n) {
   return seconds;
 }
 
-int Batch(double minutes, bool covariance, int threads, BatchSolver solver) {
+int Batch(double minutes, const BatchSmootherOptions& given, double against_tolerance) {
   const sim::SimResult sim = sim::Simulate(LongDrive(minutes), 1);
   const double rss_log = PeakRssMb();
-  BatchSmootherOptions options;
-  options.covariance = covariance;
+  BatchSmootherOptions options = given;
   options.max_iterations = 50;
-  options.threads = threads;
-  options.solver = solver;
   long iterations = 0;  // over both solves (the second re-gates weak constraint 2)
   options.progress = [&](const ProgressUpdate& update) { iterations += update.done > 0; };
   const Clock::time_point start = Clock::now();
@@ -98,11 +98,46 @@ int Batch(double minutes, bool covariance, int threads, BatchSolver solver) {
   const double floor_s = BlockTridiagonalCholesky(result.estimates.size());
   std::printf(
       "| %s | %d | %5.1f | %8zu | %7.2f | %3ld | %s | %7.3f | %8.4f | %6.1f | %7.0f | %7.0f | %s "
-      "|\n",
-      solver == BatchSolver::kChain ? "chain" : "Ceres", threads, minutes, result.estimates.size(),
-      total, iterations, result.summary.termination_type == ceres::CONVERGENCE ? "yes" : "no",
-      iteration_s, floor_s, iteration_s / floor_s, rss_log, PeakRssMb(),
-      result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"));
+      "| %.5f |\n",
+      options.solver == BatchSolver::kChain ? "chain" : "Ceres", options.threads, minutes,
+      result.estimates.size(), total, iterations,
+      result.summary.termination_type == ceres::CONVERGENCE ? "yes" : "no", iteration_s, floor_s,
+      iteration_s / floor_s, rss_log, PeakRssMb(),
+      result.used_fallback ? "fallback" : (result.covariance_ok ? "cov" : "no cov"),
+      Evaluate(sim.log, EstimateTable(result.estimates)).velocity_rmse);
+  if (against_tolerance > 0.0) {
+    // The same log solved to another relative cost change: how far the stop leaves each state
+    // from that solution, in that solution's sd, and how far its sd.
+    BatchSmootherOptions reference_options = options;
+    reference_options.function_tolerance = against_tolerance;
+    reference_options.progress = nullptr;
+    const SmootherResult reference =
+        SmoothBatch(sim.log, DefaultModelConfig(sim.log.vehicle), reference_options);
+    std::printf(
+        "against a relative cost change of %g: | state | max |dx|/sd | RMS |dx|/sd | "
+        "max |d sd|/sd |\n",
+        against_tolerance);
+    for (int i = 0; i < ward::kStateSize; ++i) {
+      double largest = 0.0, squares = 0.0, sd_change = 0.0;
+      for (size_t k = 0; k < reference.estimates.size(); ++k) {
+        const WardEstimate& a = result.estimates[k];
+        const WardEstimate& b = reference.estimates[k];
+        const double z = std::abs(a.x[i] - b.x[i]) / b.sd[i];
+        largest = std::max(largest, z);
+        squares += z * z;
+        sd_change = std::max(sd_change, std::abs(a.sd[i] / b.sd[i] - 1.0));
+      }
+      static constexpr const char* kNames[ward::kStateSize] = {
+          "v_bx", "b_ax", "a_dist", "omega_left", "omega_right", "yaw_rate", "b_gz"};
+      std::printf("| %s | %.4f | %.4f | %.4f |\n", kNames[i], largest,
+                  std::sqrt(squares / reference.estimates.size()), sd_change);
+    }
+    long flags = 0;
+    for (size_t k = 0; k < reference.estimates.size(); ++k) {
+      flags += reference.estimates[k].slip.immobilized != result.estimates[k].slip.immobilized;
+    }
+    std::printf("immobilized flags that differ: %ld\n", flags);
+  }
   return 0;
 }
 
@@ -163,15 +198,25 @@ int Window(const std::vector<int>& iterations, bool chain) {
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::strcmp(argv[1], "batch") == 0) {
-    bool covariance = true;
-    int threads = 1;
-    slipgraph::BatchSolver solver = slipgraph::BatchSolver::kChain;
+    slipgraph::BatchSmootherOptions options;
+    options.threads = 1;
+    double against = 0.0;
     for (int i = 3; i < argc; ++i) {
-      if (std::strcmp(argv[i], "--no-covariance") == 0) covariance = false;
-      if (std::strcmp(argv[i], "--ceres") == 0) solver = slipgraph::BatchSolver::kCeres;
-      if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = std::atoi(argv[++i]);
+      const bool value = i + 1 < argc;
+      if (std::strcmp(argv[i], "--no-covariance") == 0) options.covariance = false;
+      if (std::strcmp(argv[i], "--ceres") == 0) options.solver = slipgraph::BatchSolver::kCeres;
+      if (std::strcmp(argv[i], "--threads") == 0 && value) {
+        options.threads = std::max(1, std::atoi(argv[++i]));
+      }
+      if (std::strcmp(argv[i], "--function-tolerance") == 0 && value) {
+        options.function_tolerance = std::atof(argv[++i]);
+      }
+      if (std::strcmp(argv[i], "--step-sd") == 0 && value) {
+        options.step_sd_tolerance = std::atof(argv[++i]);
+      }
+      if (std::strcmp(argv[i], "--against") == 0 && value) against = std::atof(argv[++i]);
     }
-    return slipgraph::Batch(std::atof(argv[2]), covariance, std::max(1, threads), solver);
+    return slipgraph::Batch(std::atof(argv[2]), options, against);
   }
   if (argc >= 4 && std::strcmp(argv[1], "chunked") == 0) {
     const int threads =
@@ -193,12 +238,13 @@ int main(int argc, char** argv) {
   }
   std::fprintf(
       stderr,
-      "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] | "
+      "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] "
+      "[--function-tolerance F] [--step-sd S] [--against F2] | "
       "window [--ceres] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES [--threads N]\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"
       "batch prints: | solver | threads | minutes | states | total s | iterations (both solves) | "
       "converged | s/iteration | block-tridiagonal Cholesky s | ratio | RSS after simulation MB | "
-      "peak RSS MB | covariance |\n");
+      "peak RSS MB | covariance | v RMSE m/s |\n");
   return 2;
 }
