@@ -22,6 +22,13 @@
 namespace slipgraph {
 
 struct WardProblem {
+  WardProblem() = default;
+  WardProblem(const WardProblem&) = delete;
+  WardProblem& operator=(const WardProblem&) = delete;
+  // Deletes the problem, then the cost and loss functions of its residual blocks: `problem` owns
+  // neither (Ceres would keep a map entry for each, about 1 kB a state, and free them slowly).
+  ~WardProblem();
+
   std::vector<double> times;                  // state times: the wheel samples
   std::vector<std::array<double, 7>> states;  // parameter blocks, one per time
   std::array<double, 2> offsets{};            // [c_ax, c_gz]
