@@ -351,8 +351,12 @@ class BlockEvaluation {
     if (!std::isfinite(squared)) return false;
     CorrectForLoss(table.losses[b], squared);
     const auto finite = [](double v) { return std::isfinite(v); };
-    return std::isfinite(cost) && std::all_of(jb.begin(), jb.end(), finite) &&
-           std::all_of(residuals.begin(), residuals.end(), finite);
+    if (!std::isfinite(cost) || !std::all_of(jb.begin(), jb.end(), finite) ||
+        !std::all_of(residuals.begin(), residuals.end(), finite)) {
+      return false;
+    }
+    DropZeroColumns();
+    return true;
   }
 
   int rows = 0, count = 0;  // residuals, free columns
@@ -385,6 +389,34 @@ class BlockEvaluation {
     }
     const double scale = sqrt_rho1 / (1.0 - alpha);
     for (double& r : residuals) r *= scale;
+  }
+
+  // Columns whose Jacobian is zero in every row left out (in place, the others' order kept): a
+  // factor that reads a few of a state's components (an encoder, a bound) adds nothing to the
+  // others' rows of H, and H's sums are the same to the last digit without those zeros.
+  void DropZeroColumns() {
+    int kept = 0;
+    for (int c = 0; c < count; ++c) {
+      bool zero = true;
+      for (int r = 0; r < rows && zero; ++r) zero = jb[static_cast<size_t>(r) * count + c] == 0.0;
+      if (zero) continue;
+      if (kept != c) {
+        for (int r = 0; r < rows; ++r) {
+          jb[static_cast<size_t>(r) * count + kept] = jb[static_cast<size_t>(r) * count + c];
+        }
+        block_[kept] = block_[c];
+        index_[kept] = index_[c];
+      }
+      ++kept;
+    }
+    if (kept == count) return;
+    // Rows to the new width: row r's kept columns sit at r * count; move them to r * kept.
+    for (int r = 1; r < rows; ++r) {
+      std::copy_n(jb.data() + static_cast<size_t>(r) * count, kept,
+                  jb.data() + static_cast<size_t>(r) * kept);
+    }
+    count = kept;
+    jb.resize(static_cast<size_t>(rows) * count);
   }
 
   // Evaluate(problem, id, layout)'s: the block's parameters, their places, the table of it.
