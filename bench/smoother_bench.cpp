@@ -3,6 +3,8 @@
 //
 //   build/bench/smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N]
 //                                  [--function-tolerance F] [--step-sd S] [--against F2]
+//                                  [--stiffness-sd SD]     as `smooth` runs it (SD 0: the law
+//                                                          as given, one solve, no border nodes)
 //                                                                 one length per process (peak
 //                                                                 RSS); the chain solver or Ceres
 //   build/bench/smoother_bench window [--ceres] [ITERATIONS...]    2 s window at 100 Hz (chain
@@ -198,7 +200,8 @@ int Window(const std::vector<int>& iterations, bool chain) {
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::strcmp(argv[1], "batch") == 0) {
-    slipgraph::BatchSmootherOptions options;
+    slipgraph::BatchSmootherOptions options;  // as `smooth` runs it
+    options.problem.stiffness_prior_sd = slipgraph::kPostProcessingStiffnessPriorSd;
     options.threads = 1;
     double against = 0.0;
     for (int i = 3; i < argc; ++i) {
@@ -215,6 +218,9 @@ int main(int argc, char** argv) {
         options.step_sd_tolerance = std::atof(argv[++i]);
       }
       if (std::strcmp(argv[i], "--against") == 0 && value) against = std::atof(argv[++i]);
+      if (std::strcmp(argv[i], "--stiffness-sd") == 0 && value) {
+        options.problem.stiffness_prior_sd = std::atof(argv[++i]);
+      }
     }
     return slipgraph::Batch(std::atof(argv[2]), options, against);
   }
@@ -239,7 +245,7 @@ int main(int argc, char** argv) {
   std::fprintf(
       stderr,
       "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] "
-      "[--function-tolerance F] [--step-sd S] [--against F2] | "
+      "[--function-tolerance F] [--step-sd S] [--against F2] [--stiffness-sd SD] | "
       "window [--ceres] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES [--threads N]\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"
