@@ -1,7 +1,5 @@
 #include "problems/ward_batch_problem.h"
 
-#include <ceres/cost_function.h>
-#include <ceres/loss_function.h>
 #include <ceres/normal_prior.h>
 
 #include <algorithm>
@@ -9,29 +7,18 @@
 #include <stdexcept>
 #include <utility>
 
+#include "problems/owned_functions.h"
+
 namespace slipgraph {
 
 WardProblem::~WardProblem() {
   if (problem == nullptr) return;
   std::vector<ceres::ResidualBlockId> ids;
   problem->GetResidualBlocks(&ids);
-  std::vector<const ceres::CostFunction*> costs;
-  std::vector<const ceres::LossFunction*> losses;
-  costs.reserve(ids.size());
-  for (const ceres::ResidualBlockId id : ids) {
-    costs.push_back(problem->GetCostFunctionForResidualBlock(id));
-    const ceres::LossFunction* loss = problem->GetLossFunctionForResidualBlock(id);
-    if (loss != nullptr) losses.push_back(loss);
-  }
+  OwnedFunctions functions;
+  functions.Take(*problem, ids);
   problem.reset();
-  // Each once, should any be shared by several blocks.
-  const auto delete_each = [](auto* functions) {
-    std::sort(functions->begin(), functions->end());
-    functions->erase(std::unique(functions->begin(), functions->end()), functions->end());
-    for (const auto* f : *functions) delete f;
-  };
-  delete_each(&costs);
-  delete_each(&losses);
+  functions.DeleteAll();
 }
 
 std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const ModelConfig& model,
@@ -49,11 +36,7 @@ std::unique_ptr<WardProblem> BuildWardBatchProblem(const DriveLog& log, const Mo
   }
   out->offsets = {initial.back().accel_offset_mps2, initial.back().gyro_offset_radps};
 
-  ceres::Problem::Options problem_options;
-  problem_options.enable_fast_removal = false;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  out->problem = std::make_unique<ceres::Problem>(problem_options);
+  out->problem = std::make_unique<ceres::Problem>(OptionsOwningNoFunctions(false));
   ceres::Problem& problem = *out->problem;
   for (size_t k = 0; k < n; ++k) problem.AddParameterBlock(out->states[k].data(), ward::kStateSize);
   problem.AddParameterBlock(out->offsets.data(), 2);

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "model/option_check.h"
+#include "problems/owned_functions.h"
 #include "solvers/chain_covariance.h"
 #include "solvers/chain_solver.h"
 #include "solvers/marginalization.h"
@@ -44,6 +45,15 @@ double MillisecondsSince(Clock::time_point start) {
 
 class Window {
  public:
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  ~Window() {
+    std::vector<ceres::ResidualBlockId> ids;
+    problem_.GetResidualBlocks(&ids);
+    OwnedFunctions functions;
+    functions.Take(problem_, ids);
+    functions.DeleteAll();  // the problem's blocks only point at them; it is destroyed after
+  }
   Window(const WardFactorSource& source, const WindowSmootherOptions& options,
          WindowSmootherResult* result)
       : source_(source), options_(options), result_(result), problem_(ProblemOptions()) {
@@ -201,7 +211,7 @@ class Window {
           failed = true;
         }
       }
-      problem_.RemoveParameterBlock(states_.front().data());
+      RemoveParameterBlock(states_.front().data());
       states_.pop_front();
       ++first_;
       if (m.prior && !m.kept.empty()) problem_.AddResidualBlock(m.prior.release(), nullptr, m.kept);
@@ -223,10 +233,18 @@ class Window {
   const std::vector<double>& stiffness() const { return stiffness_; }
 
  private:
-  static ceres::Problem::Options ProblemOptions() {
-    ceres::Problem::Options options;
-    options.enable_fast_removal = true;
-    return options;
+  // The cost and loss functions are the window's (problems/owned_functions.h): taken from the
+  // blocks that leave with a parameter block, and from the rest at the end.
+  static ceres::Problem::Options ProblemOptions() { return OptionsOwningNoFunctions(true); }
+
+  // Removes x and the residual blocks on it, and deletes their cost and loss functions.
+  void RemoveParameterBlock(double* x) {
+    std::vector<ceres::ResidualBlockId> ids;
+    problem_.GetResidualBlocksForParameterBlock(x, &ids);
+    OwnedFunctions functions;
+    functions.Take(problem_, ids);
+    problem_.RemoveParameterBlock(x);
+    functions.DeleteAll();
   }
 
   double NewestTime() const { return source_.time(first_ + states_.size() - 1); }
@@ -273,7 +291,7 @@ class Window {
         Note("marginalizing the slip-stiffness node " + std::to_string(j) + " failed (" + m.error +
              "): its information is dropped");
       }
-      problem_.RemoveParameterBlock(&stiffness_[j]);
+      RemoveParameterBlock(&stiffness_[j]);
       node_[j] = Node::kMarginalized;
       if (m.prior && !m.kept.empty()) problem_.AddResidualBlock(m.prior.release(), nullptr, m.kept);
     }
