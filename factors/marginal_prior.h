@@ -4,12 +4,15 @@
 //
 // with x0 the linearization point and J, r0 chosen so that 0.5 |r|^2 has the Hessian H and the
 // gradient b of the eliminated problem there: H = V S V^T (eigenvalues S > 0 kept),
-// J = S^(1/2) V^T, r0 = S^(-1/2) V^T b. Ceres has no built-in marginalization; VINS-Mono, OKVIS
-// and fuse each write this cost function, as we do. Jacobians are analytic (J itself).
+// J = S^(1/2) V^T, r0 = S^(-1/2) V^T b; where H has full rank, its Cholesky factor gives the same
+// cost more cheaply (H = L L', J = L', r0 = L^-1 b). Ceres has no built-in marginalization;
+// VINS-Mono, OKVIS and fuse each write this cost function, as we do. Jacobians are analytic (J
+// itself).
 #pragma once
 
 #include <ceres/cost_function.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -18,6 +21,19 @@
 #include <vector>
 
 namespace slipgraph {
+
+// H^-1 from a Cholesky factorization when every eigenvalue of the symmetric H exceeds
+// `eigen_floor` times the largest, which is then what the eigen-decomposition would keep: the
+// smallest eigenvalue is at least 1 / |H^-1|_F, the largest at most the trace. False otherwise
+// (the caller decomposes H and drops the directions below the floor). `llt` keeps H = L L'.
+inline bool FullRankInverse(const Eigen::MatrixXd& H, double eigen_floor,
+                            Eigen::LLT<Eigen::MatrixXd>* llt, Eigen::MatrixXd* inverse) {
+  llt->compute(H);
+  if (llt->info() != Eigen::Success) return false;
+  *inverse = llt->solve(Eigen::MatrixXd::Identity(H.rows(), H.cols()));
+  const double norm = inverse->norm();  // Frobenius
+  return std::isfinite(norm) && norm > 0.0 && 1.0 / norm > eigen_floor * H.trace();
+}
 
 class MarginalPrior : public ceres::CostFunction {
  public:
@@ -29,7 +45,17 @@ class MarginalPrior : public ceres::CostFunction {
                 const Eigen::MatrixXd& H, const Eigen::VectorXd& b, double eigen_floor = 1e-12)
       : x0_(x0) {
     for (int size : block_sizes) mutable_parameter_block_sizes()->push_back(size);
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (H + H.transpose()));
+    const Eigen::MatrixXd symmetric = 0.5 * (H + H.transpose());
+    Eigen::LLT<Eigen::MatrixXd> llt;
+    Eigen::MatrixXd inverse;
+    if (FullRankInverse(symmetric, eigen_floor, &llt, &inverse)) {
+      // H = L L': J = L', r0 = L^-1 b (J'J = H, J'r0 = b, as from the eigen-decomposition).
+      J_ = llt.matrixU();
+      r0_ = llt.matrixL().solve(b);
+      set_num_residuals(static_cast<int>(r0_.size()));
+      return;
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(symmetric);
     const Eigen::VectorXd& s = eigen.eigenvalues();
     const double floor = eigen_floor * std::max(s.maxCoeff(), 0.0);
     std::vector<int> kept;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <map>
 #include <set>
@@ -122,18 +123,24 @@ Marginalization Marginalize(const ceres::Problem& problem, const std::vector<dou
     return out;
   }
 
-  // Schur complement with a pseudo-inverse of H_mm (directions it does not constrain are dropped).
+  // Schur complement with a pseudo-inverse of H_mm (directions it does not constrain are dropped;
+  // its inverse where it has full rank).
   const int k = size - m;
   if (k == 0) return out;  // nothing kept touches the leaving blocks: nothing to carry
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(H.topLeftCorner(m, m));
-  const Eigen::VectorXd& s = eigen.eigenvalues();
-  const double floor = 1e-12 * std::max(s.maxCoeff(), 0.0);
-  Eigen::VectorXd s_inv = Eigen::VectorXd::Zero(m);
-  for (int i = 0; i < m; ++i) {
-    if (s[i] > floor && s[i] > 0.0) s_inv[i] = 1.0 / s[i];
+  constexpr double kEigenFloor = 1e-12;
+  const Eigen::MatrixXd Hmm = H.topLeftCorner(m, m);
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  Eigen::MatrixXd Hmm_inv;
+  if (!FullRankInverse(Hmm, kEigenFloor, &llt, &Hmm_inv)) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(Hmm);
+    const Eigen::VectorXd& s = eigen.eigenvalues();
+    const double floor = kEigenFloor * std::max(s.maxCoeff(), 0.0);
+    Eigen::VectorXd s_inv = Eigen::VectorXd::Zero(m);
+    for (int i = 0; i < m; ++i) {
+      if (s[i] > floor && s[i] > 0.0) s_inv[i] = 1.0 / s[i];
+    }
+    Hmm_inv = eigen.eigenvectors() * s_inv.asDiagonal() * eigen.eigenvectors().transpose();
   }
-  const Eigen::MatrixXd Hmm_inv =
-      eigen.eigenvectors() * s_inv.asDiagonal() * eigen.eigenvectors().transpose();
   const Eigen::MatrixXd Hkm = H.bottomLeftCorner(k, m);
   const Eigen::MatrixXd H_prior = H.bottomRightCorner(k, k) - Hkm * Hmm_inv * Hkm.transpose();
   const Eigen::VectorXd b_prior = b.tail(k) - Hkm * Hmm_inv * b.head(m);

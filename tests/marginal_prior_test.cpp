@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include "tests/factor_check.h"
 
 namespace slipgraph {
@@ -54,6 +56,33 @@ TEST(MarginalPrior, DropsDirectionsWithoutInformation) {
   const double zero[2] = {0.0, 0.0};
   EXPECT_NEAR(testing::Residuals(prior, {along_null})[0], testing::Residuals(prior, {zero})[0],
               1e-12);
+}
+
+// The Cholesky path is taken only where the eigen-decomposition would keep every direction: a
+// direction 1e-14 of the largest is declined (the caller drops it), one 1e-6 of it is inverted.
+TEST(MarginalPrior, FullRankInverseDeclinesWhatTheEigenFloorWouldDrop) {
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  Eigen::MatrixXd inverse;
+  const Eigen::MatrixXd rotation = Eigen::Rotation2Dd(0.3).toRotationMatrix();
+  const Eigen::MatrixXd tiny =
+      rotation * Eigen::Vector2d(1.0, 1e-14).asDiagonal() * rotation.transpose();
+  EXPECT_FALSE(FullRankInverse(tiny, 1e-12, &llt, &inverse));
+  const Eigen::MatrixXd small =
+      rotation * Eigen::Vector2d(1.0, 1e-6).asDiagonal() * rotation.transpose();
+  ASSERT_TRUE(FullRankInverse(small, 1e-12, &llt, &inverse));
+  EXPECT_TRUE((inverse * small).isApprox(Eigen::Matrix2d::Identity(), 1e-8));
+  // The prior from it: the same Hessian and gradient as the eigen-decomposition's.
+  const Eigen::VectorXd b = Eigen::Vector2d(0.4, -0.2);
+  const MarginalPrior prior({2}, Eigen::Vector2d::Zero(), small, b);
+  EXPECT_EQ(prior.rank(), 2);
+  const double at[2] = {0.0, 0.0};
+  Eigen::Vector2d r;
+  Eigen::Matrix<double, 2, 2, Eigen::RowMajor> J;
+  double* jacobians[1] = {J.data()};
+  const double* parameters[1] = {at};
+  ASSERT_TRUE(prior.Evaluate(parameters, r.data(), jacobians));
+  EXPECT_TRUE((J.transpose() * J).isApprox(small, 1e-10));
+  EXPECT_TRUE((J.transpose() * r).isApprox(b, 1e-10));
 }
 
 }  // namespace
