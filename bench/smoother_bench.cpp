@@ -32,6 +32,7 @@
 
 #include "bench/long_drive.h"
 #include "evaluation/evaluation.h"
+#include "io/estimate_file.h"
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/window_smoother.h"
@@ -129,9 +130,7 @@ int Batch(double minutes, const BatchSmootherOptions& given, double against_tole
         squares += z * z;
         sd_change = std::max(sd_change, std::abs(a.sd[i] / b.sd[i] - 1.0));
       }
-      static constexpr const char* kNames[ward::kStateSize] = {
-          "v_bx", "b_ax", "a_dist", "omega_left", "omega_right", "yaw_rate", "b_gz"};
-      std::printf("| %s | %.4f | %.4f | %.4f |\n", kNames[i], largest,
+      std::printf("| %s | %.4f | %.4f | %.4f |\n", kStateColumns[i], largest,
                   std::sqrt(squares / reference.estimates.size()), sd_change);
     }
     long flags = 0;

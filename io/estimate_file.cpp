@@ -45,8 +45,6 @@ void WriteNumericTable(const NumericTable& table, const std::string& path) {
 
 NumericTable EstimateColumns(const std::vector<WardEstimate>& estimates,
                              const std::vector<ExtraColumn>& extra) {
-  static constexpr const char* kStateNames[ward::kStateSize] = {
-      "v_bx", "b_ax", "a_dist", "omega_left", "omega_right", "yaw_rate", "b_gz"};
   NumericTable table;
   const auto add = [&](const std::string& name) -> std::vector<double>& {
     table.names.push_back(name);
@@ -57,9 +55,9 @@ NumericTable EstimateColumns(const std::vector<WardEstimate>& estimates,
   std::vector<double>& t = add("t");
   for (const WardEstimate& e : estimates) t.push_back(e.t);
   for (int i = 0; i < ward::kStateSize; ++i) {
-    std::vector<double>& value = add(kStateNames[i]);
+    std::vector<double>& value = add(kStateColumns[i]);
     for (const WardEstimate& e : estimates) value.push_back(e.x[i]);
-    std::vector<double>& sd = add(std::string("sd_") + kStateNames[i]);
+    std::vector<double>& sd = add(std::string("sd_") + kStateColumns[i]);
     for (const WardEstimate& e : estimates) sd.push_back(e.sd[i]);
   }
   const auto add_each = [&](const std::string& name, auto value_of) {

@@ -29,6 +29,10 @@ struct ExtraColumn {
   std::vector<double> values;
 };
 
+// The estimate file's column of each state component, in the state's order (ward::kVbx ...).
+inline constexpr const char* kStateColumns[ward::kStateSize] = {
+    "v_bx", "b_ax", "a_dist", "omega_left", "omega_right", "yaw_rate", "b_gz"};
+
 // Every column of the estimate file (docs/estimate-file.md): t, v_bx, b_ax, a_dist, omega_left,
 // omega_right, yaw_rate, b_gz (each followed by its sd_), slip_left, slip_right, slip_ema,
 // immobilized, accel_offset, gyro_offset, then `extra`. Throws std::logic_error when an extra

@@ -22,6 +22,12 @@ void OwnedFunctions::Take(const ceres::Problem& problem,
   }
 }
 
+void OwnedFunctions::TakeAll(const ceres::Problem& problem) {
+  std::vector<ceres::ResidualBlockId> ids;
+  problem.GetResidualBlocks(&ids);
+  Take(problem, ids);
+}
+
 void OwnedFunctions::DeleteAll() {
   const auto delete_each = [](auto* functions) {
     std::sort(functions->begin(), functions->end());

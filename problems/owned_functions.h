@@ -20,6 +20,8 @@ class OwnedFunctions {
   // Takes the cost and loss functions of these residual blocks of `problem` (each once, should
   // one be shared by several blocks).
   void Take(const ceres::Problem& problem, const std::vector<ceres::ResidualBlockId>& ids);
+  // Takes those of every residual block of `problem` (its owner's end).
+  void TakeAll(const ceres::Problem& problem);
   // Deletes every function taken (after the blocks that use them left the problem).
   void DeleteAll();
 

@@ -13,10 +13,8 @@ namespace slipgraph {
 
 WardProblem::~WardProblem() {
   if (problem == nullptr) return;
-  std::vector<ceres::ResidualBlockId> ids;
-  problem->GetResidualBlocks(&ids);
   OwnedFunctions functions;
-  functions.Take(*problem, ids);
+  functions.TakeAll(*problem);
   problem.reset();
   functions.DeleteAll();
 }

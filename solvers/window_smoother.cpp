@@ -48,15 +48,16 @@ class Window {
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
   ~Window() {
-    std::vector<ceres::ResidualBlockId> ids;
-    problem_.GetResidualBlocks(&ids);
     OwnedFunctions functions;
-    functions.Take(problem_, ids);
+    functions.TakeAll(problem_);
     functions.DeleteAll();  // the problem's blocks only point at them; it is destroyed after
   }
   Window(const WardFactorSource& source, const WindowSmootherOptions& options,
          WindowSmootherResult* result)
-      : source_(source), options_(options), result_(result), problem_(ProblemOptions()) {
+      : source_(source),
+        options_(options),
+        result_(result),
+        problem_(OptionsOwningNoFunctions(true)) {
     solver_options_.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     solver_options_.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
     solver_options_.max_num_iterations = options.max_iterations;
@@ -233,11 +234,8 @@ class Window {
   const std::vector<double>& stiffness() const { return stiffness_; }
 
  private:
-  // The cost and loss functions are the window's (problems/owned_functions.h): taken from the
-  // blocks that leave with a parameter block, and from the rest at the end.
-  static ceres::Problem::Options ProblemOptions() { return OptionsOwningNoFunctions(true); }
-
-  // Removes x and the residual blocks on it, and deletes their cost and loss functions.
+  // Removes x and the residual blocks on it, and deletes their cost and loss functions (the
+  // window's, problems/owned_functions.h; the rest go at the end).
   void RemoveParameterBlock(double* x) {
     std::vector<ceres::ResidualBlockId> ids;
     problem_.GetResidualBlocksForParameterBlock(x, &ids);
