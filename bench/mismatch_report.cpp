@@ -11,6 +11,10 @@
 //     velocity RMSE over the EKF's run by run;
 //   --reject-distance SD: the window's rejection of a solve far from the front end
 //     (WindowSmootherOptions::reject_distance_sd; 0: never), for choosing it on other seeds;
+//   --no-pull-back SD: the smoothers' weak constraint 3 on the velocity at this density
+//     (WardProblemOptions::no_pull_back_sd_density; 0: off), for choosing it on other seeds;
+//   --model-disturbance: the window's disturbance walk at the model's w3, not the front end's
+//     adaptive one (WindowSmootherOptions::disturbance_from_front_end = false);
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
@@ -84,6 +88,9 @@ double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
 // --runs: list the runs with false alarms.
 bool g_list_runs = false;
 double g_reject_distance_sd = WindowSmootherOptions{}.reject_distance_sd;
+// --no-pull-back: NaN keeps each smoother's default (the window's on, the batch's off).
+double g_no_pull_back_sd = std::nan("");
+bool g_disturbance_from_front_end = WindowSmootherOptions{}.disturbance_from_front_end;
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -156,6 +163,8 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
       WindowSmootherOptions options;
       options.filter = g_front;
       options.reject_distance_sd = g_reject_distance_sd;
+      if (!std::isnan(g_no_pull_back_sd)) options.no_pull_back_sd_density = g_no_pull_back_sd;
+      options.disturbance_from_front_end = g_disturbance_from_front_end;
       const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
       out.window_failed_updates += result.failed_updates;
       out.window_rejected_updates += result.rejected_updates;
@@ -178,6 +187,8 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
       BatchSmootherOptions options;
       options.filter = g_front;
       options.problem.stiffness_prior_sd = g_stiffness_sd;
+      if (!std::isnan(g_no_pull_back_sd))
+        options.problem.no_pull_back_sd_density = g_no_pull_back_sd;
       options.stiffness_gnss_margin = g_stiffness_gnss_margin;
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
@@ -246,6 +257,10 @@ int main(int argc, char** argv) {
       g_model_text = ReadTextFile(g_model_path);
     } else if (std::strcmp(argv[i], "--window") == 0) {
       window = true;
+    } else if (std::strcmp(argv[i], "--no-pull-back") == 0 && has_value) {
+      g_no_pull_back_sd = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--model-disturbance") == 0) {
+      g_disturbance_from_front_end = false;
     } else if (std::strcmp(argv[i], "--reject-distance") == 0 && has_value) {
       g_reject_distance_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoother") == 0) {

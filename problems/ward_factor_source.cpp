@@ -18,6 +18,7 @@
 #include "factors/frames.h"
 #include "factors/gnss_velocity_factor.h"
 #include "factors/linear_factor.h"
+#include "factors/no_pull_back_prior.h"
 #include "factors/oppose_motion_prior.h"
 #include "factors/rate_bound_prior.h"
 #include "factors/state_walk_factor.h"
@@ -44,6 +45,7 @@ bool WardProblemOptions::IsValid(std::string* error) const {
       .Positive("disturbance_huber_sigmas", disturbance_huber_sigmas)
       .Positive("decay_cauchy_sigmas", decay_cauchy_sigmas)
       .Positive("decay_sd_density", decay_sd_density)
+      .NonNegative("no_pull_back_sd_density", no_pull_back_sd_density)
       .Require("tire_law_correlation_time_s",
                std::isnan(tire_law_correlation_time_s) || tire_law_correlation_time_s >= 0.0,
                tire_law_correlation_time_s, "must be non-negative (NaN: the model's)")
@@ -105,8 +107,9 @@ std::string FactorCounts::Describe() const {
       << (body_velocity_too_late > 0
               ? std::to_string(body_velocity_too_late) + " body velocity too late for the window, "
               : std::string())
-      << oppose_motion << " oppose-motion, " << act_quickly << " decay, " << at_rest << " at-rest, "
-      << bounds << " bound, " << rate_bounds << " rate-bound priors";
+      << oppose_motion << " oppose-motion, " << act_quickly << " decay, "
+      << (no_pull_back > 0 ? std::to_string(no_pull_back) + " no-pull-back, " : std::string())
+      << at_rest << " at-rest, " << bounds << " bound, " << rate_bounds << " rate-bound priors";
   return out.str();
 }
 
@@ -143,6 +146,11 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
     throw std::invalid_argument("law_per_state has " +
                                 std::to_string(options.law_per_state.size()) + " laws for " +
                                 std::to_string(n) + " states");
+  }
+  const size_t densities = options.disturbance_density_per_state.size();
+  if (densities != 0 && densities != n) {
+    throw std::invalid_argument("disturbance_density_per_state has " + std::to_string(densities) +
+                                " densities for " + std::to_string(n) + " states");
   }
   times_.resize(n);
   wheel_speeds_.assign(n, {0.0, 0.0});
@@ -313,6 +321,16 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
                                         nullptr, offsets)});
 }
 
+bool WardFactorSource::PushesAlong(size_t k, double vel_dir, const Params& params) const {
+  std::array<double, kStateSize> held = initial_[k].x;
+  held[kVbx] = 0.0;
+  held[kOmegaLeft] = wheel_speeds_[k][0];
+  held[kOmegaRight] = wheel_speeds_[k][1];
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(ContextAt(times_[k]).attitude, params);
+  const double f_tire = ComputeTireForces(held.data(), loads, params).f_tire_mps2;
+  return vel_dir * (f_tire - loads.gravity_along_x_mps2) > 0.0;
+}
+
 void WardFactorSource::AddStep(size_t k, double* previous, double* x, const GlobalBlocks& globals,
                                ceres::Problem* problem, std::vector<AddedFactor>* added,
                                FactorCounts* counts) const {
@@ -419,6 +437,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     Add("oppose_motion", OpposeMotionPrior::Create(vel_dir, sd),
         scale > 0.0 ? new ceres::CauchyLoss(scale / sd) : nullptr, x);
     ++counts->oppose_motion;
+    if (options_.no_pull_back_sd_density > 0.0 && PushesAlong(k, vel_dir, params)) {
+      Add("no_pull_back",
+          NoPullBackPrior::Create(vel_dir, options_.no_pull_back_sd_density / root_dt), nullptr, x);
+      ++counts->no_pull_back;
+    }
   }
   if (stop_timers_[k].AtRestFor(times_[k], wc.stop_time_s)) {
     Add("at_rest", AtRestPrior::Create(wc.sd_at_rest / root_dt, 0.1 * wc.sd_at_rest / root_dt),
@@ -479,7 +502,10 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     Add("wheel_speed_walk", WheelSpeedWalkFactor::Create(omega_walk * std::sqrt(dt)),
         new ceres::HuberLoss(options_.omega_walk_huber_sigmas), previous, x);
   }
-  Add("disturbance_walk", DisturbanceWalkFactor::Create(q.a_dist_mps3_per_sqrt_hz * std::sqrt(dt)),
+  const double w3 = k - 1 < options_.disturbance_density_per_state.size()
+                        ? options_.disturbance_density_per_state[k - 1]
+                        : q.a_dist_mps3_per_sqrt_hz;
+  Add("disturbance_walk", DisturbanceWalkFactor::Create(w3 * std::sqrt(dt)),
       new ceres::HuberLoss(options_.disturbance_huber_sigmas), previous, x);
   Add("rate_bound",
       RateBoundPrior::Create({wc.max_v_bx_rate_mps2, wc.max_accel_bias_rate_mps3}, dt,

@@ -70,6 +70,9 @@ struct WardProblemOptions {
   // hold-backs and the velocity absorbs the difference (ward21 seed 1/2: 19/20 and 16/20
   // detected, v RMSE 0.023/0.020 m/s; with it 20/20 and 19/20, 0.019/0.017).
   double decay_sd_density = 0.1;
+  // Density (m/s sqrt(s)) of weak constraint 3's velocity form (factors/no_pull_back_prior.h):
+  // the body does not move against its wheels unless gravity pulls it back. 0: off.
+  double no_pull_back_sd_density = 0.0;
   // The slip that gates that prior, one per state (empty: the EKF's slip EMA). The batch smoother
   // re-gates with its own first solution's slip (BatchSmootherOptions::regate_decay_prior).
   std::vector<double> decay_gate_slip;
@@ -124,6 +127,11 @@ struct WardProblemOptions {
   // bank then holds the law the bank's estimate came from. The stiffness walk and the law
   // blocks scale or replace it as they do the model's.
   std::vector<LawSample> law_per_state;
+  // The disturbance's random-walk density (m/s^3/sqrt(Hz)) from each state to the next (one per
+  // state; empty: the model's w3 everywhere), e.g. the adaptive w3 a filter's prediction took
+  // there (FilterResult::disturbance_density): a window behind the filter then lets the
+  // disturbance move where the filter did.
+  std::vector<double> disturbance_density_per_state;
   // The effect terms the model's `effects` may name (factors/effect_term.h); null: the
   // catalogue's (CatalogueTerms()). Not owned: it outlives the problem.
   const EffectTerms* effect_terms = nullptr;
@@ -142,12 +150,25 @@ struct WardProblemOptions {
 // Every factor kind a Ward problem is built of (tests/ward_factor_source_test.cpp checks that a
 // problem holds no other).
 inline const std::vector<std::string>& WardFactorKinds() {
-  static const std::vector<std::string> kinds = {
-      "accelerometer",  "act_quickly",       "at_rest",    "body_velocity",
-      "bound",          "disturbance_walk",  "dynamics",   "effect_prior",
-      "encoder",        "first_state_prior", "gnss",       "gyro",
-      "offset_prior",   "oppose_motion",     "rate_bound", "stiffness_prior",
-      "stiffness_walk", "wheel_speed_walk"};
+  static const std::vector<std::string> kinds = {"accelerometer",
+                                                 "act_quickly",
+                                                 "at_rest",
+                                                 "body_velocity",
+                                                 "bound",
+                                                 "disturbance_walk",
+                                                 "dynamics",
+                                                 "effect_prior",
+                                                 "encoder",
+                                                 "first_state_prior",
+                                                 "gnss",
+                                                 "gyro",
+                                                 "no_pull_back",
+                                                 "offset_prior",
+                                                 "oppose_motion",
+                                                 "rate_bound",
+                                                 "stiffness_prior",
+                                                 "stiffness_walk",
+                                                 "wheel_speed_walk"};
   return kinds;
 }
 
@@ -168,7 +189,7 @@ struct AddedFactor {
 struct FactorCounts {
   long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, gnss_gated = 0,
        body_velocity = 0, body_velocity_too_late = 0, oppose_motion = 0, act_quickly = 0,
-       at_rest = 0, bounds = 0, rate_bounds = 0;
+       no_pull_back = 0, at_rest = 0, bounds = 0, rate_bounds = 0;
   std::string Describe() const;
 };
 
@@ -255,6 +276,9 @@ class WardFactorSource {
   // GNSS fix g's velocity along body x at state k and its sd; false when it has none (a
   // non-finite component).
   bool GnssAlong(size_t k, const GpsSample& g, double* along, double* sd) const;
+  // Weak constraint 3's condition at state k: the tires, with the body held still and the wheels
+  // at their measured speeds, push along vel_dir harder than gravity pulls back.
+  bool PushesAlong(size_t k, double vel_dir, const ward::Params& params) const;
 
   const DriveLog& log_;
   const ModelConfig& model_;

@@ -42,6 +42,10 @@ struct FilterResult {
   // The bank: per estimate, its filters' laws weighed as the estimate is (MultipleModelEkf::Law),
   // the law a smoother behind it takes at that state. Empty for one filter.
   std::vector<LawSample> law;
+  // Per estimate, the disturbance's random-walk density the filter's next prediction takes (its
+  // adaptive w3; the bank's filters' weighed), for a smoother behind it. Empty for the
+  // disturbance modes.
+  std::vector<double> disturbance_density;
   EkfStats stats;
   std::vector<std::string> streams_used;
   std::vector<std::string> notes;  // assumptions and problems, one line each

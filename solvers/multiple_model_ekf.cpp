@@ -88,6 +88,15 @@ LawSample MultipleModelEkf::Law() const {
   return law;
 }
 
+double MultipleModelEkf::DisturbanceDensity() const {
+  double variance = 0.0;
+  for (size_t i = 0; i < filters_.size(); ++i) {
+    const double q = filters_[i]->DisturbanceDensity();
+    variance += weights_[i] * q * q;
+  }
+  return std::sqrt(variance);
+}
+
 WardEstimate MultipleModelEkf::Estimate(std::array<double, ward::kStateSize>* law_spread_sd) const {
   WardEstimate out = filters_.front()->Estimate();
   if (law_spread_sd != nullptr) law_spread_sd->fill(0.0);

@@ -59,6 +59,9 @@ class MultipleModelEkf {
   // The filters' laws weighed as the estimate is: each coefficient of the tire and rolling laws
   // averaged with the filters' weights (the user's law with one filter).
   LawSample Law() const;
+  // The filters' disturbance densities (WardEkf::DisturbanceDensity) weighed as the estimate
+  // is: the root of their squares' weighted mean.
+  double DisturbanceDensity() const;
 
  private:
   MultipleModelOptions options_;

@@ -149,6 +149,9 @@ class WardEkf {
   // the other streams' updates.
   double AddGpsScored(const GpsSample& gps);
   const EkfStats& stats() const { return stats_; }
+  // The disturbance's random-walk density its next prediction takes (WardPropagator's adaptive
+  // w3), for a smoother behind the filter.
+  double DisturbanceDensity() const { return propagator_.DisturbanceDensity(); }
   bool started() const { return started_; }
   // The state and covariance, and their replacement by a mixture of several filters' (an
   // interacting multiple model, solvers/disturbance_imm.h); the offsets, gates, detector and

@@ -53,6 +53,11 @@ void WardPropagator::ObserveAccelerometerNis(double nis) {
   accel_nis_ema_ += (nis - accel_nis_ema_) * weight;
 }
 
+double WardPropagator::DisturbanceDensity() const {
+  return std::min(q_.a_dist_max_mps3_per_sqrt_hz,
+                  q_.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
+}
+
 void WardPropagator::Predict(double dt, const PropagationInput& input,
                              const AttitudeLoads<double>& loads, const Params& params,
                              ekf::StateVector* x, ekf::StateMatrix* P) {
@@ -97,9 +102,7 @@ void WardPropagator::Predict(double dt, const PropagationInput& input,
   }
   q_diag(kAccelBias) = accel_bias_q_;
   // Adaptive w3: the density scales with the recent accelerometer NIS (1 when consistent).
-  const double q_adist =
-      std::min(q_.a_dist_max_mps3_per_sqrt_hz,
-               q_.a_dist_mps3_per_sqrt_hz * std::sqrt(std::max(1.0, accel_nis_ema_)));
+  const double q_adist = DisturbanceDensity();
   q_diag(kAdist) =
       a_dist_decay != 1.0
           ? GaussMarkovStepVariance(GaussMarkovStationarySd(q_adist, q_.a_dist_decay_tau_s),

@@ -32,6 +32,9 @@ class WardPropagator {
                const ward::Params& params, ekf::StateVector* x, ekf::StateMatrix* P);
   // The accelerometer's normalized innovation squared at an update: an EMA of it drives w3.
   void ObserveAccelerometerNis(double nis);
+  // The disturbance's random-walk density w3 the next prediction takes (m/s^3/sqrt(Hz)): the
+  // model's, scaled by the recent accelerometer NIS and capped (the adaptive w3).
+  double DisturbanceDensity() const;
 
  private:
   ProcessNoiseConfig q_;

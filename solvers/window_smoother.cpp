@@ -30,6 +30,7 @@ bool WindowSmootherOptions::IsValid(std::string* error) const {
              .NonNegative("step_sd_tolerance", step_sd_tolerance)
              .NonNegative("function_tolerance", function_tolerance)
              .NonNegative("stiffness_prior_sd", stiffness_prior_sd)
+             .NonNegative("no_pull_back_sd_density", no_pull_back_sd_density)
              .NonNegative("reject_distance_sd", reject_distance_sd)
              .NonNegative("min_immobilized_s", min_immobilized_s) &&
          filter.IsValid(error) && problem.IsValid(error);
@@ -498,8 +499,12 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
     result.notes.push_back(
         "the tire law at each state is the one the front end's bank weighed there");
   }
+  if (options.disturbance_from_front_end && result.ekf.disturbance_density.size() == n) {
+    problem_options.disturbance_density_per_state = result.ekf.disturbance_density;
+  }
   const bool soils = model.law_samples.size() >= 2;
   problem_options.stiffness_prior_sd = soils ? options.stiffness_prior_sd : 0.0;
+  problem_options.no_pull_back_sd_density = options.no_pull_back_sd_density;
 
   // The states' initial values. Without the front end's estimates kept, they are the result's
   // own, which the window overwrites only as a state leaves, after its last read of that state's

@@ -57,12 +57,24 @@ struct WindowSmootherOptions {
   // window then refines the bank's estimate under the bank's own law. false, or one filter: the
   // model's law everywhere.
   bool law_from_front_end = true;
+  // Let the disturbance walk at each step with the density the front end's prediction took there
+  // (its adaptive w3, FilterResult::disturbance_density): where the accelerometer disagrees with
+  // the model the filter lets its disturbance move faster, and the window, held to the model's
+  // w3, put the same unexplained force in the velocity. false: the model's w3 everywhere.
+  bool disturbance_from_front_end = true;
   // The tire law's slip stiffness as a slowly varying unknown (WardProblemOptions::stiffness_*,
   // the batch's walk) with this prior sd around that law, when the model lists its soils
   // (law_samples: the user says the terrain's law varies, and by how much). Without soils the
   // law is taken as given, as the front end takes it; 0: always. Overrides
   // problem.stiffness_prior_sd.
   double stiffness_prior_sd = 0.15;
+  // Weak constraint 3 on the velocity (WardProblemOptions::no_pull_back_sd_density, m/s
+  // sqrt(s)): the body does not move against its wheels unless gravity pulls it back. Without
+  // it, the window's velocity sat 3-7 cm/s below zero through hold-backs on ward21m (the
+  // accelerometer integrated over an attitude error), where the EKF's weak constraint 3 holds
+  // its own near zero. Chosen on ward21 and ward21m seeds 1-4 (0.0005-0.02; docs/smoother.md).
+  // 0: off. Overrides problem.no_pull_back_sd_density.
+  double no_pull_back_sd_density = 0.002;
   // A solve that moves the window's velocity far from the front end's is rejected unless the
   // velocity measurements in the window (GNSS, another estimator's) fit it better than the front
   // end's estimate: far is an RMS over the window's states of the difference above this many of

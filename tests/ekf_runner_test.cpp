@@ -77,5 +77,29 @@ TEST(EkfRunner, TheBankKeepsItsOwnSpread) {
   }
 }
 
+// The disturbance's density each prediction took, one per estimate, for a smoother behind the
+// filter: the model's w3 where the accelerometer agrees with the model, up to the cap where it
+// does not (a hold-back's onset), for one filter and for the bank.
+TEST(EkfRunner, ReportsTheAdaptiveDisturbanceDensity) {
+  const DriveLog log = testing::SimulatedScenario("ward21/01");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const ProcessNoiseConfig& q = model.process;
+  FilterRunOptions single;
+  single.multiple_model = false;
+  for (const FilterRunOptions& options : {FilterRunOptions{}, single}) {
+    const FilterResult result = RunEkf(log, model, options);
+    ASSERT_EQ(result.disturbance_density.size(), result.estimates.size());
+    const auto [low, high] =
+        std::minmax_element(result.disturbance_density.begin(), result.disturbance_density.end());
+    std::printf("w3 from %.2f to %.2f\n", *low, *high);
+    EXPECT_NEAR(*low, q.a_dist_mps3_per_sqrt_hz, 1e-9);
+    EXPECT_GT(*high, 2.0 * q.a_dist_mps3_per_sqrt_hz);
+    EXPECT_LE(*high, q.a_dist_max_mps3_per_sqrt_hz + 1e-9);
+  }
+  FilterRunOptions modes = single;
+  modes.disturbance_modes = true;
+  EXPECT_TRUE(RunEkf(log, model, modes).disturbance_density.empty());
+}
+
 }  // namespace
 }  // namespace slipgraph

@@ -8,6 +8,7 @@
 #include "factors/bound_prior.h"
 #include "factors/diagonal_prior.h"
 #include "factors/disturbance_decay_prior.h"
+#include "factors/no_pull_back_prior.h"
 #include "factors/oppose_motion_prior.h"
 #include "factors/state_walk_factor.h"
 #include "tests/factor_check.h"
@@ -62,6 +63,24 @@ TEST(OpposeMotionPrior, PenalizesOnlyAPushingDisturbance) {
   }
   const std::unique_ptr<ceres::CostFunction> reverse(OpposeMotionPrior::Create(-1.0, 0.5));
   EXPECT_NEAR(testing::Residuals(*reverse, {resisting})[0], 1.0 / 0.5, 1e-4);
+}
+
+TEST(NoPullBackPrior, PenalizesOnlyAVelocityAgainstTheWheels) {
+  const std::unique_ptr<ceres::CostFunction> forward(NoPullBackPrior::Create(1.0, 0.05));
+  const double along[kStateSize] = {0.5, 0, -2.0, 4, 4, 0, 0};
+  const double against[kStateSize] = {-0.1, 0, -2.0, 4, 4, 0, 0};
+  const double still[kStateSize] = {0.0, 0, -2.0, 4, 4, 0, 0};
+  EXPECT_NEAR(testing::Residuals(*forward, {along})[0], 0.0, 1e-3);
+  EXPECT_NEAR(testing::Residuals(*forward, {against})[0], 0.1 / 0.05, 1e-3);
+  // Smooth at the kink: residual eps/2 / sd at zero, Jacobians finite and correct there.
+  EXPECT_NEAR(testing::Residuals(*forward, {still})[0], 0.5 * NoPullBackPrior::kEpsMps / 0.05,
+              1e-12);
+  for (const double* x : {along, against, still}) {
+    testing::ExpectJacobiansMatchNumeric(*forward, {x}, 1e-4);
+  }
+  const std::unique_ptr<ceres::CostFunction> reverse(NoPullBackPrior::Create(-1.0, 0.05));
+  EXPECT_NEAR(testing::Residuals(*reverse, {along})[0], 0.5 / 0.05, 1e-3);
+  EXPECT_NEAR(testing::Residuals(*reverse, {against})[0], 0.0, 1e-3);
 }
 
 TEST(AtRestPrior, PullsBiasesAndDisturbanceToZero) {

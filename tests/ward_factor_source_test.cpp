@@ -183,6 +183,7 @@ TEST(WardFactorSource, WardFactorKindsNameEveryKindBuilt) {
   const FilterResult front = RunEkf(log, model);
   WardProblemOptions with_stiffness;
   with_stiffness.stiffness_prior_sd = 0.15;
+  with_stiffness.no_pull_back_sd_density = 0.002;
   std::set<std::string> kinds;
   const auto add_kinds = [&](const WardProblem& problem) {
     for (const auto& [kind, ids] : problem.blocks) kinds.insert(kind);
@@ -194,12 +195,47 @@ TEST(WardFactorSource, WardFactorKindsNameEveryKindBuilt) {
   for (const std::string& kind : kinds) {
     EXPECT_NE(std::find(known.begin(), known.end(), kind), known.end()) << kind;
   }
-  EXPECT_TRUE(kinds.count("stiffness_walk") && kinds.count("effect_prior"));
+  EXPECT_TRUE(kinds.count("stiffness_walk") && kinds.count("effect_prior") &&
+              kinds.count("no_pull_back"));
   WardProblemOptions misspelt;
   misspelt.only_kinds = {"dynamic"};
   std::string error;
   EXPECT_FALSE(misspelt.IsValid(&error));
   EXPECT_NE(error.find("'dynamic'"), std::string::npos) << error;
+}
+
+// Weak constraint 3's velocity form goes on the states whose wheels turn and push harder than
+// gravity pulls back (on fig5, most of those where weak constraint 1 goes); the disturbance walk
+// takes the density given per state, and a list of the wrong length is refused.
+TEST(WardFactorSource, NoPullBackAndTheDisturbanceDensityPerState) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  WardProblemOptions options;
+  options.no_pull_back_sd_density = 0.002;
+  ceres::Problem problem;
+  Built b;
+  BuildAll(WardFactorSource(log, model, front.estimates, options), &problem, &b);
+  EXPECT_GT(b.counts.no_pull_back, 0.8 * b.counts.oppose_motion);
+  EXPECT_LE(b.counts.no_pull_back, b.counts.oppose_motion);
+  EXPECT_NE(b.counts.Describe().find("no-pull-back"), std::string::npos);
+
+  const auto walk_cost = [&](double density) {
+    WardProblemOptions walk;
+    walk.only_kinds = {"disturbance_walk"};
+    walk.disturbance_density_per_state.assign(front.estimates.size(), density);
+    ceres::Problem p;
+    Built built;
+    BuildAll(WardFactorSource(log, model, front.estimates, walk), &p, &built);
+    double cost = 0.0;
+    p.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr);
+    return cost;
+  };
+  EXPECT_GT(walk_cost(model.process.a_dist_mps3_per_sqrt_hz),
+            3.0 * walk_cost(2.0 * model.process.a_dist_mps3_per_sqrt_hz));
+  WardProblemOptions wrong;
+  wrong.disturbance_density_per_state.assign(3, 5.0);
+  EXPECT_THROW(WardFactorSource(log, model, front.estimates, wrong), std::invalid_argument);
 }
 
 TEST(WardFactorSource, AnEmptyFrontEndIsRefused) {

@@ -83,6 +83,8 @@ TEST(WardPropagator, DisturbanceNoiseGrowsWithTheAccelerometerNis) {
   const double consistent = q_adist();
   for (int i = 0; i < 50; ++i) propagator.ObserveAccelerometerNis(4.0);
   const double inflated = q_adist();
+  // The density a smoother behind the filter takes (FilterResult::disturbance_density).
+  EXPECT_NEAR(std::pow(propagator.DisturbanceDensity(), 2) * 0.01, inflated, 1e-12);
   EXPECT_NEAR(inflated / consistent,
               std::min(4.0, std::pow(q.a_dist_max_mps3_per_sqrt_hz / q.a_dist_mps3_per_sqrt_hz, 2)),
               1e-6);
