@@ -72,9 +72,11 @@ struct WindowSmootherOptions {
   // sqrt(s)): the body does not move against its wheels unless gravity pulls it back. Without
   // it, the window's velocity sat 3-7 cm/s below zero through hold-backs on ward21m (the
   // accelerometer integrated over an attitude error), where the EKF's weak constraint 3 holds
-  // its own near zero. Chosen on ward21 and ward21m seeds 1-4 (0.0005-0.02; docs/smoother.md).
-  // 0: off. Overrides problem.no_pull_back_sd_density.
-  double no_pull_back_sd_density = 0.002;
+  // its own near zero. A spring tether's recoil does pull the robot back (fig5: -5 cm/s for a
+  // few tenths of a second), which a stronger prior flattens. Chosen on ward21 and ward21m seeds
+  // 1-4 and the bundled logs (0.0005-0.05; docs/smoother.md). 0: off. Overrides
+  // problem.no_pull_back_sd_density.
+  double no_pull_back_sd_density = 0.005;
   // A solve that moves the window's velocity far from the front end's is rejected unless the
   // velocity measurements in the window (GNSS, another estimator's) fit it better than the front
   // end's estimate: far is an RMS over the window's states of the difference above this many of
