@@ -559,6 +559,9 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   options.progress_stage = "chunk";
   options.keep_front_end_estimates = false;
   options.reject_distance_sd = 0.0;  // a chunk is the batch's solution, as the batch's is kept
+  // The batch's own problem: its weak constraint 3 and its disturbance walk, not the window's.
+  options.no_pull_back_sd_density = batch.problem.no_pull_back_sd_density;
+  options.disturbance_from_front_end = false;
   return options;
 }
 
