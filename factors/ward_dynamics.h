@@ -123,6 +123,18 @@ inline TireForces<T> ComputeTireForces(const T* x, const Attitude<A>& attitude, 
   return ComputeTireForces(x, ComputeAttitudeLoads(attitude, p), p);
 }
 
+// The tires' longitudinal acceleration (m/s^2) on the body held still (v_bx = 0) at state x's
+// wheel speeds: minus the disturbance that would just hold the robot (weak constraint 3). At a
+// velocity a few cm/s against the wheels the rolling law, steep near v = 0, has turned round,
+// so the velocity is set to zero rather than read.
+inline double HeldStillTireForce(const double* x, const AttitudeLoads<double>& loads,
+                                 const Params& p) {
+  double held[kStateSize];
+  for (int i = 0; i < kStateSize; ++i) held[i] = x[i];
+  held[kVbx] = 0.0;
+  return ComputeTireForces(held, loads, p).f_tire_mps2;
+}
+
 // Continuous state derivative, eq. (10), noise-free.
 template <typename T, typename A>
 inline void StateDerivative(const T* x, const AttitudeLoads<A>& loads, const Params& p, T* x_dot) {

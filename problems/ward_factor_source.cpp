@@ -322,12 +322,11 @@ void WardFactorSource::AddOffsetPrior(const std::array<double, 2>& mean, double*
 }
 
 bool WardFactorSource::PushesAlong(size_t k, double vel_dir, const Params& params) const {
-  std::array<double, kStateSize> held = initial_[k].x;
-  held[kVbx] = 0.0;
-  held[kOmegaLeft] = wheel_speeds_[k][0];
-  held[kOmegaRight] = wheel_speeds_[k][1];
+  std::array<double, kStateSize> measured = initial_[k].x;
+  measured[kOmegaLeft] = wheel_speeds_[k][0];
+  measured[kOmegaRight] = wheel_speeds_[k][1];
   const AttitudeLoads<double> loads = ComputeAttitudeLoads(ContextAt(times_[k]).attitude, params);
-  const double f_tire = ComputeTireForces(held.data(), loads, params).f_tire_mps2;
+  const double f_tire = HeldStillTireForce(measured.data(), loads, params);
   return vel_dir * (f_tire - loads.gravity_along_x_mps2) > 0.0;
 }
 

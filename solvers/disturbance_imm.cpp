@@ -176,4 +176,13 @@ void DisturbanceImm::Mix(double dt) {
   for (int j = 0; j < kModeCount; ++j) filters_[j]->ReplaceState(x[j], P[j]);
 }
 
+double DisturbanceImm::DisturbanceDensity() const {
+  double variance = 0.0;
+  for (int i = 0; i < kModeCount; ++i) {
+    const double q = filters_[i]->DisturbanceDensity();
+    variance += probability_(i) * q * q;
+  }
+  return std::sqrt(variance);
+}
+
 }  // namespace slipgraph

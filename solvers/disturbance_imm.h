@@ -101,6 +101,10 @@ class DisturbanceImm {
   const EkfStats& stats() const { return filters_[kChanging]->stats(); }
   // The mode probabilities after the latest wheel cycle.
   const Eigen::VectorXd& probabilities() const { return probability_; }
+  // The modes' disturbance densities (WardEkf::DisturbanceDensity: the quiet mode's driving
+  // density, the held mode's slow walk, the changing mode's adaptive w3) weighed by the mode
+  // probabilities: the root of their squares' weighted mean, for a smoother behind the modes.
+  double DisturbanceDensity() const;
 
  private:
   // The filters' states mixed with these weights (imm::MixtureMoments).

@@ -22,8 +22,7 @@ template <typename Filter>
 void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
           FilterResult* result) {
   result->estimates.reserve(log.wheels.size());
-  constexpr bool kDensity = !std::is_same_v<Filter, DisturbanceImm>;
-  if constexpr (kDensity) result->disturbance_density.reserve(log.wheels.size());
+  result->disturbance_density.reserve(log.wheels.size());
   if constexpr (std::is_same_v<Filter, MultipleModelEkf>) {
     result->law_spread_sd.reserve(log.wheels.size());
     result->law.reserve(log.wheels.size());
@@ -50,9 +49,7 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
         } else {
           result->estimates.push_back(filter->Estimate());
         }
-        if constexpr (kDensity) {
-          result->disturbance_density.push_back(filter->DisturbanceDensity());
-        }
+        result->disturbance_density.push_back(filter->DisturbanceDensity());
         break;
       }
       default:

@@ -43,8 +43,8 @@ struct FilterResult {
   // the law a smoother behind it takes at that state. Empty for one filter.
   std::vector<LawSample> law;
   // Per estimate, the disturbance's random-walk density the filter's next prediction takes (its
-  // adaptive w3; the bank's filters' weighed), for a smoother behind it. Empty for the
-  // disturbance modes.
+  // adaptive w3; the bank's filters' and the disturbance modes' weighed), for a smoother behind
+  // it.
   std::vector<double> disturbance_density;
   EkfStats stats;
   std::vector<std::string> streams_used;

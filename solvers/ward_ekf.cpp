@@ -252,12 +252,9 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
       dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;
   in.wheels_stopped_s = stop_timer_.StoppedFor(t_);
   if (MovingAgainstTheWheels(x_.data(), in.vel_dir)) {  // WC3 alone reads it
-    // The tire forces on the body held still: the disturbance that would just hold the robot.
-    // At the a priori v_bx (a few cm/s backwards) the rolling law, steep near v = 0, has turned
-    // round and made the "holding" disturbance 0.35 m/s^2 too strong (fig5).
-    StateVector held = x_;
-    held(kVbx) = 0.0;
-    in.f_tire_mps2 = ComputeTireForces(held.data(), loads_, params_).f_tire_mps2;
+    // Read at the a priori v_bx, the rolling law would make the "holding" disturbance 0.35 m/s^2
+    // too strong (fig5).
+    in.f_tire_mps2 = HeldStillTireForce(x_.data(), loads_, params_);
   }
   in.gravity_along_x_mps2 = loads_.gravity_along_x_mps2;
   pseudo_.clear();

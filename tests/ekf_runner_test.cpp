@@ -96,9 +96,22 @@ TEST(EkfRunner, ReportsTheAdaptiveDisturbanceDensity) {
     EXPECT_GT(*high, 2.0 * q.a_dist_mps3_per_sqrt_hz);
     EXPECT_LE(*high, q.a_dist_max_mps3_per_sqrt_hz + 1e-9);
   }
+  // The disturbance modes: a drive starts in the quiet mode, at its driving density; after that
+  // the modes' densities weighed, between the held mode's slow walk and the largest adaptive w3.
   FilterRunOptions modes = single;
   modes.disturbance_modes = true;
-  EXPECT_TRUE(RunEkf(log, model, modes).disturbance_density.empty());
+  const DisturbanceImmOptions& imm = modes.disturbance_modes_options;
+  const FilterResult result = RunEkf(log, model, modes);
+  ASSERT_EQ(result.disturbance_density.size(), result.estimates.size());
+  EXPECT_NEAR(result.disturbance_density.front(),
+              imm.quiet_a_dist_sd_mps2 / ward::GaussMarkovStationarySd(1.0, imm.quiet_a_dist_tau_s),
+              1e-9);
+  const auto [low, high] =
+      std::minmax_element(result.disturbance_density.begin(), result.disturbance_density.end());
+  std::printf("modes: w3 from %.2f to %.2f\n", *low, *high);
+  EXPECT_GE(*low, imm.held_a_dist_mps3_per_sqrt_hz - 1e-9);
+  EXPECT_GT(*high, q.a_dist_mps3_per_sqrt_hz);
+  EXPECT_LE(*high, q.a_dist_max_mps3_per_sqrt_hz + 1e-9);
 }
 
 }  // namespace
