@@ -28,6 +28,8 @@
 //   --single-law: one filter also where vehicle.yaml lists law samples;
 //   --stiffness-sd SD, --stiffness-margin M: the batch's slip-stiffness prior (0: the law as
 //     given) and its check against GNSS (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
+//   --window-stiffness-sd SD: the window's slip-stiffness prior (WindowSmootherOptions::
+//     stiffness_prior_sd; 0: the law as given);
 //   --runs: list each run with false alarms (seed, run, estimator, samples, v RMSE);
 //   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
 //     trying a setting on seeds the figures are not reported on.
@@ -85,6 +87,8 @@ FilterRunOptions g_front;
 // (as `smooth` and `compare` run them by default).
 double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
 double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
+// --window-stiffness-sd: the window's slip stiffness prior.
+double g_window_stiffness_sd = WindowSmootherOptions{}.stiffness_prior_sd;
 // --runs: list the runs with false alarms.
 bool g_list_runs = false;
 double g_reject_distance_sd = WindowSmootherOptions{}.reject_distance_sd;
@@ -163,6 +167,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
       WindowSmootherOptions options;
       options.filter = g_front;
       options.reject_distance_sd = g_reject_distance_sd;
+      options.stiffness_prior_sd = g_window_stiffness_sd;
       if (!std::isnan(g_no_pull_back_sd)) options.no_pull_back_sd_density = g_no_pull_back_sd;
       options.disturbance_from_front_end = g_disturbance_from_front_end;
       const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
@@ -248,6 +253,8 @@ int main(int argc, char** argv) {
           std::sscanf(argv[++i], "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &o.quiet_a_dist_tau_s,
                       &o.quiet_a_dist_sd_mps2, &o.held_a_dist_mps3_per_sqrt_hz, &o.quiet_mean_s,
                       &o.change_mean_s, &o.held_mean_s, &o.mix_interval_s) >= 6;
+    } else if (std::strcmp(argv[i], "--window-stiffness-sd") == 0 && has_value) {
+      g_window_stiffness_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--stiffness-sd") == 0 && has_value) {
       g_stiffness_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--stiffness-margin") == 0 && has_value) {
