@@ -57,6 +57,11 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   for (const EffectEstimate& e : d.corrected) {
     out << "  corrected in the measurements: " << e.name << " = " << e.value << " +- " << e.sd
         << "\n";
+    if (e.name == "clock_offset") {
+      out << "    (for every estimator, the front end too: a model file's `calibration: "
+             "{imu_time_offset: "
+          << e.value << "}`)\n";
+    }
   }
   out << "  streams (normalized residuals):\n";
   out << "    stream          samples   rms    chi2 p    consistent  Ljung-Box Q  p        white\n";

@@ -59,6 +59,9 @@ void ApplyCalibration(const ModelConfig& model, DriveLog* log) {
     }
   }
   if (c.track_width_m > 0.0) log->vehicle.track_width_m = c.track_width_m;
+  if (c.imu_time_offset_s != 0.0) {
+    for (ImuSample& s : log->imu) s.t -= c.imu_time_offset_s;
+  }
 }
 
 }  // namespace slipgraph

@@ -123,7 +123,8 @@ DriveLog SliceLog(const DriveLog& log, double t_begin, double t_end);
 
 // The model file's calibration (ModelConfig::calibration) applied to the log: each wheel's speed
 // scaled by its side's radius scale (the estimators then read it as the speed of a wheel of
-// vehicle.yaml's radius), the vehicle's track set to the effective track when one is given.
+// vehicle.yaml's radius), the vehicle's track set to the effective track when one is given, the
+// IMU's stamps (imu.csv; attitude.csv keeps its own) moved earlier by the IMU's time offset.
 void ApplyCalibration(const ModelConfig& model, DriveLog* log);
 
 }  // namespace slipgraph

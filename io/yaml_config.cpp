@@ -278,7 +278,8 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
       {"calibration",
        {{"wheel_radius_scale_left", &m.calibration.wheel_radius_scale_left, false},
         {"wheel_radius_scale_right", &m.calibration.wheel_radius_scale_right, false},
-        {"track_width", &m.calibration.track_width_m, false}}},
+        {"track_width", &m.calibration.track_width_m, false},
+        {"imu_time_offset", &m.calibration.imu_time_offset_s, false}}},
       {"tire_uncertainty",
        {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
         {"slip_relative_sd", &m.tire_uncertainty.slip_relative_sd, false},
@@ -513,7 +514,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                       {"rest_guard", m.offset_rest_guard_s}});
   section("calibration", {{"wheel_radius_scale_left", m.calibration.wheel_radius_scale_left},
                           {"wheel_radius_scale_right", m.calibration.wheel_radius_scale_right},
-                          {"track_width", m.calibration.track_width_m}});
+                          {"track_width", m.calibration.track_width_m},
+                          {"imu_time_offset", m.calibration.imu_time_offset_s}});
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
                                {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},
                                {"slip_floor", m.tire_uncertainty.slip_floor_mps},

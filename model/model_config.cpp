@@ -73,6 +73,10 @@ bool ModelConfig::IsValid(std::string* error) const {
       return false;
     }
   }
+  if (!(std::abs(calibration.imu_time_offset_s) <= 1.0)) {
+    *error = "calibration.imu_time_offset must be within [-1, 1] s";
+    return false;
+  }
   if (!(calibration.track_width_m >= 0.0)) {
     *error = "calibration.track_width must be non-negative (0: vehicle.yaml's)";
     return false;

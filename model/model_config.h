@@ -101,14 +101,16 @@ struct TireLawUncertainty {
   double correlation_time_s = 0.0;
 };
 
-// What the model file may correct in vehicle.yaml's geometry (`slipgraph identify` writes it):
-// each side's effective rolling radius as a scale of vehicle.yaml's wheel_radius, and the
-// effective track (a skid-steer turns as if its track were wider than its wheels are apart).
-// Applied to a log by ApplyCalibration (io/drive_log.h) before any estimator sees it.
+// What the model file may correct in vehicle.yaml's geometry and the log's clocks (`slipgraph
+// identify` writes it): each side's effective rolling radius as a scale of vehicle.yaml's
+// wheel_radius, the effective track (a skid-steer turns as if its track were wider than its
+// wheels are apart), and how late the IMU's stamps are against the encoders'. Applied to a log by
+// ApplyCalibration (io/drive_log.h) before any estimator sees it.
 struct CalibrationConfig {
   double wheel_radius_scale_left = 1.0;
   double wheel_radius_scale_right = 1.0;
-  double track_width_m = 0.0;  // 0: vehicle.yaml's
+  double track_width_m = 0.0;      // 0: vehicle.yaml's
+  double imu_time_offset_s = 0.0;  // subtracted from the IMU's stamps; within +- 1 s
 };
 
 // The largest tire_sd.slip_stiffness taken (error messages say [0, 2]): a slope uncertain by a

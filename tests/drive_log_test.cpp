@@ -37,7 +37,7 @@ TEST(DriveLog, SliceKeepsTheSamplesInItsRangeAndClipsTheEvents) {
   EXPECT_EQ(slice.vehicle.track_width_m, 0.55);
 }
 
-TEST(DriveLog, CalibrationScalesEachSidesWheelsAndSetsTheTrack) {
+TEST(DriveLog, CalibrationScalesEachSidesWheelsSetsTheTrackAndMovesTheImuStamps) {
   DriveLog log = TwoWheelLog();
   ModelConfig model;
   ApplyCalibration(model, &log);  // the default changes nothing
@@ -46,10 +46,13 @@ TEST(DriveLog, CalibrationScalesEachSidesWheelsAndSetsTheTrack) {
   model.calibration.wheel_radius_scale_left = 1.05;
   model.calibration.wheel_radius_scale_right = 0.9;
   model.calibration.track_width_m = 0.8;
+  model.calibration.imu_time_offset_s = 0.05;  // the IMU's stamps late by 50 ms
   ApplyCalibration(model, &log);
   EXPECT_DOUBLE_EQ(log.wheels[3].omega_radps[0], 2.1);
   EXPECT_DOUBLE_EQ(log.wheels[3].omega_radps[1], 3.6);
   EXPECT_EQ(log.vehicle.track_width_m, 0.8);
+  EXPECT_DOUBLE_EQ(log.imu[3].t, 3.45);
+  EXPECT_EQ(log.wheels[3].t, 3.0);
 }
 
 }  // namespace

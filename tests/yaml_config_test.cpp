@@ -125,6 +125,8 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(
       ReadModelYaml(WriteModel("calibration: {wheel_radius_scale_left: 0}\n"), LagrVehicle()),
       InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("calibration: {imu_time_offset: 1.5}\n"), LagrVehicle()),
+               InputError);
 }
 
 TEST(YamlConfig, WrittenModelReadsBackTheSame) {
@@ -135,6 +137,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.effects = {"quadratic_drag", "imu_mounting_pitch"};
   m.calibration.wheel_radius_scale_right = 0.97;
   m.calibration.track_width_m = 0.81;
+  m.calibration.imu_time_offset_s = -0.035;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -145,6 +148,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_left, 1.0);
   EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_right, 0.97);
   EXPECT_DOUBLE_EQ(back.calibration.track_width_m, 0.81);
+  EXPECT_DOUBLE_EQ(back.calibration.imu_time_offset_s, -0.035);
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
