@@ -13,10 +13,12 @@
 #include "apps/commands.h"
 #include "apps/estimator_runs.h"
 #include "apps/json_output.h"
+#include "evaluation/json_number.h"
 #include "io/text_file.h"
 #include "io/yaml_config.h"
 #include "solvers/identification_json.h"
 #include "solvers/model_identification.h"
+#include "workbench/imu_clock_offset.h"
 
 namespace slipgraph {
 namespace {
@@ -52,7 +54,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     JsonOutput json;
     double train = 0.5;
     std::string part = "first";
-    bool no_gps = false;
+    bool no_gps = false, clock = false;
     ReadOptions read;  // --skip-bad, --max-bad
     IdentifyOptions identify;
   };
@@ -84,6 +86,10 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
   cmd->add_flag("--fit-radius", options->identify.fit_radius,
                 "Fit each side's rolling radius with the law (seen only against GNSS ground "
                 "speed, where it is one with the mean slip)");
+  cmd->add_flag("--clock", options->clock,
+                "First, how late the IMU's stamps are against the encoders': the workbench's "
+                "clock_offset test on each fitted log (a batch solve each); the model's "
+                "calibration.imu_time_offset takes it where it is told from zero");
   cmd->add_option("--threads", options->identify.threads, "Solver threads")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -138,10 +144,37 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
                                              Figure(100.0 * options->train) + " % of each)"
                                        : "")
               << "\n";
-    const IdentificationResult result = IdentifyModel(train, model, options->identify);
     std::ostream& text = options->json.text();
+    ModelConfig start = model;
+    nlohmann::json clock_json;
+    if (options->clock) {
+      const ImuClockOffset clock = EstimateImuClockOffset(train, model, options->identify.threads);
+      text << "IMU clock against the encoders (the workbench's test on " << clock.logs
+           << " log(s), significant on " << clock.significant_logs << "): ";
+      if (std::isfinite(clock.offset_s)) {
+        text << std::showpos << 1000.0 * clock.offset_s << std::noshowpos << " +- "
+             << 1000.0 * clock.sd_s << " ms late";
+      } else {
+        text << "not tested";
+      }
+      if (clock.significant()) {
+        start.calibration.imu_time_offset_s += clock.offset_s;
+        text << "; the model's calibration.imu_time_offset takes it: "
+             << start.calibration.imu_time_offset_s << " s\n";
+      } else {
+        text << "; not told from zero, left at " << start.calibration.imu_time_offset_s << " s\n";
+      }
+      clock_json = {{"offset_s", JsonNumber(clock.offset_s)},
+                    {"sd_s", JsonNumber(clock.sd_s)},
+                    {"logs", clock.logs},
+                    {"significant_logs", clock.significant_logs},
+                    {"applied", clock.significant()},
+                    {"imu_time_offset_s", start.calibration.imu_time_offset_s}};
+    }
+    const IdentificationResult result = IdentifyModel(train, start, options->identify);
     text << DescribeIdentification(result);
     nlohmann::json json = ToJson(result);
+    if (options->clock) json["imu_clock"] = clock_json;
     if (!held_out.empty()) {
       // Scored without the GNSS fading memory and by the default front end (the fading takes out
       // part of what a better law would: docs/identify.md).
