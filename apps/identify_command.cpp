@@ -161,6 +161,10 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
         start.calibration.imu_time_offset_s += clock.offset_s;
         text << "; the model's calibration.imu_time_offset takes it: "
              << start.calibration.imu_time_offset_s << " s\n";
+      } else if (!clock.consistent()) {
+        text << "; the halves disagree (Cochran's Q " << clock.heterogeneity << ", p "
+             << clock.heterogeneity_p << "): not a clock, left at "
+             << start.calibration.imu_time_offset_s << " s\n";
       } else {
         text << "; not told from zero, left at " << start.calibration.imu_time_offset_s << " s\n";
       }
@@ -168,6 +172,9 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
                     {"sd_s", JsonNumber(clock.sd_s)},
                     {"logs", clock.logs},
                     {"significant_logs", clock.significant_logs},
+                    {"halves", clock.halves},
+                    {"heterogeneity", clock.heterogeneity},
+                    {"heterogeneity_p", clock.heterogeneity_p},
                     {"applied", clock.significant()},
                     {"imu_time_offset_s", start.calibration.imu_time_offset_s}};
     }

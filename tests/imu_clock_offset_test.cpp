@@ -24,6 +24,8 @@ TEST(ImuClockOffset, ReadsALateImuClockAndNoneWhereTheClocksAgree) {
     std::printf("%s: late %.4f +- %.4f s, on time %.4f +- %.4f s\n", suite.c_str(), found.offset_s,
                 found.sd_s, none.offset_s, none.sd_s);
     EXPECT_EQ(found.logs, 1);
+    EXPECT_EQ(found.halves, 2);
+    EXPECT_TRUE(found.consistent());
     EXPECT_TRUE(found.significant());
     EXPECT_NEAR(found.offset_s, 0.05, 0.005);
     EXPECT_NEAR(found.offset_s, 0.05, 4.0 * found.sd_s);
