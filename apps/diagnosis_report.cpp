@@ -58,9 +58,8 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     out << "  corrected in the measurements: " << e.name << " = " << e.value << " +- " << e.sd
         << "\n";
     if (e.name == "clock_offset") {
-      out << "    (for every estimator, the front end too: a model file's `calibration: "
-             "{imu_time_offset: "
-          << e.value << "}`)\n";
+      out << "    (for every estimator, the front end too: add it to the model file's "
+             "`calibration: {imu_time_offset: S}`)\n";
     }
   }
   out << "  streams (normalized residuals):\n";

@@ -59,9 +59,11 @@ void ApplyCalibration(const ModelConfig& model, DriveLog* log) {
     }
   }
   if (c.track_width_m > 0.0) log->vehicle.track_width_m = c.track_width_m;
-  if (c.imu_time_offset_s != 0.0) {
-    for (ImuSample& s : log->imu) s.t -= c.imu_time_offset_s;
-  }
+  if (c.imu_time_offset_s != 0.0) MoveImuStampsBack(c.imu_time_offset_s, log);
+}
+
+void MoveImuStampsBack(double offset_s, DriveLog* log) {
+  for (ImuSample& s : log->imu) s.t -= offset_s;
 }
 
 }  // namespace slipgraph

@@ -126,5 +126,7 @@ DriveLog SliceLog(const DriveLog& log, double t_begin, double t_end);
 // vehicle.yaml's radius), the vehicle's track set to the effective track when one is given, the
 // IMU's stamps (imu.csv; attitude.csv keeps its own) moved earlier by the IMU's time offset.
 void ApplyCalibration(const ModelConfig& model, DriveLog* log);
+// The IMU's stamps (imu.csv) moved earlier by offset_s: what an IMU clock late by offset_s needs.
+void MoveImuStampsBack(double offset_s, DriveLog* log);
 
 }  // namespace slipgraph

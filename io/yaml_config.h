@@ -33,7 +33,8 @@ ModelConfig ParseModelYaml(const std::string& name, const std::string& text,
 
 // The vehicle's nominal model, or, when `model_path` is not empty, the model file over it.
 ModelConfig ReadModelOrNominal(const std::string& model_path, const Vehicle& vehicle);
-// The same for a log, with the model's calibration (wheel radii, effective track) applied to it.
+// The same for a log, with the model's calibration (wheel radii, effective track, the IMU's time
+// offset) applied to it.
 ModelConfig ModelForLog(DriveLog* log, const std::string& model_path);
 
 void WriteVehicleYaml(const Vehicle& vehicle, std::ostream& out);

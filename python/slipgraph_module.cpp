@@ -82,7 +82,8 @@ py::dict VehicleDict(const Vehicle& v) {
 }
 
 // The log with its model applied (as the CLI's --model does): the vehicle's nominal model, or
-// the model file over it, its calibration (wheel radii, effective track) applied to a copy.
+// the model file over it, its calibration (wheel radii, effective track, the IMU's time offset)
+// applied to a copy.
 struct CalibratedLog {
   DriveLog log;
   ModelConfig model;
@@ -230,9 +231,10 @@ std::string IdentifyJson(const std::vector<LogPtr>& logs, const std::string& mod
 }
 
 std::string ScoreModelJson(const LogPtr& log, const std::string& model, bool use_gps) {
-  const CalibratedLog run = Calibrate(*log, model);
+  // ScoreModel applies the model's calibration to the log itself.
+  const ModelConfig config = ReadModelOrNominal(model, log->vehicle);
   py::gil_scoped_release release;
-  return ToJson(ScoreModel(run.log, run.model, use_gps)).dump();
+  return ToJson(ScoreModel(*log, config, use_gps)).dump();
 }
 
 // A dict of 1-D arrays as a table, in the dict's order.

@@ -76,6 +76,16 @@ TEST(WardDynamics, HoldBackForceBalance) {
   EXPECT_NEAR(x_dot[kVbx], 0.0, 1e-12);
 }
 
+// Weak constraint 3's force: the tires on the body held still, whatever the velocity read.
+TEST(WardDynamics, HeldStillTireForceReadsTheBodyAtRest) {
+  const double held[kStateSize] = {0.0, 0.0, 0.0, 4.0, 4.0, 0.0, 0.0};
+  const double backwards[kStateSize] = {-0.04, 0.1, -2.0, 4.0, 4.0, 0.0, 0.0};
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.0, 0.05}, kParams);
+  const double at_rest = ComputeTireForces(held, loads, kParams).f_tire_mps2;
+  EXPECT_DOUBLE_EQ(HeldStillTireForce(backwards, loads, kParams), at_rest);
+  EXPECT_NE(ComputeTireForces(backwards, loads, kParams).f_tire_mps2, at_rest);
+}
+
 struct DerivativeFn {
   Params params;
   template <typename T>

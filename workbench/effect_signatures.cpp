@@ -461,9 +461,7 @@ std::vector<EffectSignature> MakeSignatures() {
          }
          return std::vector<SignatureSeries>{force, yaw};
        },
-       [](double offset, DriveLog* log) {
-         for (ImuSample& imu : log->imu) imu.t -= offset;
-       }});
+       [](double offset, DriveLog* log) { MoveImuStampsBack(offset, log); }});
   return list;
 }
 

@@ -1,39 +1,66 @@
 #include "workbench/imu_clock_offset.h"
 
 #include <boost/math/distributions/chi_squared.hpp>
+#include <cassert>
+#include <exception>
 #include <stdexcept>
 
 #include "workbench/diagnosis.h"
 #include "workbench/effect_signatures.h"
 
 namespace slipgraph {
+namespace {
+
+// The clock_offset candidate on a log: its magnitude and weight (1 / sd^2), and whether its
+// test finds it; untested where the log is too short for a solve or the test gives no sd.
+struct Reading {
+  double magnitude = 0.0, weight = 0.0;
+  bool significant = false, tested = false;
+};
+
+Reading Read(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
+  Reading r;
+  if (log.wheels.size() < 2) return r;
+  try {
+    for (const CandidateScore& c : Diagnose(log, model, options).candidates) {
+      if (c.effect != "clock_offset" || !std::isfinite(c.magnitude) || !(c.magnitude_sd > 0.0)) {
+        continue;
+      }
+      r = {c.magnitude, 1.0 / (c.magnitude_sd * c.magnitude_sd), c.significant, true};
+    }
+  } catch (const std::exception&) {
+    return Reading{};  // e.g. a half with too few samples for the front end
+  }
+  return r;
+}
+
+}  // namespace
+
+bool ImuClockOffsetOptions::IsValid(std::string* error) const {
+  if (!(halves_level > 0.0 && halves_level < 1.0 && min_sigmas >= 0.0 && threads > 0)) {
+    *error = "ImuClockOffsetOptions: halves_level in (0, 1), min_sigmas >= 0, threads > 0";
+    return false;
+  }
+  return true;
+}
 
 ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const ModelConfig& model,
-                                      int threads) {
+                                      const ImuClockOffsetOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   EffectRegistry clock_only;
   const EffectSignature* signature = EffectRegistry::Catalogue().FindSignature("clock_offset");
-  if (signature == nullptr) throw std::logic_error("the catalogue has no clock_offset signature");
+  assert(signature != nullptr);  // the catalogue's own signature
   clock_only.Add(*signature);
-  DiagnosisOptions options;
-  options.effects = &clock_only;
-  options.fit_candidates = 0;
-  options.threads = threads;
+  DiagnosisOptions diagnosis;
+  diagnosis.effects = &clock_only;
+  diagnosis.fit_candidates = 0;
+  diagnosis.threads = options.threads;
+  diagnosis.smoother.filter.use_gps = options.use_gps;
   ModelConfig plain = model;
   plain.effects.clear();  // the registry has no terms
   plain.effect_windows.clear();
-  // The clock_offset candidate's magnitude and sd on a log, and whether its test finds it.
-  struct Reading {
-    double magnitude = 0.0, weight = 0.0;
-    bool significant = false, tested = false;
-  };
-  const auto read = [&](const DriveLog& log) {
-    Reading r;
-    for (const CandidateScore& c : Diagnose(log, plain, options).candidates) {
-      if (c.effect != "clock_offset" || !(c.magnitude_sd > 0.0)) continue;
-      r = {c.magnitude, 1.0 / (c.magnitude_sd * c.magnitude_sd), c.significant, true};
-    }
-    return r;
-  };
+
   ImuClockOffset out;
   double weight_sum = 0.0, weighted = 0.0;
   std::vector<Reading> halves;
@@ -41,7 +68,7 @@ ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const M
     if (raw.wheels.size() < 2) continue;
     DriveLog log = raw;
     ApplyCalibration(plain, &log);
-    const Reading whole = read(log);
+    const Reading whole = Read(log, plain, diagnosis);
     if (!whole.tested) continue;
     ++out.logs;
     out.significant_logs += whole.significant ? 1 : 0;
@@ -49,7 +76,7 @@ ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const M
     weighted += whole.weight * whole.magnitude;
     const double middle = 0.5 * (log.wheels.front().t + log.wheels.back().t);
     for (const DriveLog& half : {SliceLog(log, -1e300, middle), SliceLog(log, middle, 1e300)}) {
-      const Reading r = read(half);
+      const Reading r = Read(half, plain, diagnosis);
       if (r.tested) halves.push_back(r);
     }
   }
@@ -57,18 +84,24 @@ ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const M
     out.offset_s = weighted / weight_sum;
     out.sd_s = 1.0 / std::sqrt(weight_sum);
   }
-  // The halves about their own combination.
-  double half_weights = 0.0, half_weighted = 0.0;
-  for (const Reading& r : halves) half_weights += r.weight, half_weighted += r.weight * r.magnitude;
-  if (halves.size() > 1) {
+  out.halves = static_cast<int>(halves.size());
+  if (halves.size() >= 2) {
+    double half_weights = 0.0, half_weighted = 0.0;
+    for (const Reading& r : halves) {
+      half_weights += r.weight;
+      half_weighted += r.weight * r.magnitude;
+    }
     const double mean = half_weighted / half_weights;
+    out.heterogeneity = 0.0;
     for (const Reading& r : halves) {
       out.heterogeneity += r.weight * (r.magnitude - mean) * (r.magnitude - mean);
     }
     const boost::math::chi_squared chi2(static_cast<double>(halves.size() - 1));
     out.heterogeneity_p = boost::math::cdf(boost::math::complement(chi2, out.heterogeneity));
-    out.halves = static_cast<int>(halves.size());
+    out.halves_agree = out.heterogeneity_p >= options.halves_level;
   }
+  out.taken = out.significant_logs > 0 && out.halves_agree &&
+              std::abs(out.offset_s) > options.min_sigmas * out.sd_s;
   return out;
 }
 

@@ -1,15 +1,17 @@
-// How late the IMU's stamps are against the encoders', for `identify --clock`: the workbench's
-// model-based test of the clock_offset effect (workbench/effect_signatures.h) at the batch
-// smoother's solution on each log, combined over the logs. The model's yaw-rate
-// state follows the wheels through the yaw dynamics, so the dynamics' lag is not read as the
-// clock's, which a plain alignment of the gyro with the wheels' yaw rate does (docs/identify.md).
-// A clock's offset is one number for the whole drive: the same test on each log's two halves,
-// and where they disagree beyond their sd (Cochran's Q over every half, at 1 %), what the test
-// reads is some other misfit, and the offset is not taken. (The halves' own readings are not
-// used beyond that: each half loses the other's turns and is less precise.)
+// How late the IMU's stamps are against the other streams', for `identify --clock`: the
+// workbench's test of the clock_offset effect (workbench/effect_signatures.h) at the batch
+// smoother's solution on each log, combined over the logs. That test reads the IMU against the
+// attitude stream (the AHRS heading against the integrated gyro) and against the wheels (the
+// force balance): where the attitude comes from the IMU itself, on its own stamps, only the force
+// balance speaks. A clock's offset is one number for the whole drive, so the same test runs on
+// each log's two halves too, and where they disagree beyond their sd (Cochran's Q over every
+// half) what it reads is some other misfit, and the offset is not taken. Throws
+// std::invalid_argument for invalid options. (The halves' own
+// readings serve that check only: each loses the other's turns and is less precise.)
 #pragma once
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "io/drive_log.h"
@@ -17,27 +19,35 @@
 
 namespace slipgraph {
 
+struct ImuClockOffsetOptions {
+  double halves_level = 0.01;  // Cochran's Q over the halves: p below this, they disagree
+  double min_sigmas = 3.0;     // taken only beyond this many sd of the combination
+  bool use_gps = true;
+  int threads = 2;
+  bool IsValid(std::string* error) const;
+};
+
 struct ImuClockOffset {
-  // The logs' magnitudes, inverse-variance weighted (NaN: none could be tested).
+  // The logs' magnitudes, inverse-variance weighted (NaN: no log could be tested).
   double offset_s = std::nan("");
   double sd_s = std::nan("");
   int logs = 0;              // logs tested
-  int significant_logs = 0;  // logs whose own test finds it (diagnose's level, 0.01)
-  // Cochran's Q of the halves about their combination, and its p-value (chi-square, halves - 1
-  // dof; 1 with fewer than two halves).
+  int significant_logs = 0;  // logs whose own test finds it (the workbench's level, 0.01)
+  // Cochran's Q of the halves about their combination, its p-value (chi-square, halves - 1
+  // dof), and whether they agree (fewer than two halves tested: not known, so not).
   int halves = 0;
-  double heterogeneity = 0.0;
-  double heterogeneity_p = 1.0;
-  bool consistent() const { return heterogeneity_p >= 0.01; }
-  // Taken: significant on a log, beyond 3 sd of the combination, the halves consistent.
-  bool significant() const {
-    return significant_logs > 0 && std::abs(offset_s) > 3.0 * sd_s && consistent();
-  }
+  double heterogeneity = std::nan("");
+  double heterogeneity_p = std::nan("");
+  bool halves_agree = false;
+  // Significant on a log, beyond min_sigmas sd of the combination, the halves agreeing: the
+  // model's calibration takes it.
+  bool taken = false;
 };
 
 // Each log as the model calibrates it (ApplyCalibration; its halves cut at the middle of its
-// wheel data): the offset found is on top of the model's calibration.imu_time_offset.
+// wheel data): the offset found is on top of the model's calibration.imu_time_offset. A log or a
+// half the test cannot run on (too short) is left out.
 ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const ModelConfig& model,
-                                      int threads = 2);
+                                      const ImuClockOffsetOptions& options = {});
 
 }  // namespace slipgraph
