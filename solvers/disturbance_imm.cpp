@@ -177,12 +177,7 @@ void DisturbanceImm::Mix(double dt) {
 }
 
 double DisturbanceImm::DisturbanceDensity() const {
-  double variance = 0.0;
-  for (int i = 0; i < kModeCount; ++i) {
-    const double q = filters_[i]->DisturbanceDensity();
-    variance += probability_(i) * q * q;
-  }
-  return std::sqrt(variance);
+  return WeighedDisturbanceDensity(filters_, probability_);
 }
 
 }  // namespace slipgraph

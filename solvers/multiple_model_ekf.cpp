@@ -89,12 +89,7 @@ LawSample MultipleModelEkf::Law() const {
 }
 
 double MultipleModelEkf::DisturbanceDensity() const {
-  double variance = 0.0;
-  for (size_t i = 0; i < filters_.size(); ++i) {
-    const double q = filters_[i]->DisturbanceDensity();
-    variance += weights_[i] * q * q;
-  }
-  return std::sqrt(variance);
+  return WeighedDisturbanceDensity(filters_, weights_);
 }
 
 WardEstimate MultipleModelEkf::Estimate(std::array<double, ward::kStateSize>* law_spread_sd) const {

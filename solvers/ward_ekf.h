@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <string>
@@ -233,5 +234,17 @@ class WardEkf {
   StateMatrix last_good_P_ = StateMatrix::Zero();
   std::vector<PseudoMeasurement> pseudo_;  // reused buffer
 };
+
+// A mixture of filters' disturbance density for a smoother behind it (the bank's, the
+// disturbance modes'): the root of the filters' squared WardEkf::DisturbanceDensity, weighed.
+template <typename Filters, typename Weights>
+double WeighedDisturbanceDensity(const Filters& filters, const Weights& weights) {
+  double variance = 0.0;
+  for (size_t i = 0; i < filters.size(); ++i) {
+    const double q = filters[i]->DisturbanceDensity();
+    variance += weights[i] * q * q;
+  }
+  return std::sqrt(variance);
+}
 
 }  // namespace slipgraph

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <exception>
 #include <stdexcept>
+#include <vector>
 
 #include "workbench/diagnosis.h"
 #include "workbench/effect_signatures.h"
@@ -12,7 +13,7 @@ namespace slipgraph {
 namespace {
 
 // The clock_offset candidate on a log: its magnitude and weight (1 / sd^2), and whether its
-// test finds it; untested where the log is too short for a solve or the test gives no sd.
+// test finds it; untested where the test gives no sd.
 struct Reading {
   double magnitude = 0.0, weight = 0.0;
   bool significant = false, tested = false;
@@ -20,18 +21,38 @@ struct Reading {
 
 Reading Read(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
   Reading r;
-  if (log.wheels.size() < 2) return r;
-  try {
-    for (const CandidateScore& c : Diagnose(log, model, options).candidates) {
-      if (c.effect != "clock_offset" || !std::isfinite(c.magnitude) || !(c.magnitude_sd > 0.0)) {
-        continue;
-      }
+  for (const CandidateScore& c : Diagnose(log, model, options).candidates) {
+    if (c.effect == "clock_offset" && std::isfinite(c.magnitude) && c.magnitude_sd > 0.0) {
       r = {c.magnitude, 1.0 / (c.magnitude_sd * c.magnitude_sd), c.significant, true};
     }
-  } catch (const std::exception&) {
-    return Reading{};  // e.g. a half with too few samples for the front end
   }
   return r;
+}
+
+// A half of a log: untested where it is too short for the front end to run on.
+Reading ReadHalf(const DriveLog& half, const ModelConfig& model, const DiagnosisOptions& options) {
+  if (half.wheels.size() < 2) return Reading{};
+  try {
+    return Read(half, model, options);
+  } catch (const std::exception&) {
+    return Reading{};
+  }
+}
+
+// The readings' inverse-variance mean and the sum of their weights (0 for none).
+struct Combined {
+  double mean = std::nan("");
+  double weight = 0.0;
+};
+Combined Combine(const std::vector<Reading>& readings) {
+  Combined out;
+  double weighted = 0.0;
+  for (const Reading& r : readings) {
+    out.weight += r.weight;
+    weighted += r.weight * r.magnitude;
+  }
+  if (out.weight > 0.0) out.mean = weighted / out.weight;
+  return out;
 }
 
 }  // namespace
@@ -62,36 +83,30 @@ ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const M
   plain.effect_windows.clear();
 
   ImuClockOffset out;
-  double weight_sum = 0.0, weighted = 0.0;
-  std::vector<Reading> halves;
+  std::vector<Reading> wholes, halves;
   for (const DriveLog& raw : logs) {
     if (raw.wheels.size() < 2) continue;
     DriveLog log = raw;
     ApplyCalibration(plain, &log);
     const Reading whole = Read(log, plain, diagnosis);
     if (!whole.tested) continue;
-    ++out.logs;
+    wholes.push_back(whole);
     out.significant_logs += whole.significant ? 1 : 0;
-    weight_sum += whole.weight;
-    weighted += whole.weight * whole.magnitude;
     const double middle = 0.5 * (log.wheels.front().t + log.wheels.back().t);
     for (const DriveLog& half : {SliceLog(log, -1e300, middle), SliceLog(log, middle, 1e300)}) {
-      const Reading r = Read(half, plain, diagnosis);
+      const Reading r = ReadHalf(half, plain, diagnosis);
       if (r.tested) halves.push_back(r);
     }
   }
-  if (weight_sum > 0.0) {
-    out.offset_s = weighted / weight_sum;
-    out.sd_s = 1.0 / std::sqrt(weight_sum);
+  out.logs = static_cast<int>(wholes.size());
+  const Combined combined = Combine(wholes);
+  if (combined.weight > 0.0) {
+    out.offset_s = combined.mean;
+    out.sd_s = 1.0 / std::sqrt(combined.weight);
   }
   out.halves = static_cast<int>(halves.size());
   if (halves.size() >= 2) {
-    double half_weights = 0.0, half_weighted = 0.0;
-    for (const Reading& r : halves) {
-      half_weights += r.weight;
-      half_weighted += r.weight * r.magnitude;
-    }
-    const double mean = half_weighted / half_weights;
+    const double mean = Combine(halves).mean;
     out.heterogeneity = 0.0;
     for (const Reading& r : halves) {
       out.heterogeneity += r.weight * (r.magnitude - mean) * (r.magnitude - mean);

@@ -5,9 +5,9 @@
 // force balance): where the attitude comes from the IMU itself, on its own stamps, only the force
 // balance speaks. A clock's offset is one number for the whole drive, so the same test runs on
 // each log's two halves too, and where they disagree beyond their sd (Cochran's Q over every
-// half) what it reads is some other misfit, and the offset is not taken. Throws
-// std::invalid_argument for invalid options. (The halves' own
-// readings serve that check only: each loses the other's turns and is less precise.)
+// half) what it reads is some other misfit, and the offset is not taken. (The halves' own
+// readings serve that check only: each loses the other's turns and is less precise.) Throws
+// std::invalid_argument for invalid options.
 #pragma once
 
 #include <cmath>
@@ -45,8 +45,8 @@ struct ImuClockOffset {
 };
 
 // Each log as the model calibrates it (ApplyCalibration; its halves cut at the middle of its
-// wheel data): the offset found is on top of the model's calibration.imu_time_offset. A log or a
-// half the test cannot run on (too short) is left out.
+// wheel data): the offset found is on top of the model's calibration.imu_time_offset. A log
+// with fewer than two wheel samples, or a half the front end cannot run on, is left out.
 ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const ModelConfig& model,
                                       const ImuClockOffsetOptions& options = {});
 
