@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
+#include <memory>
+#include <numeric>
 #include <unordered_map>
 #include <utility>
 
@@ -34,6 +37,53 @@ struct ChainFactorization {
   std::string error;
 };
 
+// Which of the globals' columns only a stretch of the chain touches. A column that the states'
+// residual blocks touch only from state `first` to state `last` < n - 1 (a stiffness node of the
+// tire law's walk) is "local": it can be eliminated right after state `last`, and a state's row
+// of H holds only the local columns near it. The others (touched by the last state, by every
+// state or by no state: the IMU offsets, the effects) are the "tail", eliminated last. With no
+// local column the border is dense and the factorization is ChainFactorization's; with some it
+// is FrontalFactorization's, whose memory and time do not grow with their number.
+struct BorderShape {
+  int g = 0, tail = 0, local = 0;  // columns: all, in the tail, local
+  // Per caller column (the globals' stacked order): local or not, and its place: the tail's
+  // slot (the tail keeps the caller's order) or the local position (ordered by last state).
+  std::vector<char> is_local;
+  std::vector<int> place;
+  std::vector<int> tail_column, local_column;  // the caller column of each slot / position
+  // Per state: the local positions its own blocks touch, [lo, hi) (lo == hi: none), and where
+  // its row of the border starts in Information::B (n + 1 entries): tail + hi - lo columns.
+  std::vector<int> lo, hi;
+  std::vector<size_t> at;
+  // The frontal elimination's steps (FrontalFactorization): at step k the local positions
+  // [start[k], end[k]) are open; those below start[k + 1] close with state k (n + 1 starts).
+  std::vector<int> start, end;
+
+  int Width(int k) const { return tail + hi[k] - lo[k]; }
+  // The column of state k's border row that holds caller column c, and the reverse.
+  int Slot(int k, int c) const { return is_local[c] ? tail + place[c] - lo[k] : place[c]; }
+  int Column(int k, int slot) const {
+    return slot < tail ? tail_column[slot] : local_column[lo[k] + slot - tail];
+  }
+};
+
+// A dense border: every column in the tail, in the caller's order.
+std::shared_ptr<const BorderShape> DenseBorder(int n, int m, int g) {
+  auto shape = std::make_shared<BorderShape>();
+  shape->g = shape->tail = g;
+  shape->is_local.assign(g, 0);
+  shape->place.resize(g);
+  for (int c = 0; c < g; ++c) shape->place[c] = c;
+  shape->tail_column = shape->place;
+  shape->lo.assign(n, 0);
+  shape->hi.assign(n, 0);
+  shape->at.resize(n + 1);
+  for (int k = 0; k <= n; ++k) shape->at[k] = static_cast<size_t>(k) * m * g;
+  shape->start.assign(n + 1, 0);
+  shape->end.assign(n, 0);
+  return shape;
+}
+
 // T^-1 rhs (one block of rows per state) by forward and back substitution through the LDL',
 // into *x (its blocks' storage kept where their sizes match).
 template <int M, typename Rhs>
@@ -53,18 +103,26 @@ void SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& rhs, std::ve
 }
 
 // H = J'J in flat column-major buffers: D[k] = T_kk (upper triangle), U[k] = T_{k,k+1},
-// B[k] = H_{k,globals}, C (upper triangle); filled one residual block at a time.
+// state k's row of the border from B[shape->at[k]] (m x shape->Width(k): the tail's columns,
+// then its own local ones), C (upper triangle, the caller's order); filled one residual block
+// at a time.
 struct Information {
-  Information(int n, int m, int g) { Reset(n, m, g); }
+  Information() { Reset(0, 0, 0, DenseBorder(0, 0, 0)); }
 
-  // Zero, for n states of size m and g globals (the buffers' memory kept where it suffices).
-  void Reset(int states, int size, int global_size) {
+  // Zero, for n states of size m and g globals shaped as `border` (the buffers' memory kept
+  // where it suffices).
+  void Reset(int states, int size, int global_size, std::shared_ptr<const BorderShape> border) {
     n = states, m = size, g = global_size;
+    shape = std::move(border);
     D.assign(static_cast<size_t>(n) * m * m, 0.0);
     U.assign(D.size(), 0.0);
-    B.assign(static_cast<size_t>(n) * m * g, 0.0);
+    B.assign(shape->at[n], 0.0);
     C.assign(static_cast<size_t>(g) * g, 0.0);
     error.clear();
+  }
+  // State k's row of the border: m x shape->Width(k).
+  Eigen::Map<const MatrixXd> Border(int k) const {
+    return {B.data() + shape->at[k], m, shape->Width(k)};
   }
 
   struct Segment {
@@ -106,14 +164,14 @@ struct Information {
         const Segment& t = segments[ti];
         double* origin = nullptr;
         int sa = 1, sb = 1;
-        if (s.k < 0 && t.k < 0) {  // C, upper triangle
+        if ((s.k < 0) != (t.k < 0)) {  // a state's row of the border
+          AddBorder(s, t, hb, count);
+          continue;
+        }
+        if (s.k < 0) {  // C, upper triangle
           origin = part->C;
           sa = s.index <= t.index ? 1 : g;
           sb = s.index <= t.index ? g : 1;
-        } else if (s.k < 0) {  // a state's border B
-          origin = B.data() + static_cast<size_t>(t.k) * m * g, sa = m, sb = 1;
-        } else if (t.k < 0) {
-          origin = B.data() + static_cast<size_t>(s.k) * m * g, sa = 1, sb = m;
         } else if (s.k == t.k && si == ti) {  // D, upper triangle: ia <= ib in one run
           origin = D.data() + static_cast<size_t>(s.k) * mm, sa = 1, sb = m;
         } else if (t.k == s.k + 1) {
@@ -143,8 +201,26 @@ struct Information {
   }
 
   int n = 0, m = 0, g = 0;
+  std::shared_ptr<const BorderShape> shape;
   std::vector<double> D, U, B, C;
   std::string error;
+
+ private:
+  // The part of hb between a run of a state's columns and a run of the globals' (in either
+  // order), into the state's row of the border.
+  void AddBorder(const Segment& s, const Segment& t, const std::vector<double>& hb, int count) {
+    const bool global_first = s.k < 0;
+    const int k = global_first ? t.k : s.k;
+    double* row = B.data() + shape->at[k];
+    for (int i = 0; i < s.length; ++i) {
+      const double* h = hb.data() + static_cast<size_t>(s.position + i) * count + t.position;
+      for (int j = 0; j < t.length; ++j) {
+        const int component = global_first ? t.index + j : s.index + i;
+        const int column = global_first ? s.index + i : t.index + j;
+        row[component + m * shape->Slot(k, column)] += h[j];
+      }
+    }
+  }
 };
 
 // The upper triangle of Jb' Jb, row-major, for `rows` rows of `count` columns (row-major): a
@@ -259,6 +335,129 @@ struct BlockTable {
     return true;
   }
 };
+
+// The border's shape from the blocks each run takes (AssembleFromBlocks' tables): a global
+// parameter block is local when the last state any block links it with is not the chain's
+// last. Local blocks are ordered by that last state; the blocks on globals alone (a walk between
+// nodes) set how far ahead a column's front must reach before it closes.
+std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& tables,
+                                               const Layout& layout, int n, int m, int g) {
+  const int blocks = static_cast<int>(layout.places.size()) - n;  // global parameter blocks
+  // Calls visit(lowest state or -1, the global blocks) for each residual block.
+  std::vector<int> touched;
+  const auto each_block = [&](const auto& visit) {
+    for (const BlockTable& table : tables) {
+      for (size_t b = 0; b < table.size(); ++b) {
+        int lowest = n, highest = -1;
+        touched.clear();
+        for (size_t i = table.first[b]; i < table.first[b + 1]; ++i) {
+          const int p = table.places[i];
+          if (p < 0) continue;
+          const int state = layout.places[p].state;
+          if (state < 0) {
+            touched.push_back(p - n);
+          } else {
+            lowest = std::min(lowest, state);
+            highest = std::max(highest, state);
+          }
+        }
+        if (!touched.empty()) visit(highest < 0 ? -1 : lowest, highest);
+      }
+    }
+  };
+  std::vector<int> first(blocks, n), last(blocks, -1);
+  each_block([&](int lowest, int highest) {
+    if (highest < 0) return;
+    for (const int j : touched) {
+      first[j] = std::min(first[j], lowest);
+      last[j] = std::max(last[j], highest);
+    }
+  });
+  std::vector<int> order;
+  for (int j = 0; j < blocks; ++j) {
+    if (last[j] >= 0 && last[j] < n - 1) order.push_back(j);
+  }
+  if (order.empty()) return DenseBorder(n, m, g);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return std::make_pair(last[a], first[a]) < std::make_pair(last[b], first[b]);
+  });
+  auto shape = std::make_shared<BorderShape>();
+  BorderShape& s = *shape;
+  s.g = g;
+  s.is_local.assign(g, 0);
+  s.place.assign(g, 0);
+  std::vector<int> closes;  // per local position: the state it closes with
+  for (const int j : order) {
+    const Layout::Place& block = layout.places[n + j];
+    for (int i = 0; i < block.size; ++i) {
+      const int c = block.first + i;
+      s.is_local[c] = 1;
+      s.place[c] = static_cast<int>(s.local_column.size());
+      s.local_column.push_back(c);
+      closes.push_back(last[j]);
+    }
+  }
+  s.local = static_cast<int>(s.local_column.size());
+  for (int c = 0; c < g; ++c) {
+    if (s.is_local[c]) continue;
+    s.place[c] = static_cast<int>(s.tail_column.size());
+    s.tail_column.push_back(c);
+  }
+  s.tail = static_cast<int>(s.tail_column.size());
+  // Each state's local positions; how far each local position's couplings on the globals alone
+  // reach (reach[i] >= i).
+  s.lo.assign(n, s.local);
+  s.hi.assign(n, 0);
+  std::vector<int> reach(s.local);
+  std::iota(reach.begin(), reach.end(), 0);
+  each_block([&](int lowest, int highest) {
+    int low = s.local, high = 0;
+    for (const int j : touched) {
+      const Layout::Place& block = layout.places[n + j];
+      if (block.size == 0 || !s.is_local[block.first]) continue;
+      low = std::min(low, s.place[block.first]);
+      high = std::max(high, s.place[block.first] + block.size);
+    }
+    if (low >= high) return;
+    if (highest >= 0) {
+      for (const int k : {lowest, highest}) {
+        s.lo[k] = std::min(s.lo[k], low);
+        s.hi[k] = std::max(s.hi[k], high);
+      }
+      return;
+    }
+    for (const int j : touched) {
+      const Layout::Place& block = layout.places[n + j];
+      if (block.size == 0 || !s.is_local[block.first]) continue;
+      for (int i = 0; i < block.size; ++i) {
+        int& r = reach[s.place[block.first] + i];
+        r = std::max(r, high - 1);
+      }
+    }
+  });
+  s.at.assign(n + 1, 0);
+  for (int k = 0; k < n; ++k) {
+    if (s.lo[k] >= s.hi[k]) s.lo[k] = s.hi[k] = 0;
+    s.at[k + 1] = s.at[k] + static_cast<size_t>(m) * s.Width(k);
+  }
+  for (int i = 1; i < s.local; ++i) reach[i] = std::max(reach[i], reach[i - 1]);
+  s.start.resize(n + 1);
+  for (int k = 0; k <= n; ++k) {
+    s.start[k] =
+        static_cast<int>(std::lower_bound(closes.begin(), closes.end(), k) - closes.begin());
+  }
+  // The front's end: every column a state has touched, and, closed under the couplings on the
+  // globals alone, every column those reach, so a column enters before anything coupled to it
+  // closes.
+  s.end.resize(n);
+  int end = 0;
+  for (int k = 0; k < n; ++k) {
+    end = std::max(end, s.hi[k]);
+    while (end > 0 && reach[end - 1] >= end) end = reach[end - 1] + 1;
+    s.end[k] = end;
+  }
+  return shape;
+}
 
 // One residual block evaluated as Ceres' solver sees it, with scratch of its own so that threads
 // may evaluate different blocks at once: the cost function called on the parameters' values (no
@@ -439,20 +638,32 @@ class BlockEvaluation {
 // `partition` (may be null): the blocks each run takes, read from the problem when it does not
 // hold a table per run and one for after them; kept, it must come from a call on the same
 // problem, states and globals (ChainLinearization keys it on them).
-using Partition = std::vector<BlockTable>;
+struct Partition {
+  std::vector<BlockTable> tables;  // one per run of states, then the blocks after them
+  std::shared_ptr<const BorderShape> shape;
+  size_t size() const { return tables.size(); }
+  bool empty() const { return tables.empty(); }
+  void clear() {
+    tables.clear();
+    shape.reset();
+  }
+};
 // The blocks are summed in this many runs (at most), whatever the number of threads that take
 // them, so that the sums, and so the solution to its last digit, do not depend on the threads.
 constexpr int kAssemblyRuns = 8;
+// info is reset to the states' size m and the globals' tangent size g, its border shaped by the
+// blocks (ShapeBorder).
 bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& states,
-                        const std::vector<double*>& globals, Information* info, double* cost,
-                        std::vector<double>* gradient, int threads = 1,
+                        const std::vector<double*>& globals, int m, int g, Information* info,
+                        double* cost, std::vector<double>* gradient, int threads = 1,
                         Partition* partition = nullptr) {
-  const int m = info->m, g = info->g, n = info->n, state_columns = n * m;
+  const int n = static_cast<int>(states.size()), state_columns = n * m;
   gradient->assign(static_cast<size_t>(state_columns + g), 0.0);
   // The runs of states, and the blocks each takes (the last list: after them).
   const int parts = std::max(1, std::min(kAssemblyRuns, n / 64));
   Partition own;
-  Partition& taken = partition != nullptr ? *partition : own;
+  Partition& partitioned = partition != nullptr ? *partition : own;
+  std::vector<BlockTable>& taken = partitioned.tables;
   const bool read = taken.size() != static_cast<size_t>(parts) + 1;
   const Layout layout(*problem, states, globals, m, read);
   if (read) {
@@ -479,7 +690,9 @@ bool AssembleFromBlocks(ceres::Problem* problem, const std::vector<double*>& sta
       }
       taken[part].Add(*problem, id, blocks, at);
     }
+    partitioned.shape = ShapeBorder(taken, layout, n, m, g);
   }
+  info->Reset(n, m, g, partitioned.shape);
   std::vector<double> Cs(static_cast<size_t>(parts) * g * g, 0.0);
   std::vector<double> globals_gradient(static_cast<size_t>(parts) * g, 0.0);
   std::vector<double> costs(parts, 0.0);
@@ -555,12 +768,12 @@ bool Factor(const Information& info, ChainFactorization<M>* f, double mu = 0.0,
   using Block = typename ChainFactorization<M>::Block;
   const int n = info.n, m = info.m, g = info.g, mm = m * m;
   f->n = n, f->m = m, f->g = g;
-  const std::vector<double>&Dbuf = info.D, &Ubuf = info.U, &Bbuf = info.B, &Cbuf = info.C;
+  const std::vector<double>&Dbuf = info.D, &Ubuf = info.U, &Cbuf = info.C;
   // A held column (held[column] != 0) is cut from H and gets a unit diagonal: its step is 0.
   const auto is_held = [&](int column) { return held != nullptr && (*held)[column] != 0; };
   f->B.resize(n);
   for (int k = 0; k < n; ++k) {
-    f->B[k] = Eigen::Map<const MatrixXd>(Bbuf.data() + static_cast<size_t>(k) * m * g, m, g);
+    f->B[k] = info.Border(k);  // the dense border: every column in the tail
     if (held == nullptr) continue;
     for (int i = 0; i < m; ++i) {
       if (is_held(k * m + i)) f->B[k].row(i).setZero();
@@ -656,6 +869,281 @@ ChainCovariance Marginals(const ChainFactorization<M>& f, int first_states = -1)
   return out;
 }
 
+// The chain with a local border (BorderShape) eliminated as a front moving along it: step k
+// eliminates the pivot P_k = [x_k, the local columns that close with state k] against the rest
+// R_k = [x_{k+1}, the local columns still open, the tail], with Phi the front's information
+// (H's entries as they enter, less what earlier steps eliminated):
+//
+//   A_k = Phi_PP,   L_k = Phi_RP A_k^-1,   Phi_RR <- Phi_RR - L_k Phi_RP',
+//
+// and the tail's Schur complement S is left at the end. A front holds a state, the next and a
+// few columns, so memory and time grow with the states alone, where the dense border's
+// X = T^-1 B holds every column for every state.
+struct FrontalFactorization {
+  std::shared_ptr<const BorderShape> shape;
+  int n = 0, m = 0;
+  std::vector<size_t> a_at, l_at;  // per step: A_k^-1 (p x p), L_k (r x p), column-major
+  std::vector<double> a_inv, l;
+  Eigen::LLT<MatrixXd> S;
+  std::string error;
+
+  int Pivot(int k) const { return m + shape->start[k + 1] - shape->start[k]; }
+  int Rest(int k) const {
+    return (k + 1 < n ? m : 0) + shape->end[k] - shape->start[k + 1] + shape->tail;
+  }
+  // The front of step k, [P_k, R_k], as variables: a state's component k m + i, the globals'
+  // column c as n m + c (gradient()'s order).
+  void Variables(int k, std::vector<int>* out) const {
+    const BorderShape& s = *shape;
+    out->clear();
+    for (int i = 0; i < m; ++i) out->push_back(k * m + i);
+    for (int q = s.start[k]; q < s.start[k + 1]; ++q) out->push_back(n * m + s.local_column[q]);
+    for (int i = 0; k + 1 < n && i < m; ++i) out->push_back((k + 1) * m + i);
+    for (int q = s.start[k + 1]; q < s.end[k]; ++q) out->push_back(n * m + s.local_column[q]);
+    for (const int c : s.tail_column) out->push_back(n * m + c);
+  }
+  // Where variable v sits in step k's front; -1: not in it.
+  int Position(int k, int v) const {
+    const BorderShape& s = *shape;
+    const int p = Pivot(k), r = Rest(k);
+    if (v < n * m) {
+      if (v / m == k) return v % m;
+      return v / m == k + 1 ? p + v % m : -1;
+    }
+    const int c = v - n * m;
+    if (!s.is_local[c]) return p + r - s.tail + s.place[c];
+    const int q = s.place[c];
+    if (q >= s.start[k] && q < s.start[k + 1]) return m + q - s.start[k];
+    if (q >= s.start[k + 1] && q < s.end[k]) return p + (k + 1 < n ? m : 0) + q - s.start[k + 1];
+    return -1;
+  }
+};
+
+// Factors an assembled H with a local border as FrontalFactorization (mu and held as Factor's).
+bool FactorFrontal(const Information& info, FrontalFactorization* f, double mu = 0.0,
+                   const std::vector<char>* held = nullptr) {
+  const int n = info.n, m = info.m, g = info.g, mm = m * m;
+  f->shape = info.shape;
+  f->n = n, f->m = m;
+  const BorderShape& s = *info.shape;
+  const auto is_held = [&](int v) { return held != nullptr && (*held)[v] != 0; };
+  f->a_at.resize(n + 1);
+  f->l_at.resize(n + 1);
+  f->a_at[0] = f->l_at[0] = 0;
+  int widest = 0;
+  for (int k = 0; k < n; ++k) {
+    const int p = f->Pivot(k), r = f->Rest(k);
+    f->a_at[k + 1] = f->a_at[k] + static_cast<size_t>(p) * p;
+    f->l_at[k + 1] = f->l_at[k] + static_cast<size_t>(r) * p;
+    widest = std::max(widest, p + r);
+  }
+  f->a_inv.resize(f->a_at[n]);
+  f->l.resize(f->l_at[n]);
+  MatrixXd front(widest, widest), carried(widest, widest);
+  std::vector<int> variables, previous, moved;
+  int carried_size = 0;
+  // H's entry between variables a and b as it enters the front, at front positions i and j.
+  const auto enter = [&](MatrixXd* phi, int i, int j, int a, int b, double value) {
+    if (is_held(a) || is_held(b)) return;
+    (*phi)(i, j) += value;
+    if (i != j) (*phi)(j, i) += value;
+  };
+  // A diagonal entry: damped, or 1 where the variable is held.
+  const auto enter_diagonal = [&](MatrixXd* phi, int i, int a, double value) {
+    (*phi)(i, i) += is_held(a) ? 1.0 : value + (mu > 0.0 ? Damping(mu, value) : 0.0);
+  };
+  const auto c_entry = [&](int a, int b) {  // C in the caller's order, upper triangle
+    return info.C[static_cast<size_t>(std::min(a, b)) + static_cast<size_t>(g) * std::max(a, b)];
+  };
+  for (int k = 0; k < n; ++k) {
+    const int p = f->Pivot(k), r = f->Rest(k), size = p + r;
+    f->Variables(k, &variables);
+    auto phi = front.topLeftCorner(size, size);
+    phi.setZero();
+    // The previous step's rest, [x_k, the open columns, the tail], moved into this front.
+    moved.resize(carried_size);
+    for (int i = 0; i < carried_size; ++i) moved[i] = f->Position(k, previous[i]);
+    for (int j = 0; j < carried_size; ++j) {
+      for (int i = 0; i < carried_size; ++i) phi(moved[i], moved[j]) = carried(i, j);
+    }
+    // State k's own entries: D_k, U_k (with x_{k+1}), its row of the border.
+    const double* D = info.D.data() + static_cast<size_t>(k) * mm;
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i < j; ++i) enter(&front, i, j, k * m + i, k * m + j, D[i + m * j]);
+      enter_diagonal(&front, j, k * m + j, D[j + m * j]);
+    }
+    if (k + 1 < n) {
+      const double* U = info.U.data() + static_cast<size_t>(k) * mm;
+      for (int j = 0; j < m; ++j) {
+        for (int i = 0; i < m; ++i) {
+          enter(&front, i, p + j, k * m + i, (k + 1) * m + j, U[i + m * j]);
+        }
+      }
+    }
+    const Eigen::Map<const MatrixXd> B = info.Border(k);
+    for (int slot = 0; slot < B.cols(); ++slot) {
+      const int v = n * m + s.Column(k, slot);
+      const int j = f->Position(k, v);
+      for (int i = 0; i < m; ++i) enter(&front, i, j, k * m + i, v, B(i, slot));
+    }
+    // C's entries of the columns that enter: the tail at the first step, then each local
+    // column as the front reaches it, with every column already in the front.
+    const int entered = k == 0 ? 0 : s.end[k - 1];
+    for (int a = 0; a < size; ++a) {
+      const int va = variables[a];
+      if (va < n * m) continue;
+      const int ca = va - n * m;
+      const bool a_enters = s.is_local[ca] ? s.place[ca] >= entered : k == 0;
+      if (!a_enters) continue;
+      for (int b = 0; b < size; ++b) {
+        const int vb = variables[b];
+        if (vb < n * m) continue;
+        const int cb = vb - n * m;
+        const bool b_enters = s.is_local[cb] ? s.place[cb] >= entered : k == 0;
+        if (b_enters && b > a) continue;  // both enter: once
+        if (b == a) {
+          enter_diagonal(&front, a, va, c_entry(ca, ca));
+        } else {
+          enter(&front, a, b, va, vb, c_entry(ca, cb));
+        }
+      }
+    }
+    // Eliminate the pivot.
+    Eigen::LLT<MatrixXd> llt(phi.topLeftCorner(p, p));
+    if (llt.info() != Eigen::Success) {
+      f->error = "the information of state " + std::to_string(k) +
+                 " is not positive definite (a direction no factor constrains)";
+      return false;
+    }
+    Eigen::Map<MatrixXd> A_inv(f->a_inv.data() + f->a_at[k], p, p);
+    A_inv = llt.solve(MatrixXd::Identity(p, p));
+    Eigen::Map<MatrixXd> L(f->l.data() + f->l_at[k], r, p);
+    L.noalias() = phi.bottomLeftCorner(r, p) * A_inv;
+    auto rest = carried.topLeftCorner(r, r);
+    rest = phi.bottomRightCorner(r, r);
+    rest.noalias() -= L * phi.bottomLeftCorner(r, p).transpose();
+    carried_size = r;
+    previous.assign(variables.begin() + p, variables.end());
+  }
+  if (s.tail == 0) return true;
+  f->S.compute(carried.topLeftCorner(s.tail, s.tail));
+  if (f->S.info() != Eigen::Success) {
+    f->error = "the global parameters' information is not positive definite";
+    return false;
+  }
+  return true;
+}
+
+// H [dx; dg] = -gradient on a frontal factorization: forward through the steps, the tail by S,
+// back through the steps.
+void SolveFrontal(const FrontalFactorization& f, const std::vector<double>& gradient,
+                  std::vector<Eigen::VectorXd>* dx, Eigen::VectorXd* dg) {
+  const int n = f.n, m = f.m, nm = n * m;
+  Eigen::VectorXd z = -Eigen::Map<const Eigen::VectorXd>(gradient.data(), gradient.size());
+  std::vector<int> variables;
+  Eigen::VectorXd pivot, rest;
+  for (int k = 0; k < n; ++k) {
+    const int p = f.Pivot(k), r = f.Rest(k);
+    f.Variables(k, &variables);
+    pivot.resize(p);
+    for (int i = 0; i < p; ++i) pivot[i] = z[variables[i]];
+    rest.noalias() = Eigen::Map<const MatrixXd>(f.l.data() + f.l_at[k], r, p) * pivot;
+    for (int i = 0; i < r; ++i) z[variables[p + i]] -= rest[i];
+  }
+  const BorderShape& s = *f.shape;
+  if (s.tail > 0) {
+    Eigen::VectorXd tail(s.tail);
+    for (int i = 0; i < s.tail; ++i) tail[i] = z[nm + s.tail_column[i]];
+    tail = f.S.solve(tail);
+    for (int i = 0; i < s.tail; ++i) z[nm + s.tail_column[i]] = tail[i];
+  }
+  for (int k = n - 1; k >= 0; --k) {
+    const int p = f.Pivot(k), r = f.Rest(k);
+    f.Variables(k, &variables);
+    pivot.resize(p);
+    rest.resize(r);
+    for (int i = 0; i < p; ++i) pivot[i] = z[variables[i]];
+    for (int i = 0; i < r; ++i) rest[i] = z[variables[p + i]];
+    pivot = Eigen::Map<const MatrixXd>(f.a_inv.data() + f.a_at[k], p, p) * pivot;
+    pivot.noalias() -= Eigen::Map<const MatrixXd>(f.l.data() + f.l_at[k], r, p).transpose() * rest;
+    for (int i = 0; i < p; ++i) z[variables[i]] = pivot[i];
+  }
+  dx->resize(n);
+  for (int k = 0; k < n; ++k) (*dx)[k] = z.segment(static_cast<Eigen::Index>(k) * m, m);
+  *dg = z.tail(static_cast<Eigen::Index>(gradient.size()) - nm);
+}
+
+// Takahashi's recursion on the fronts, from the tail's S^-1 back to the first step: with Sigma_RR
+// the covariance of step k's rest (a part of step k + 1's front),
+//   Sigma_RP = -Sigma_RR L_k,   Sigma_PP = A_k^-1 - L_k' Sigma_RP.
+// The globals' covariance holds the tail's, each local column's and those between columns that
+// share a front; the entries between local columns that never do are not computed (NaN).
+ChainCovariance MarginalsFrontal(const FrontalFactorization& f, int first_states = -1) {
+  const int n = f.n, m = f.m, nm = n * m;
+  const BorderShape& s = *f.shape;
+  ChainCovariance out;
+  const bool all = first_states < 0;
+  const int wanted = all ? n : std::min(n, first_states);
+  out.states.assign(n, MatrixXd());
+  if (all) out.next.assign(n > 0 ? n - 1 : 0, MatrixXd());
+  out.globals = MatrixXd::Constant(s.g, s.g, std::numeric_limits<double>::quiet_NaN());
+  MatrixXd tail = s.tail > 0 ? f.S.solve(MatrixXd::Identity(s.tail, s.tail)) : MatrixXd();
+  for (int i = 0; i < s.tail; ++i) {
+    for (int j = 0; j < s.tail; ++j) out.globals(s.tail_column[i], s.tail_column[j]) = tail(i, j);
+  }
+  MatrixXd later = tail, front, rest_cov;  // step k + 1's front covariance
+  std::vector<int> variables, later_variables;
+  for (int k = n - 1; k >= 0; --k) {
+    const int p = f.Pivot(k), r = f.Rest(k);
+    f.Variables(k, &variables);
+    rest_cov.resize(r, r);
+    if (k == n - 1) {
+      rest_cov = later;
+    } else {
+      std::vector<int> at(r);
+      for (int i = 0; i < r; ++i) at[i] = f.Position(k + 1, variables[p + i]);
+      for (int j = 0; j < r; ++j) {
+        for (int i = 0; i < r; ++i) rest_cov(i, j) = later(at[i], at[j]);
+      }
+    }
+    const Eigen::Map<const MatrixXd> L(f.l.data() + f.l_at[k], r, p);
+    front.resize(p + r, p + r);
+    front.bottomRightCorner(r, r) = rest_cov;
+    front.bottomLeftCorner(r, p).noalias() = -rest_cov * L;
+    front.topLeftCorner(p, p) = Eigen::Map<const MatrixXd>(f.a_inv.data() + f.a_at[k], p, p);
+    front.topLeftCorner(p, p).noalias() -= L.transpose() * front.bottomLeftCorner(r, p);
+    front.topRightCorner(p, r) = front.bottomLeftCorner(r, p).transpose();
+    if (k < wanted) out.states[k] = front.topLeftCorner(m, m);
+    if (all && k + 1 < n) out.next[k] = front.block(p, 0, m, m);
+    for (int j = 0; j < p + r; ++j) {
+      if (variables[j] < nm) continue;
+      for (int i = 0; i < p + r; ++i) {
+        if (variables[i] >= nm) out.globals(variables[i] - nm, variables[j] - nm) = front(i, j);
+      }
+    }
+    std::swap(later, front);
+  }
+  out.ok = true;
+  return out;
+}
+
+// The factorization of either border: ChainFactorization's dense one, or the frontal one where
+// the border has local columns.
+template <int M>
+struct AnyFactorization {
+  ChainFactorization<M> chain;
+  FrontalFactorization frontal;
+  bool along = false;  // the frontal one
+  const std::string& error() const { return along ? frontal.error : chain.error; }
+};
+
+template <int M>
+bool FactorAny(const Information& info, AnyFactorization<M>* f, double mu = 0.0,
+               const std::vector<char>* held = nullptr) {
+  f->along = info.shape->local > 0;
+  return f->along ? FactorFrontal(info, &f->frontal, mu, held) : Factor(info, &f->chain, mu, held);
+}
+
 // Checks the blocks: the states' size m and the globals' tangent size g; false with *error.
 bool Sizes(ceres::Problem* problem, const std::vector<double*>& states,
            const std::vector<double*>& globals, int* m, int* g, std::string* error) {
@@ -683,15 +1171,15 @@ bool Sizes(ceres::Problem* problem, const std::vector<double*>& states,
 template <int M>
 bool Linearize(ceres::Problem* problem, const std::vector<double*>& states,
                const std::vector<double*>& globals, int m, int g, double* cost,
-               std::vector<double>* gradient, ChainFactorization<M>* f, std::string* error,
+               std::vector<double>* gradient, AnyFactorization<M>* f, std::string* error,
                int threads = 1) {
-  Information info(static_cast<int>(states.size()), m, g);
-  if (!AssembleFromBlocks(problem, states, globals, &info, cost, gradient, threads)) {
+  Information info;
+  if (!AssembleFromBlocks(problem, states, globals, m, g, &info, cost, gradient, threads)) {
     *error = info.error;
     return false;
   }
-  if (!Factor(info, f)) {
-    *error = f->error;
+  if (!FactorAny(info, f)) {
+    *error = f->error();
     return false;
   }
   return true;
@@ -722,6 +1210,21 @@ void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
 }
 
 template <int M>
+void Solve(const AnyFactorization<M>& f, const std::vector<double>& gradient,
+           std::vector<Eigen::VectorXd>* dx, Eigen::VectorXd* dg) {
+  if (f.along) {
+    SolveFrontal(f.frontal, gradient, dx, dg);
+  } else {
+    Solve(f.chain, gradient, dx, dg);
+  }
+}
+
+template <int M>
+ChainCovariance Marginals(const AnyFactorization<M>& f, int first_states = -1) {
+  return f.along ? MarginalsFrontal(f.frontal, first_states) : Marginals(f.chain, first_states);
+}
+
+template <int M>
 void SensitivityAt(ceres::Problem* problem, const std::vector<double*>& states,
                    const std::vector<double*>& globals, int m, int g, const ResidualShifts& shifts,
                    int threads, ChainSensitivity* out) {
@@ -736,7 +1239,7 @@ void SensitivityAt(ceres::Problem* problem, const std::vector<double*>& states,
       return;
     }
   }
-  ChainFactorization<M> f;
+  AnyFactorization<M> f;
   double cost = 0.0;
   std::vector<double> gradient;
   if (!Linearize(problem, states, globals, m, g, &cost, &gradient, &f, &out->error, threads)) {
@@ -801,7 +1304,7 @@ template <int M>
 ChainCovariance CovarianceAt(ceres::Problem* problem, const std::vector<double*>& states,
                              const std::vector<double*>& globals, int m, int g, int threads) {
   ChainCovariance out;
-  ChainFactorization<M> f;
+  AnyFactorization<M> f;
   double cost = 0.0;
   std::vector<double> gradient;
   if (!Linearize(problem, states, globals, m, g, &cost, &gradient, &f, &out.error, threads)) {
@@ -813,7 +1316,7 @@ ChainCovariance CovarianceAt(ceres::Problem* problem, const std::vector<double*>
 }  // namespace
 
 struct ChainLinearization::Impl {
-  Information info{0, 0, 0};
+  Information info;
   std::vector<double> gradient;
   double cost = 0.0;
   // Which blocks each run takes, kept while the problem's shape is the same, and the states'
@@ -835,8 +1338,8 @@ struct ChainLinearization::Impl {
   }
   int m = 0, g = 0;
   // The last step's factorization, its storage reused by the next (7: the Ward state).
-  ChainFactorization<7> factorization7;
-  ChainFactorization<Eigen::Dynamic> factorization;
+  AnyFactorization<7> factorization7;
+  AnyFactorization<Eigen::Dynamic> factorization;
   bool factored = false;  // the last Step succeeded
 };
 
@@ -863,9 +1366,8 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
     *error = "the globals' tangent size changed";
     return false;
   }
-  impl_->info.Reset(static_cast<int>(states.size()), impl_->m, g);
-  if (!AssembleFromBlocks(problem, states, globals, &impl_->info, &impl_->cost, &impl_->gradient,
-                          threads, &impl_->partition)) {
+  if (!AssembleFromBlocks(problem, states, globals, impl_->m, g, &impl_->info, &impl_->cost,
+                          &impl_->gradient, threads, &impl_->partition)) {
     *error = impl_->info.error;
     return false;
   }
@@ -874,8 +1376,12 @@ bool ChainLinearization::Linearize(ceres::Problem* problem, const std::vector<do
 
 double ChainLinearization::cost() const { return impl_->cost; }
 
+int ChainLinearization::LocalBorderColumns() const {
+  return impl_->partition.shape == nullptr ? 0 : impl_->partition.shape->local;
+}
+
 bool ChainLinearization::Cost(double* cost, int threads) const {
-  const Partition& taken = impl_->partition;
+  const std::vector<BlockTable>& taken = impl_->partition.tables;
   if (taken.empty()) return false;
   std::vector<double> costs(taken.size(), 0.0);
   std::vector<char> ok(taken.size(), 1);
@@ -908,11 +1414,11 @@ namespace {
 
 template <int M>
 bool DampedStep(const Information& info, const std::vector<double>& gradient, double mu,
-                const std::vector<char>* held, ChainFactorization<M>* factorization,
+                const std::vector<char>* held, AnyFactorization<M>* factorization,
                 ChainStep* step) {
-  ChainFactorization<M>& f = *factorization;
-  if (!Factor(info, &f, mu, held)) {
-    step->error = f.error;
+  AnyFactorization<M>& f = *factorization;
+  if (!FactorAny(info, &f, mu, held)) {
+    step->error = f.error();
     return false;
   }
   if (held == nullptr) {
@@ -986,9 +1492,9 @@ double ChainLinearization::PredictedDecrease(const std::vector<Eigen::VectorXd>&
       const Map<const MatrixXd> U(info.U.data() + static_cast<size_t>(k) * mm, m, m);
       quadratic += 2.0 * d.dot(U * states[k + 1]);
     }
-    if (g > 0) {
-      const Map<const MatrixXd> B(info.B.data() + static_cast<size_t>(k) * m * g, m, g);
-      quadratic += 2.0 * d.dot(B * globals);
+    const Map<const MatrixXd> B = info.Border(k);
+    for (int slot = 0; slot < B.cols(); ++slot) {
+      quadratic += 2.0 * d.dot(B.col(slot)) * globals[info.shape->Column(k, slot)];
     }
   }
   if (g > 0) {

@@ -31,7 +31,10 @@ struct ChainCovariance {
   std::string error;                    // why not (not a chain, not positive definite)
   std::vector<Eigen::MatrixXd> states;  // cov(x_k), one per state
   std::vector<Eigen::MatrixXd> next;    // cov(x_{k+1}, x_k), one per consecutive pair
-  Eigen::MatrixXd globals;              // cov of the global parameters, stacked (tangent space)
+  // cov of the global parameters, stacked (tangent space). Where some of them are local (read by
+  // a stretch of the chain only: ChainLinearization::LocalBorderColumns), the entries between
+  // two local columns that no state's front holds together are not computed: NaN.
+  Eigen::MatrixXd globals;
 };
 
 // `states` in chain order; `globals` may be empty. All blocks must be in `problem`, not constant.
@@ -78,6 +81,9 @@ class ChainLinearization {
   // not have changed since), summed in the same runs whatever the number of threads; false when
   // none was read, a block cannot be evaluated or the cost is not finite.
   bool Cost(double* cost, int threads = 1) const;
+  // The globals' columns that only a stretch of the chain touches (the tire law's stiffness
+  // nodes), eliminated along it rather than kept in a dense border; 0 before a linearization.
+  int LocalBorderColumns() const;
   // J'r: each state's tangent coordinates in turn, then the globals', stacked.
   const std::vector<double>& gradient() const;
   // The step of (H + mu diag(H)) d = -J'r (mu = 0: Gauss-Newton); false with step->error when

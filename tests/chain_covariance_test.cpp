@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -472,6 +473,186 @@ TEST(ChainCovariance, SensitivityIsTheSolutionsShiftWhenAConstantMoves) {
   // A shift of the wrong length is refused.
   measured.columns = {Eigen::VectorXd::Ones(3)};
   EXPECT_FALSE(ComputeChainSensitivity(&problem, states, {&c}, measured).ok);
+}
+
+// A chain whose border is mostly local, as the tire law's stiffness nodes are: node j is read by
+// the states of [8 j, 8 j + 10) only, consecutive nodes are tied by a walk, and an offset (and
+// the last node, which the last state reads) is read throughout. Every result of the
+// linearization is checked against the dense H = J'J of Problem::Evaluate's Jacobian, with the
+// globals given in a scrambled order.
+struct NodeMeasurement {  // x_k against node j
+  double z, a;
+  template <typename T>
+  bool operator()(const T* x, const T* node, T* r) const {
+    r[0] = (x[0] - a * node[0] - z) / 0.3;
+    return true;
+  }
+};
+struct NodeDrift {  // x_k to x_{k+1}, driven by node j
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* node, T* r) const {
+    r[0] = (b[0] - a[0] - 0.05 * node[0] - 0.01) / 0.2;
+    r[1] = (b[1] - a[1] + 0.05 * a[0]) / 0.4;
+    return true;
+  }
+};
+struct NodeBlend {  // x_k against two nodes
+  double w;
+  template <typename T>
+  bool operator()(const T* x, const T* n0, const T* n1, T* r) const {
+    r[0] = (x[1] - w * n0[0] - (1.0 - w) * n1[0]) / 0.5;
+    return true;
+  }
+};
+struct NodeWalk {
+  template <typename T>
+  bool operator()(const T* n0, const T* n1, T* r) const {
+    r[0] = (n1[0] - n0[0]) / 0.7;
+    return true;
+  }
+};
+
+TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
+  constexpr int n = 40, kNodes = 5;
+  std::vector<std::array<double, 2>> x(n);
+  for (int k = 0; k < n; ++k) x[k] = {0.1 * k, std::sin(0.3 * k)};
+  std::array<double, kNodes> nodes = {0.4, -0.2, 0.1, 0.3, -0.1};
+  double c = 0.2;
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairAnchor, 2, 2>(new PairAnchor),
+                           nullptr, x[0].data());
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 1, 1>(new OffsetPrior),
+                           nullptr, &nodes[0]);
+  for (int j = 0; j + 1 < kNodes; ++j) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeWalk, 1, 1, 1>(new NodeWalk),
+                             nullptr, &nodes[j], &nodes[j + 1]);
+  }
+  const auto node_of = [](int k) { return std::min(kNodes - 1, k / 8); };
+  for (int k = 0; k < n; ++k) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetMeasurement, 2, 2, 1>(
+                                 new OffsetMeasurement{0.1 * k, 0.02 * k * k}),
+                             nullptr, x[k].data(), &c);
+    const int j = node_of(k);
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeMeasurement, 1, 2, 1>(
+                                 new NodeMeasurement{0.05 * k, 1.0 + 0.1 * (k % 3)}),
+                             nullptr, x[k].data(), &nodes[j]);
+    if (k % 8 >= 6 && j + 1 < kNodes) {  // the overlap: read by the next node too
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<NodeBlend, 1, 2, 1, 1>(new NodeBlend{0.25 * (k % 8 - 5)}),
+          nullptr, x[k].data(), &nodes[j], &nodes[j + 1]);
+    }
+    if (k + 1 < n) {
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<NodeDrift, 2, 2, 2, 1>(new NodeDrift), nullptr,
+          x[k].data(), x[k + 1].data(), &nodes[j]);
+    }
+  }
+  std::vector<double*> states;
+  for (auto& s : x) states.push_back(s.data());
+  const std::vector<double*> globals = {&nodes[3], &c, &nodes[0], &nodes[4], &nodes[1], &nodes[2]};
+  const int g = static_cast<int>(globals.size()), size = 2 * n + g;
+
+  // The dense reference.
+  ceres::Problem::EvaluateOptions options;
+  options.parameter_blocks = states;
+  options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
+  double cost = 0.0;
+  std::vector<double> residuals, gradient;
+  ceres::CRSMatrix crs;
+  ASSERT_TRUE(problem.Evaluate(options, &cost, &residuals, &gradient, &crs));
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row) {
+    for (int e = crs.rows[row]; e < crs.rows[row + 1]; ++e) J(row, crs.cols[e]) = crs.values[e];
+  }
+  ASSERT_EQ(J.cols(), size);
+  const Eigen::MatrixXd H = J.transpose() * J;
+  const Eigen::VectorXd grad = Eigen::Map<Eigen::VectorXd>(gradient.data(), size);
+  const auto stacked = [&](const ChainStep& step) {
+    Eigen::VectorXd d(size);
+    for (int k = 0; k < n; ++k) d.segment(2 * k, 2) = step.states[k];
+    d.tail(g) = step.globals;
+    return d;
+  };
+
+  ChainLinearization linearization;
+  std::string error;
+  ASSERT_TRUE(linearization.Linearize(&problem, states, globals, &error)) << error;
+  EXPECT_EQ(linearization.LocalBorderColumns(), 4);  // nodes 0-3; node 4 and c: the tail
+  EXPECT_NEAR(linearization.cost(), cost, 1e-12 * cost);
+  for (int i = 0; i < size; ++i) ASSERT_NEAR(linearization.gradient()[i], grad[i], 1e-10) << i;
+
+  // Gauss-Newton and damped steps.
+  for (const double mu : {0.0, 0.3}) {
+    Eigen::MatrixXd damped = H;
+    for (int i = 0; i < size; ++i) damped(i, i) += mu * std::clamp(H(i, i), 1e-6, 1e32);
+    const Eigen::VectorXd expected = damped.ldlt().solve(-grad);
+    ChainStep step;
+    ASSERT_TRUE(linearization.Step(mu, &step)) << step.error;
+    const Eigen::VectorXd d = stacked(step);
+    EXPECT_LT((d - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff()) << mu;
+    EXPECT_NEAR(linearization.PredictedDecrease(step.states, step.globals),
+                -(grad.dot(d) + 0.5 * d.dot(H * d)), 1e-10 * cost)
+        << mu;
+  }
+  // Held columns (a state's component, a local node, the offset): cut from H, their step 0.
+  std::vector<char> held(size, 0);
+  held[2 * 13 + 1] = held[2 * n + 4] = held[2 * n + 1] = 1;  // x_13[1], nodes[1], c
+  {
+    Eigen::MatrixXd cut = H;
+    Eigen::VectorXd rhs = -grad;
+    for (int i = 0; i < size; ++i) {
+      if (held[i] == 0) continue;
+      cut.row(i).setZero();
+      cut.col(i).setZero();
+      cut(i, i) = 1.0;
+      rhs[i] = 0.0;
+    }
+    const Eigen::VectorXd expected = cut.ldlt().solve(rhs);
+    ChainStep step;
+    ASSERT_TRUE(linearization.Step(0.0, &step, &held)) << step.error;
+    const Eigen::VectorXd d = stacked(step);
+    EXPECT_LT((d - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff());
+    EXPECT_EQ(d[2 * n + 4], 0.0);
+  }
+  // The marginal covariances: every state, consecutive pairs, the globals that share a front.
+  ChainStep step;
+  ASSERT_TRUE(linearization.Step(0.0, &step)) << step.error;
+  const ChainCovariance covariance = linearization.LastStepCovariance();
+  ASSERT_TRUE(covariance.ok) << covariance.error;
+  const Eigen::MatrixXd inverse = H.inverse();
+  for (int k = 0; k < n; ++k) {
+    EXPECT_LT((covariance.states[k] - inverse.block(2 * k, 2 * k, 2, 2)).norm(), 1e-10) << k;
+    if (k + 1 < n) {
+      EXPECT_LT((covariance.next[k] - inverse.block(2 * k + 2, 2 * k, 2, 2)).norm(), 1e-10) << k;
+    }
+  }
+  int compared = 0;
+  for (int i = 0; i < g; ++i) {
+    EXPECT_FALSE(std::isnan(covariance.globals(i, i))) << i;
+    for (int j = 0; j < g; ++j) {
+      if (std::isnan(covariance.globals(i, j))) continue;
+      EXPECT_NEAR(covariance.globals(i, j), inverse(2 * n + i, 2 * n + j), 1e-10) << i << " " << j;
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, g + 2 * 4);  // the diagonal and each node with its neighbours at least
+  const ChainCovariance recomputed = ComputeChainCovariance(&problem, states, globals);
+  ASSERT_TRUE(recomputed.ok) << recomputed.error;
+  EXPECT_LT((recomputed.states[20] - covariance.states[20]).norm(), 1e-14);
+
+  // The sensitivity to a shift of every residual: -H^-1 J' t.
+  ResidualShifts shifts;
+  problem.GetResidualBlocks(&shifts.blocks);
+  Eigen::VectorXd t(crs.num_rows);
+  for (int i = 0; i < crs.num_rows; ++i) t[i] = std::cos(1.7 * i);
+  shifts.columns = {t};
+  const ChainSensitivity sensitivity = ComputeChainSensitivity(&problem, states, globals, shifts);
+  ASSERT_TRUE(sensitivity.ok) << sensitivity.error;
+  const Eigen::VectorXd expected = -H.ldlt().solve(J.transpose() * t);
+  for (int k = 0; k < n; ++k) {
+    EXPECT_LT((sensitivity.states[0][k] - expected.segment(2 * k, 2)).norm(), 1e-10) << k;
+  }
+  EXPECT_LT((sensitivity.globals[0] - expected.tail(g)).norm(), 1e-10);
 }
 
 }  // namespace
