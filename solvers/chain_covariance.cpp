@@ -42,8 +42,9 @@ struct ChainFactorization {
 // tire law's walk) is "local": it can be eliminated right after state `last`, and a state's row
 // of H holds only the local columns near it. The others (touched by the last state, by every
 // state or by no state: the IMU offsets, the effects) are the "tail", eliminated last. With no
-// local column the border is dense and the factorization is ChainFactorization's; with some it
-// is FrontalFactorization's, whose memory and time do not grow with their number.
+// local column, or no more than the others, the border is dense and the factorization is
+// ChainFactorization's; with more it is FrontalFactorization's, whose memory and time do not grow
+// with their number.
 struct BorderShape {
   int g = 0, tail = 0, local = 0;  // columns: all, in the tail, local
   // Per caller column (the globals' stacked order): local or not, and its place: the tail's
@@ -377,7 +378,11 @@ std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& ta
   for (int j = 0; j < blocks; ++j) {
     if (last[j] >= 0 && last[j] < n - 1) order.push_back(j);
   }
-  if (order.empty()) return DenseBorder(n, m, g);
+  // A few local columns cost less in the dense border's fixed-size blocks than in the front's
+  // (the window's two nodes at a node's change): the front where they outnumber the others.
+  int local_columns = 0;
+  for (const int j : order) local_columns += layout.places[n + j].size;
+  if (2 * local_columns <= g) return DenseBorder(n, m, g);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return std::make_pair(last[a], first[a]) < std::make_pair(last[b], first[b]);
   });
