@@ -42,27 +42,28 @@ struct ChainFactorization {
 // tire law's walk) is "local": it can be eliminated right after state `last`, and a state's row
 // of H holds only the local columns near it. The others (touched by the last state, by every
 // state or by no state: the IMU offsets, the effects) are the "tail", eliminated last. With no
-// local column, or no more than the others, the border is dense and the factorization is
-// ChainFactorization's; with more it is FrontalFactorization's, whose memory and time do not grow
-// with their number.
+// local columns the border is dense and the factorization is ChainFactorization's, whose every
+// state carries every column; with them it is FrontalFactorization's, whose states carry the
+// tail and the local columns open around them (where those are at most half the border: the
+// dense border's fixed-size blocks are cheaper for a few columns).
 struct BorderShape {
   int g = 0, tail = 0, local = 0;  // columns: all, in the tail, local
-  // Per caller column (the globals' stacked order): local or not, and its place: the tail's
+  // Per caller column (the globals' stacked order): local or not, and its position: the tail's
   // slot (the tail keeps the caller's order) or the local position (ordered by last state).
   std::vector<char> is_local;
-  std::vector<int> place;
+  std::vector<int> position;
   std::vector<int> tail_column, local_column;  // the caller column of each slot / position
   // Per state: the local positions its own blocks touch, [lo, hi) (lo == hi: none), and where
   // its row of the border starts in Information::B (n + 1 entries): tail + hi - lo columns.
   std::vector<int> lo, hi;
-  std::vector<size_t> at;
+  std::vector<size_t> offset;
   // The frontal elimination's steps (FrontalFactorization): at step k the local positions
   // [start[k], end[k]) are open; those below start[k + 1] close with state k (n + 1 starts).
   std::vector<int> start, end;
 
   int Width(int k) const { return tail + hi[k] - lo[k]; }
   // The column of state k's border row that holds caller column c, and the reverse.
-  int Slot(int k, int c) const { return is_local[c] ? tail + place[c] - lo[k] : place[c]; }
+  int Slot(int k, int c) const { return is_local[c] ? tail + position[c] - lo[k] : position[c]; }
   int Column(int k, int slot) const {
     return slot < tail ? tail_column[slot] : local_column[lo[k] + slot - tail];
   }
@@ -73,13 +74,13 @@ std::shared_ptr<const BorderShape> DenseBorder(int n, int m, int g) {
   auto shape = std::make_shared<BorderShape>();
   shape->g = shape->tail = g;
   shape->is_local.assign(g, 0);
-  shape->place.resize(g);
-  for (int c = 0; c < g; ++c) shape->place[c] = c;
-  shape->tail_column = shape->place;
+  shape->position.resize(g);
+  for (int c = 0; c < g; ++c) shape->position[c] = c;
+  shape->tail_column = shape->position;
   shape->lo.assign(n, 0);
   shape->hi.assign(n, 0);
-  shape->at.resize(n + 1);
-  for (int k = 0; k <= n; ++k) shape->at[k] = static_cast<size_t>(k) * m * g;
+  shape->offset.resize(n + 1);
+  for (int k = 0; k <= n; ++k) shape->offset[k] = static_cast<size_t>(k) * m * g;
   shape->start.assign(n + 1, 0);
   shape->end.assign(n, 0);
   return shape;
@@ -104,7 +105,7 @@ void SolveT(const ChainFactorization<M>& f, const std::vector<Rhs>& rhs, std::ve
 }
 
 // H = J'J in flat column-major buffers: D[k] = T_kk (upper triangle), U[k] = T_{k,k+1},
-// state k's row of the border from B[shape->at[k]] (m x shape->Width(k): the tail's columns,
+// state k's row of the border from B[shape->offset[k]] (m x shape->Width(k): the tail's columns,
 // then its own local ones), C (upper triangle, the caller's order); filled one residual block
 // at a time.
 struct Information {
@@ -117,13 +118,13 @@ struct Information {
     shape = std::move(border);
     D.assign(static_cast<size_t>(n) * m * m, 0.0);
     U.assign(D.size(), 0.0);
-    B.assign(shape->at[n], 0.0);
+    B.assign(shape->offset[n], 0.0);
     C.assign(static_cast<size_t>(g) * g, 0.0);
     error.clear();
   }
   // State k's row of the border: m x shape->Width(k).
   Eigen::Map<const MatrixXd> Border(int k) const {
-    return {B.data() + shape->at[k], m, shape->Width(k)};
+    return {B.data() + shape->offset[k], m, shape->Width(k)};
   }
 
   struct Segment {
@@ -212,7 +213,7 @@ struct Information {
   void AddBorder(const Segment& s, const Segment& t, const std::vector<double>& hb, int count) {
     const bool global_first = s.k < 0;
     const int k = global_first ? t.k : s.k;
-    double* row = B.data() + shape->at[k];
+    double* row = B.data() + shape->offset[k];
     for (int i = 0; i < s.length; ++i) {
       const double* h = hb.data() + static_cast<size_t>(s.position + i) * count + t.position;
       for (int j = 0; j < t.length; ++j) {
@@ -337,6 +338,31 @@ struct BlockTable {
   }
 };
 
+// The frontal elimination's steps of a shape whose states' [lo, hi) are set: the local positions
+// each step opens and closes (BorderShape::start, end), from the state each position closes with
+// (`closes`, non-decreasing) and how far each position's couplings on the globals alone reach
+// (reach[i] >= i). The front holds every column a state has touched, and a column's couplings
+// enter before it closes (a column enters when the front's end passes it; columns close in
+// position order). Returns the most local columns a front holds.
+int OpenFronts(const std::vector<int>& closes, const std::vector<int>& reach, BorderShape* shape) {
+  BorderShape& s = *shape;
+  const int n = static_cast<int>(s.lo.size());
+  s.start.resize(n + 1);
+  for (int k = 0; k <= n; ++k) {
+    s.start[k] =
+        static_cast<int>(std::lower_bound(closes.begin(), closes.end(), k) - closes.begin());
+  }
+  s.end.resize(n);
+  int end = 0, widest = 0;
+  for (int k = 0; k < n; ++k) {
+    end = std::max(end, s.hi[k]);
+    for (int q = s.start[k]; q < s.start[k + 1]; ++q) end = std::max(end, reach[q] + 1);
+    s.end[k] = end;
+    widest = std::max(widest, end - s.start[k]);
+  }
+  return widest;
+}
+
 // The border's shape from the blocks each run takes (AssembleFromBlocks' tables): a global
 // parameter block is local when the last state any block links it with is not the chain's
 // last. Local blocks are ordered by that last state; the blocks on globals alone (a walk between
@@ -344,7 +370,8 @@ struct BlockTable {
 std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& tables,
                                                const Layout& layout, int n, int m, int g) {
   const int blocks = static_cast<int>(layout.places.size()) - n;  // global parameter blocks
-  // Calls visit(lowest state or -1, the global blocks) for each residual block.
+  // Calls visit(lowest state, highest state) for each residual block that touches a global, its
+  // global blocks in `touched` (highest -1: the block touches no state).
   std::vector<int> touched;
   const auto each_block = [&](const auto& visit) {
     for (const BlockTable& table : tables) {
@@ -378,11 +405,7 @@ std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& ta
   for (int j = 0; j < blocks; ++j) {
     if (last[j] >= 0 && last[j] < n - 1) order.push_back(j);
   }
-  // A few local columns cost less in the dense border's fixed-size blocks than in the front's
-  // (the window's two nodes at a node's change): the front where they outnumber the others.
-  int local_columns = 0;
-  for (const int j : order) local_columns += layout.places[n + j].size;
-  if (2 * local_columns <= g) return DenseBorder(n, m, g);
+  if (order.empty()) return DenseBorder(n, m, g);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return std::make_pair(last[a], first[a]) < std::make_pair(last[b], first[b]);
   });
@@ -390,14 +413,14 @@ std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& ta
   BorderShape& s = *shape;
   s.g = g;
   s.is_local.assign(g, 0);
-  s.place.assign(g, 0);
+  s.position.assign(g, 0);
   std::vector<int> closes;  // per local position: the state it closes with
   for (const int j : order) {
     const Layout::Place& block = layout.places[n + j];
     for (int i = 0; i < block.size; ++i) {
       const int c = block.first + i;
       s.is_local[c] = 1;
-      s.place[c] = static_cast<int>(s.local_column.size());
+      s.position[c] = static_cast<int>(s.local_column.size());
       s.local_column.push_back(c);
       closes.push_back(last[j]);
     }
@@ -405,7 +428,7 @@ std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& ta
   s.local = static_cast<int>(s.local_column.size());
   for (int c = 0; c < g; ++c) {
     if (s.is_local[c]) continue;
-    s.place[c] = static_cast<int>(s.tail_column.size());
+    s.position[c] = static_cast<int>(s.tail_column.size());
     s.tail_column.push_back(c);
   }
   s.tail = static_cast<int>(s.tail_column.size());
@@ -420,8 +443,8 @@ std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& ta
     for (const int j : touched) {
       const Layout::Place& block = layout.places[n + j];
       if (block.size == 0 || !s.is_local[block.first]) continue;
-      low = std::min(low, s.place[block.first]);
-      high = std::max(high, s.place[block.first] + block.size);
+      low = std::min(low, s.position[block.first]);
+      high = std::max(high, s.position[block.first] + block.size);
     }
     if (low >= high) return;
     if (highest >= 0) {
@@ -435,32 +458,20 @@ std::shared_ptr<const BorderShape> ShapeBorder(const std::vector<BlockTable>& ta
       const Layout::Place& block = layout.places[n + j];
       if (block.size == 0 || !s.is_local[block.first]) continue;
       for (int i = 0; i < block.size; ++i) {
-        int& r = reach[s.place[block.first] + i];
+        int& r = reach[s.position[block.first] + i];
         r = std::max(r, high - 1);
       }
     }
   });
-  s.at.assign(n + 1, 0);
+  s.offset.assign(n + 1, 0);
   for (int k = 0; k < n; ++k) {
     if (s.lo[k] >= s.hi[k]) s.lo[k] = s.hi[k] = 0;
-    s.at[k + 1] = s.at[k] + static_cast<size_t>(m) * s.Width(k);
+    s.offset[k + 1] = s.offset[k] + static_cast<size_t>(m) * s.Width(k);
   }
-  for (int i = 1; i < s.local; ++i) reach[i] = std::max(reach[i], reach[i - 1]);
-  s.start.resize(n + 1);
-  for (int k = 0; k <= n; ++k) {
-    s.start[k] =
-        static_cast<int>(std::lower_bound(closes.begin(), closes.end(), k) - closes.begin());
-  }
-  // The front's end: every column a state has touched, and, closed under the couplings on the
-  // globals alone, every column those reach, so a column enters before anything coupled to it
-  // closes.
-  s.end.resize(n);
-  int end = 0;
-  for (int k = 0; k < n; ++k) {
-    end = std::max(end, s.hi[k]);
-    while (end > 0 && reach[end - 1] >= end) end = reach[end - 1] + 1;
-    s.end[k] = end;
-  }
+  const int widest = OpenFronts(closes, reach, &s);
+  // A front as wide as half the dense border costs more than the dense border's fixed-size
+  // blocks (the window's two nodes at a node's change).
+  if (2 * (widest + s.tail) > g) return DenseBorder(n, m, g);
   return shape;
 }
 
@@ -881,9 +892,10 @@ ChainCovariance Marginals(const ChainFactorization<M>& f, int first_states = -1)
 //
 //   A_k = Phi_PP,   L_k = Phi_RP A_k^-1,   Phi_RR <- Phi_RR - L_k Phi_RP',
 //
-// and the tail's Schur complement S is left at the end. A front holds a state, the next and a
-// few columns, so memory and time grow with the states alone, where the dense border's
-// X = T^-1 B holds every column for every state.
+// and the tail's Schur complement S is left at the end. A front holds a state, the next, the local
+// columns open around them and the tail, where the dense border's X = T^-1 B holds every column
+// for every state: the states' share of memory and time does not grow with the local columns
+// (C, g x g, does).
 struct FrontalFactorization {
   std::shared_ptr<const BorderShape> shape;
   int n = 0, m = 0;
@@ -916,22 +928,99 @@ struct FrontalFactorization {
       return v / m == k + 1 ? p + v % m : -1;
     }
     const int c = v - n * m;
-    if (!s.is_local[c]) return p + r - s.tail + s.place[c];
-    const int q = s.place[c];
+    if (!s.is_local[c]) return p + r - s.tail + s.position[c];
+    const int q = s.position[c];
     if (q >= s.start[k] && q < s.start[k + 1]) return m + q - s.start[k];
     if (q >= s.start[k + 1] && q < s.end[k]) return p + (k + 1 < n ? m : 0) + q - s.start[k + 1];
     return -1;
   }
 };
 
+// H's entries as they enter the fronts of FactorFrontal, each once: a state's own (D_k, U_k, its
+// row of the border) at its step, C's for a column when it enters (the tail at the first step, a
+// local column when the front reaches it) with every column already in the front; damped on H's
+// own diagonal and cut where a variable is held, as Factor does them.
+class FrontEntries {
+ public:
+  FrontEntries(const Information& info, double mu, const std::vector<char>* held)
+      : info_(info), mu_(mu), held_(held) {}
+
+  // Adds step k's entries to its front (variables: FrontalFactorization::Variables(k)).
+  void Enter(const FrontalFactorization& f, int k, const std::vector<int>& variables,
+             MatrixXd* front) const {
+    EnterState(f, k, front);
+    EnterColumns(k, variables, front);
+  }
+
+ private:
+  bool Held(int v) const { return held_ != nullptr && (*held_)[v] != 0; }
+  // The entry between variables a and b at front positions i and j (and j, i).
+  void Add(MatrixXd* phi, int i, int j, int a, int b, double value) const {
+    if (Held(a) || Held(b)) return;
+    (*phi)(i, j) += value;
+    if (i != j) (*phi)(j, i) += value;
+  }
+  // A diagonal entry: damped, or 1 where the variable is held.
+  void AddDiagonal(MatrixXd* phi, int i, int a, double value) const {
+    (*phi)(i, i) += Held(a) ? 1.0 : value + (mu_ > 0.0 ? Damping(mu_, value) : 0.0);
+  }
+  double C(int a, int b) const {  // the caller's order, upper triangle
+    return info_
+        .C[static_cast<size_t>(std::min(a, b)) + static_cast<size_t>(info_.g) * std::max(a, b)];
+  }
+
+  void EnterState(const FrontalFactorization& f, int k, MatrixXd* front) const {
+    const int n = info_.n, m = info_.m, mm = m * m, p = f.Pivot(k);
+    const double* D = info_.D.data() + static_cast<size_t>(k) * mm;
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i < j; ++i) Add(front, i, j, k * m + i, k * m + j, D[i + m * j]);
+      AddDiagonal(front, j, k * m + j, D[j + m * j]);
+    }
+    if (k + 1 < n) {
+      const double* U = info_.U.data() + static_cast<size_t>(k) * mm;
+      for (int j = 0; j < m; ++j) {
+        for (int i = 0; i < m; ++i) Add(front, i, p + j, k * m + i, (k + 1) * m + j, U[i + m * j]);
+      }
+    }
+    const Eigen::Map<const MatrixXd> B = info_.Border(k);
+    for (int slot = 0; slot < B.cols(); ++slot) {
+      const int v = n * m + info_.shape->Column(k, slot);
+      const int j = f.Position(k, v);
+      for (int i = 0; i < m; ++i) Add(front, i, j, k * m + i, v, B(i, slot));
+    }
+  }
+
+  void EnterColumns(int k, const std::vector<int>& variables, MatrixXd* front) const {
+    const BorderShape& s = *info_.shape;
+    const int nm = info_.n * info_.m, size = static_cast<int>(variables.size());
+    const int entered = k == 0 ? 0 : s.end[k - 1];  // local positions from here enter now
+    const auto enters = [&](int c) { return s.is_local[c] ? s.position[c] >= entered : k == 0; };
+    for (int a = 0; a < size; ++a) {
+      const int va = variables[a];
+      if (va < nm || !enters(va - nm)) continue;
+      for (int b = 0; b < size; ++b) {
+        const int vb = variables[b];
+        if (vb < nm || (b > a && enters(vb - nm))) continue;  // both enter: once
+        if (b == a) {
+          AddDiagonal(front, a, va, C(va - nm, va - nm));
+        } else {
+          Add(front, a, b, va, vb, C(va - nm, vb - nm));
+        }
+      }
+    }
+  }
+
+  const Information& info_;
+  double mu_;
+  const std::vector<char>* held_;
+};
+
 // Factors an assembled H with a local border as FrontalFactorization (mu and held as Factor's).
 bool FactorFrontal(const Information& info, FrontalFactorization* f, double mu = 0.0,
                    const std::vector<char>* held = nullptr) {
-  const int n = info.n, m = info.m, g = info.g, mm = m * m;
+  const int n = info.n, m = info.m;
   f->shape = info.shape;
   f->n = n, f->m = m;
-  const BorderShape& s = *info.shape;
-  const auto is_held = [&](int v) { return held != nullptr && (*held)[v] != 0; };
   f->a_at.resize(n + 1);
   f->l_at.resize(n + 1);
   f->a_at[0] = f->l_at[0] = 0;
@@ -944,22 +1033,10 @@ bool FactorFrontal(const Information& info, FrontalFactorization* f, double mu =
   }
   f->a_inv.resize(f->a_at[n]);
   f->l.resize(f->l_at[n]);
-  MatrixXd front(widest, widest), carried(widest, widest);
+  const FrontEntries entries(info, mu, held);
+  MatrixXd front(widest, widest), carried(widest, widest), identity;
   std::vector<int> variables, previous, moved;
   int carried_size = 0;
-  // H's entry between variables a and b as it enters the front, at front positions i and j.
-  const auto enter = [&](MatrixXd* phi, int i, int j, int a, int b, double value) {
-    if (is_held(a) || is_held(b)) return;
-    (*phi)(i, j) += value;
-    if (i != j) (*phi)(j, i) += value;
-  };
-  // A diagonal entry: damped, or 1 where the variable is held.
-  const auto enter_diagonal = [&](MatrixXd* phi, int i, int a, double value) {
-    (*phi)(i, i) += is_held(a) ? 1.0 : value + (mu > 0.0 ? Damping(mu, value) : 0.0);
-  };
-  const auto c_entry = [&](int a, int b) {  // C in the caller's order, upper triangle
-    return info.C[static_cast<size_t>(std::min(a, b)) + static_cast<size_t>(g) * std::max(a, b)];
-  };
   for (int k = 0; k < n; ++k) {
     const int p = f->Pivot(k), r = f->Rest(k), size = p + r;
     f->Variables(k, &variables);
@@ -971,57 +1048,18 @@ bool FactorFrontal(const Information& info, FrontalFactorization* f, double mu =
     for (int j = 0; j < carried_size; ++j) {
       for (int i = 0; i < carried_size; ++i) phi(moved[i], moved[j]) = carried(i, j);
     }
-    // State k's own entries: D_k, U_k (with x_{k+1}), its row of the border.
-    const double* D = info.D.data() + static_cast<size_t>(k) * mm;
-    for (int j = 0; j < m; ++j) {
-      for (int i = 0; i < j; ++i) enter(&front, i, j, k * m + i, k * m + j, D[i + m * j]);
-      enter_diagonal(&front, j, k * m + j, D[j + m * j]);
-    }
-    if (k + 1 < n) {
-      const double* U = info.U.data() + static_cast<size_t>(k) * mm;
-      for (int j = 0; j < m; ++j) {
-        for (int i = 0; i < m; ++i) {
-          enter(&front, i, p + j, k * m + i, (k + 1) * m + j, U[i + m * j]);
-        }
-      }
-    }
-    const Eigen::Map<const MatrixXd> B = info.Border(k);
-    for (int slot = 0; slot < B.cols(); ++slot) {
-      const int v = n * m + s.Column(k, slot);
-      const int j = f->Position(k, v);
-      for (int i = 0; i < m; ++i) enter(&front, i, j, k * m + i, v, B(i, slot));
-    }
-    // C's entries of the columns that enter: the tail at the first step, then each local
-    // column as the front reaches it, with every column already in the front.
-    const int entered = k == 0 ? 0 : s.end[k - 1];
-    for (int a = 0; a < size; ++a) {
-      const int va = variables[a];
-      if (va < n * m) continue;
-      const int ca = va - n * m;
-      const bool a_enters = s.is_local[ca] ? s.place[ca] >= entered : k == 0;
-      if (!a_enters) continue;
-      for (int b = 0; b < size; ++b) {
-        const int vb = variables[b];
-        if (vb < n * m) continue;
-        const int cb = vb - n * m;
-        const bool b_enters = s.is_local[cb] ? s.place[cb] >= entered : k == 0;
-        if (b_enters && b > a) continue;  // both enter: once
-        if (b == a) {
-          enter_diagonal(&front, a, va, c_entry(ca, ca));
-        } else {
-          enter(&front, a, b, va, vb, c_entry(ca, cb));
-        }
-      }
-    }
+    entries.Enter(*f, k, variables, &front);
     // Eliminate the pivot.
     Eigen::LLT<MatrixXd> llt(phi.topLeftCorner(p, p));
     if (llt.info() != Eigen::Success) {
       f->error = "the information of state " + std::to_string(k) +
+                 (p > m ? " and the border columns that close with it" : "") +
                  " is not positive definite (a direction no factor constrains)";
       return false;
     }
     Eigen::Map<MatrixXd> A_inv(f->a_inv.data() + f->a_at[k], p, p);
-    A_inv = llt.solve(MatrixXd::Identity(p, p));
+    if (identity.rows() != p) identity = MatrixXd::Identity(p, p);
+    A_inv = llt.solve(identity);
     Eigen::Map<MatrixXd> L(f->l.data() + f->l_at[k], r, p);
     L.noalias() = phi.bottomLeftCorner(r, p) * A_inv;
     auto rest = carried.topLeftCorner(r, r);
@@ -1030,8 +1068,9 @@ bool FactorFrontal(const Information& info, FrontalFactorization* f, double mu =
     carried_size = r;
     previous.assign(variables.begin() + p, variables.end());
   }
-  if (s.tail == 0) return true;
-  f->S.compute(carried.topLeftCorner(s.tail, s.tail));
+  const int tail = info.shape->tail;
+  if (tail == 0) return true;
+  f->S.compute(carried.topLeftCorner(tail, tail));
   if (f->S.info() != Eigen::Success) {
     f->error = "the global parameters' information is not positive definite";
     return false;
@@ -1097,7 +1136,7 @@ ChainCovariance MarginalsFrontal(const FrontalFactorization& f, int first_states
     for (int j = 0; j < s.tail; ++j) out.globals(s.tail_column[i], s.tail_column[j]) = tail(i, j);
   }
   MatrixXd later = tail, front, rest_cov;  // step k + 1's front covariance
-  std::vector<int> variables, later_variables;
+  std::vector<int> variables, at;
   for (int k = n - 1; k >= 0; --k) {
     const int p = f.Pivot(k), r = f.Rest(k);
     f.Variables(k, &variables);
@@ -1105,7 +1144,7 @@ ChainCovariance MarginalsFrontal(const FrontalFactorization& f, int first_states
     if (k == n - 1) {
       rest_cov = later;
     } else {
-      std::vector<int> at(r);
+      at.resize(r);
       for (int i = 0; i < r; ++i) at[i] = f.Position(k + 1, variables[p + i]);
       for (int j = 0; j < r; ++j) {
         for (int i = 0; i < r; ++i) rest_cov(i, j) = later(at[i], at[j]);
@@ -1138,15 +1177,16 @@ template <int M>
 struct AnyFactorization {
   ChainFactorization<M> chain;
   FrontalFactorization frontal;
-  bool along = false;  // the frontal one
-  const std::string& error() const { return along ? frontal.error : chain.error; }
+  bool frontal_used = false;
+  const std::string& error() const { return frontal_used ? frontal.error : chain.error; }
 };
 
 template <int M>
 bool FactorAny(const Information& info, AnyFactorization<M>* f, double mu = 0.0,
                const std::vector<char>* held = nullptr) {
-  f->along = info.shape->local > 0;
-  return f->along ? FactorFrontal(info, &f->frontal, mu, held) : Factor(info, &f->chain, mu, held);
+  f->frontal_used = info.shape->local > 0;
+  return f->frontal_used ? FactorFrontal(info, &f->frontal, mu, held)
+                         : Factor(info, &f->chain, mu, held);
 }
 
 // Checks the blocks: the states' size m and the globals' tangent size g; false with *error.
@@ -1217,7 +1257,7 @@ void Solve(const ChainFactorization<M>& f, const std::vector<double>& gradient,
 template <int M>
 void Solve(const AnyFactorization<M>& f, const std::vector<double>& gradient,
            std::vector<Eigen::VectorXd>* dx, Eigen::VectorXd* dg) {
-  if (f.along) {
+  if (f.frontal_used) {
     SolveFrontal(f.frontal, gradient, dx, dg);
   } else {
     Solve(f.chain, gradient, dx, dg);
@@ -1226,7 +1266,8 @@ void Solve(const AnyFactorization<M>& f, const std::vector<double>& gradient,
 
 template <int M>
 ChainCovariance Marginals(const AnyFactorization<M>& f, int first_states = -1) {
-  return f.along ? MarginalsFrontal(f.frontal, first_states) : Marginals(f.chain, first_states);
+  return f.frontal_used ? MarginalsFrontal(f.frontal, first_states)
+                        : Marginals(f.chain, first_states);
 }
 
 template <int M>

@@ -12,6 +12,13 @@
 //
 //   cov(x_k) = Sigma_kk + X_k S^-1 X_k',   X = T^-1 B,     cov(globals) = S^-1.
 //
+// A global that only a stretch of the chain reads (a stiffness node of the tire law's walk, read
+// by the states within 60 s of it) is "local": where such columns are most of the border, each
+// is eliminated right after the last state that reads it, in a front that moves along the chain
+// (a state, the next, the local columns open around them, and the rest of the border, the
+// "tail"), so the states' share of memory and time does not grow with the number of nodes; the
+// same recursion runs on the fronts, and S is the tail's Schur complement.
+//
 // ceres::Covariance (SPARSE_QR) takes 40 s for the 6300 states of a one-minute log; this takes
 // milliseconds and is checked against it in a test. The Jacobian is loss-corrected, as the
 // solver sees it.

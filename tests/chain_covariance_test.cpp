@@ -475,11 +475,13 @@ TEST(ChainCovariance, SensitivityIsTheSolutionsShiftWhenAConstantMoves) {
   EXPECT_FALSE(ComputeChainSensitivity(&problem, states, {&c}, measured).ok);
 }
 
-// A chain whose border is mostly local, as the tire law's stiffness nodes are: node j is read by
-// the states of [8 j, 8 j + 10) only, consecutive nodes are tied by a walk, and an offset (and
-// the last node, which the last state reads) is read throughout. Every result of the
-// linearization is checked against the dense H = J'J of Problem::Evaluate's Jacobian, with the
-// globals given in a scrambled order.
+// Chains whose border is mostly local, as the tire law's stiffness nodes are: node j is read by
+// the states of [8 j - 2, 8 j + 8) only (the first two with node j - 1 too), consecutive nodes are
+// tied by a walk and nodes 3 and 5, which no state reads together, by another; a two-column node
+// is read by states 40-49. With a tail, an offset is read throughout and the last node by the
+// last state; without, the last states read no global. Every result of the linearization is
+// checked against the dense H = J'J of Problem::Evaluate's Jacobian, the globals given in a
+// scrambled order. The tolerances are a few hundred times the rounding of H's entries.
 struct NodeMeasurement {  // x_k against node j
   double z, a;
   template <typename T>
@@ -511,48 +513,84 @@ struct NodeWalk {
     return true;
   }
 };
+struct PairNodeMeasurement {  // x_k against a two-column node
+  template <typename T>
+  bool operator()(const T* x, const T* node, T* r) const {
+    r[0] = (x[0] - node[0] + 0.3 * node[1]) / 0.4;
+    r[1] = (x[1] - node[1]) / 0.6;
+    return true;
+  }
+};
 
-TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
-  constexpr int n = 40, kNodes = 5;
-  std::vector<std::array<double, 2>> x(n);
-  for (int k = 0; k < n; ++k) x[k] = {0.1 * k, std::sin(0.3 * k)};
-  std::array<double, kNodes> nodes = {0.4, -0.2, 0.1, 0.3, -0.1};
+struct LocalBorderChain {
+  static constexpr int kNodes = 16, n = 8 * kNodes + 4;
+  std::vector<std::array<double, 2>> x = std::vector<std::array<double, 2>>(n);
+  std::array<double, kNodes> nodes{};
+  std::array<double, 2> pair = {0.3, -0.2};
   double c = 0.2;
   ceres::Problem problem;
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairAnchor, 2, 2>(new PairAnchor),
-                           nullptr, x[0].data());
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 1, 1>(new OffsetPrior),
-                           nullptr, &nodes[0]);
-  for (int j = 0; j + 1 < kNodes; ++j) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeWalk, 1, 1, 1>(new NodeWalk),
-                             nullptr, &nodes[j], &nodes[j + 1]);
-  }
-  const auto node_of = [](int k) { return std::min(kNodes - 1, k / 8); };
-  for (int k = 0; k < n; ++k) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetMeasurement, 2, 2, 1>(
-                                 new OffsetMeasurement{0.1 * k, 0.02 * k * k}),
-                             nullptr, x[k].data(), &c);
-    const int j = node_of(k);
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeMeasurement, 1, 2, 1>(
-                                 new NodeMeasurement{0.05 * k, 1.0 + 0.1 * (k % 3)}),
-                             nullptr, x[k].data(), &nodes[j]);
-    if (k % 8 >= 6 && j + 1 < kNodes) {  // the overlap: read by the next node too
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<NodeBlend, 1, 2, 1, 1>(new NodeBlend{0.25 * (k % 8 - 5)}),
-          nullptr, x[k].data(), &nodes[j], &nodes[j + 1]);
-    }
-    if (k + 1 < n) {
-      problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<NodeDrift, 2, 2, 2, 1>(new NodeDrift), nullptr,
-          x[k].data(), x[k + 1].data(), &nodes[j]);
-    }
-  }
-  std::vector<double*> states;
-  for (auto& s : x) states.push_back(s.data());
-  const std::vector<double*> globals = {&nodes[3], &c, &nodes[0], &nodes[4], &nodes[1], &nodes[2]};
-  const int g = static_cast<int>(globals.size()), size = 2 * n + g;
+  std::vector<double*> states, globals;
 
-  // The dense reference.
+  explicit LocalBorderChain(bool with_tail) {
+    for (int k = 0; k < n; ++k) x[k] = {0.1 * k, std::sin(0.3 * k)};
+    for (int j = 0; j < kNodes; ++j) nodes[j] = 0.3 * std::cos(1.3 * j);
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairAnchor, 2, 2>(new PairAnchor),
+                             nullptr, x[0].data());
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetPrior, 1, 1>(new OffsetPrior),
+                             nullptr, &nodes[0]);
+    for (int j = 0; j + 1 < kNodes; ++j) Walk(j, j + 1);
+    Walk(3, 5);
+    // With a tail the last node is read to the last state; without, every global closes early.
+    const int reading = with_tail ? n : n - 3;
+    for (int k = 0; k < n; ++k) {
+      const int j = std::min(kNodes - 1, k / 8);
+      if (with_tail) {
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<OffsetMeasurement, 2, 2, 1>(
+                                     new OffsetMeasurement{0.1 * k, 0.02 * k * k}),
+                                 nullptr, x[k].data(), &c);
+      }
+      if (k < reading) {
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeMeasurement, 1, 2, 1>(
+                                     new NodeMeasurement{0.05 * k, 1.0 + 0.1 * (k % 3)}),
+                                 nullptr, x[k].data(), &nodes[j]);
+      }
+      if (k < reading && k % 8 >= 6 && j + 1 < kNodes) {
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeBlend, 1, 2, 1, 1>(
+                                     new NodeBlend{0.25 * (k % 8 - 5)}),
+                                 nullptr, x[k].data(), &nodes[j], &nodes[j + 1]);
+      }
+      if (k >= 40 && k < 50) {
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<PairNodeMeasurement, 2, 2, 2>(new PairNodeMeasurement),
+            nullptr, x[k].data(), pair.data());
+      }
+      if (k + 1 < n && k + 1 < reading) {
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<NodeDrift, 2, 2, 2, 1>(new NodeDrift), nullptr,
+            x[k].data(), x[k + 1].data(), &nodes[j]);
+      } else if (k + 1 < n) {
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PairLink, 2, 2, 2>(new PairLink),
+                                 nullptr, x[k].data(), x[k + 1].data());
+      }
+    }
+    for (auto& s : x) states.push_back(s.data());
+    for (int j = kNodes - 1; j >= 0; j -= 2) globals.push_back(&nodes[j]);
+    globals.push_back(pair.data());
+    if (with_tail) globals.push_back(&c);
+    for (int j = kNodes - 2; j >= 0; j -= 2) globals.push_back(&nodes[j]);
+  }
+  void Walk(int a, int b) {
+    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<NodeWalk, 1, 1, 1>(new NodeWalk),
+                             nullptr, &nodes[a], &nodes[b]);
+  }
+};
+
+void ExpectTheDenseSolution(LocalBorderChain* chain, int local_columns) {
+  ceres::Problem& problem = chain->problem;
+  const std::vector<double*>& states = chain->states;
+  const std::vector<double*>& globals = chain->globals;
+  const int n = LocalBorderChain::n, g = LocalBorderChain::kNodes + 2 + (local_columns < 18),
+            size = 2 * n + g;
   ceres::Problem::EvaluateOptions options;
   options.parameter_blocks = states;
   options.parameter_blocks.insert(options.parameter_blocks.end(), globals.begin(), globals.end());
@@ -577,7 +615,7 @@ TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
   ChainLinearization linearization;
   std::string error;
   ASSERT_TRUE(linearization.Linearize(&problem, states, globals, &error)) << error;
-  EXPECT_EQ(linearization.LocalBorderColumns(), 4);  // nodes 0-3; node 4 and c: the tail
+  EXPECT_EQ(linearization.LocalBorderColumns(), local_columns);
   EXPECT_NEAR(linearization.cost(), cost, 1e-12 * cost);
   for (int i = 0; i < size; ++i) ASSERT_NEAR(linearization.gradient()[i], grad[i], 1e-10) << i;
 
@@ -594,9 +632,11 @@ TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
                 -(grad.dot(d) + 0.5 * d.dot(H * d)), 1e-10 * cost)
         << mu;
   }
-  // Held columns (a state's component, a local node, the offset): cut from H, their step 0.
+  // Held columns (a state's component, a node, the two-column node's second): cut from H, their
+  // step 0.
   std::vector<char> held(size, 0);
-  held[2 * 13 + 1] = held[2 * n + 4] = held[2 * n + 1] = 1;  // x_13[1], nodes[1], c
+  const int pair_column = 2 * n + LocalBorderChain::kNodes / 2 + 1;  // globals' order
+  held[2 * 13 + 1] = held[2 * n + 4] = held[pair_column] = 1;
   {
     Eigen::MatrixXd cut = H;
     Eigen::VectorXd rhs = -grad;
@@ -613,6 +653,7 @@ TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
     const Eigen::VectorXd d = stacked(step);
     EXPECT_LT((d - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff());
     EXPECT_EQ(d[2 * n + 4], 0.0);
+    EXPECT_EQ(d[pair_column], 0.0);
   }
   // The marginal covariances: every state, consecutive pairs, the globals that share a front.
   ChainStep step;
@@ -635,7 +676,12 @@ TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
       ++compared;
     }
   }
-  EXPECT_GE(compared, g + 2 * 4);  // the diagonal and each node with its neighbours at least
+  EXPECT_GE(compared, 3 * g - 2);  // the diagonal and each node with its neighbours at least
+  // The first states' only, as the window asks for the states that leave it.
+  const ChainCovariance first = linearization.LastStepCovariance(5);
+  ASSERT_TRUE(first.ok) << first.error;
+  EXPECT_LT((first.states[4] - covariance.states[4]).norm(), 1e-14);
+  EXPECT_EQ(first.states[5].size(), 0);
   const ChainCovariance recomputed = ComputeChainCovariance(&problem, states, globals);
   ASSERT_TRUE(recomputed.ok) << recomputed.error;
   EXPECT_LT((recomputed.states[20] - covariance.states[20]).norm(), 1e-14);
@@ -653,6 +699,18 @@ TEST(ChainCovariance, ALocalBorderIsSolvedAsTheDenseSystem) {
     EXPECT_LT((sensitivity.states[0][k] - expected.segment(2 * k, 2)).norm(), 1e-10) << k;
   }
   EXPECT_LT((sensitivity.globals[0] - expected.tail(g)).norm(), 1e-10);
+}
+
+TEST(ChainCovariance, ALocalBorderWithATailIsSolvedAsTheDenseSystem) {
+  LocalBorderChain chain(true);
+  // The nodes but the last (15) and the two-column node's two; the offset and the last node: the
+  // tail.
+  ExpectTheDenseSolution(&chain, 17);
+}
+
+TEST(ChainCovariance, ABorderThatIsAllLocalIsSolvedAsTheDenseSystem) {
+  LocalBorderChain chain(false);
+  ExpectTheDenseSolution(&chain, 18);
 }
 
 }  // namespace
