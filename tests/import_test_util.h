@@ -17,7 +17,8 @@ namespace slipgraph {
 namespace testing {
 
 // Writes `mapping_path` with the first `from` replaced by `to` to a temporary file named `name`
-// and returns its path; fails the test when `from` is not there.
+// (prefixed with the running test's name: ctest runs tests side by side, each altering the same
+// mapping its own way) and returns its path; fails the test when `from` is not there.
 inline std::string AlteredMapping(const std::string& mapping_path, const std::string& from,
                                   const std::string& to, const std::string& name) {
   std::ifstream in(mapping_path);
@@ -25,7 +26,10 @@ inline std::string AlteredMapping(const std::string& mapping_path, const std::st
   const size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
-  const std::string path = ::testing::TempDir() + "/" + name;
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string prefix =
+      test == nullptr ? "" : std::string(test->test_suite_name()) + "." + test->name() + ".";
+  const std::string path = ::testing::TempDir() + "/" + prefix + name;
   std::ofstream(path) << text;
   return path;
 }
