@@ -657,8 +657,6 @@ class BlockEvaluation {
 struct Partition {
   std::vector<BlockTable> tables;  // one per run of states, then the blocks after them
   std::shared_ptr<const BorderShape> shape;
-  size_t size() const { return tables.size(); }
-  bool empty() const { return tables.empty(); }
   void clear() {
     tables.clear();
     shape.reset();
