@@ -36,6 +36,15 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
       << Figure(fitted.gnss_nis_mean) << " (" << fitted.gnss_fixes << " fixes), flagged "
       << Figure(100.0 * nominal.flagged_fraction) << " % -> "
       << Figure(100.0 * fitted.flagged_fraction) << " %";
+  if (fitted.prediction_spans > 0) {
+    out << ", 2-s prediction error against "
+        << (fitted.prediction_against_pose ? "the reference pose" : "GNSS") << " RMS "
+        << Figure(nominal.prediction_rms_m) << " -> " << Figure(fitted.prediction_rms_m)
+        << " m, mean " << Figure(nominal.prediction_mean_m) << " -> "
+        << Figure(fitted.prediction_mean_m) << " +- " << Figure(fitted.prediction_mean_se_m)
+        << " m (" << fitted.prediction_spans << " spans of " << Figure(fitted.prediction_distance_m)
+        << " m)";
+  }
   if (std::isfinite(fitted.velocity_rmse)) {
     out << "; against truth: v RMSE " << Figure(nominal.velocity_rmse) << " -> "
         << Figure(fitted.velocity_rmse) << " m/s, false immobilized "

@@ -12,7 +12,14 @@ nlohmann::json ToJson(const ModelScore& s) {
           {"gnss_nis_mean", JsonNumber(s.gnss_nis_mean)},
           {"flagged_fraction", s.flagged_fraction},
           {"velocity_rmse_mps", JsonNumber(s.velocity_rmse)},
-          {"false_immobilized_fraction", JsonNumber(s.false_immobilized_fraction)}};
+          {"false_immobilized_fraction", JsonNumber(s.false_immobilized_fraction)},
+          {"prediction_2s",
+           {{"spans", s.prediction_spans},
+            {"reference", s.prediction_against_pose ? "pose" : "gnss"},
+            {"rms_m", JsonNumber(s.prediction_rms_m)},
+            {"mean_m", JsonNumber(s.prediction_mean_m)},
+            {"mean_se_m", JsonNumber(s.prediction_mean_se_m)},
+            {"distance_m", JsonNumber(s.prediction_distance_m)}}}};
 }
 
 nlohmann::json ToJson(const IdentificationResult& r) {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "evaluation/evaluation.h"
+#include "evaluation/outage_prediction.h"
 #include "io/estimate_file.h"
 #include "io/measurement_stream.h"
 #include "solvers/batch_smoother.h"
@@ -500,6 +501,25 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
     const Evaluation ev = Evaluate(log, EstimateTable(result.estimates));
     score.velocity_rmse = ev.velocity_rmse;
     score.false_immobilized_fraction = ev.false_immobilized_fraction();
+  }
+  if (use_gps && !log.gps.empty()) {
+    // Two runs whose outages alternate, so that most of the drive is predicted once.
+    PredictionError prediction;
+    OutagePlanOptions plan;
+    run.ekf.record_innovations = false;
+    for (const double offset_s : {0.0, plan.horizon_s}) {
+      plan.offset_s = offset_s;
+      const std::vector<OutageSpan> spans = PlanOutages(log, plan);
+      if (spans.empty()) continue;
+      const FilterResult predicted = RunEkf(WithoutFixesInside(log, spans), model, run);
+      AddPredictionErrors(log, spans, predicted.estimates, &prediction);
+    }
+    score.prediction_spans = prediction.spans();
+    score.prediction_against_pose = prediction.against_pose;
+    score.prediction_rms_m = prediction.rms_m();
+    score.prediction_mean_m = prediction.mean_m();
+    score.prediction_mean_se_m = prediction.standard_error_m();
+    score.prediction_distance_m = prediction.mean_distance_m();
   }
   return score;
 }

@@ -128,6 +128,17 @@ struct ModelScore {
   double false_immobilized_fraction = std::nan("");
   // Samples off the wheels, as the front end's trust check counts them (solvers/trust_check.h).
   double off_wheels_fraction = 0.0;
+  // The 2-s prediction error against the GNSS fixes, or the reference poses where the log has
+  // them (evaluation/outage_prediction.h), the same front end run twice more with GNSS withheld
+  // over alternate spans where the wheels turn: over the spans, the RMS and the mean (with its
+  // standard error) of the predicted distance less the reference's (m), and the reference's mean
+  // distance. Without GNSS (use_gps false, or a log without fixes) no spans.
+  long prediction_spans = 0;
+  bool prediction_against_pose = false;
+  double prediction_rms_m = std::nan("");
+  double prediction_mean_m = std::nan("");
+  double prediction_mean_se_m = std::nan("");
+  double prediction_distance_m = std::nan("");
 };
 ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true,
                       bool gnss_fading = false);

@@ -1,0 +1,73 @@
+// The 2-s prediction error: how far a model's prediction from the wheels and the IMU alone lands
+// from where GNSS says the robot went, where no truth exists (Rogers-Marcovitz, Seegmiller &
+// Kelly score a slip model by the pose error it predicts over path segments of a few seconds).
+//
+// The front end runs on the log with GNSS withheld over spans between two fixes (PlanOutages,
+// WithoutFixesInside): across a span its estimate is the model's prediction from the state it had
+// at the span's first fix. The distance the prediction covers over the span, the chord of the path
+// integrated from v_bx and the yaw rate, is compared with the distance between the span's two
+// fixes (AddPredictionErrors), or between the reference poses at their times where the log has
+// pose.csv (an INS/GNSS solution, as the paper scored against). The chord does not depend on the
+// heading at the start, which the model does not predict and a robot's attitude stream may not
+// reference to east.
+//
+// What it measures: the along-path error of the velocity the model gives the wheels (slip, the
+// radius, the tire law) and, at second order, the yaw rate's. Against fixes its floor is their
+// own position noise (sqrt(2) sd_xy in each chord: 0.7 m for 0.5 m fixes, a third of the distance
+// at 1 m/s), the same for every model run on the log: compare models on one log, by the mean
+// error (a model's bias, whose standard error falls with the number of spans) as well as the
+// RMS.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "io/drive_log.h"
+#include "io/state_estimate.h"
+
+namespace slipgraph {
+
+struct OutageSpan {
+  size_t first_fix = 0, last_fix = 0;  // indices into log.gps: the fixes at the span's ends
+  double t_start = 0.0, t_end = 0.0;   // their times
+};
+
+struct OutagePlanOptions {
+  double horizon_s = 2.0;  // a span ends at the first fix at least this long after its start
+  // Fixes left between one span and the next, for the filter to recover (s).
+  double recover_s = 2.0;
+  double offset_s = 0.0;  // the first span starts at the first fix this long after the first fix
+  // A span counts where the wheels' mean rim speed over it is at least this (m/s): standing
+  // still, every model predicts the robot stands still.
+  double min_rim_speed_mps = 0.2;
+};
+
+// Spans from fix to fix, each horizon_s long or a little more, recover_s apart, over the whole
+// log, and only where the wheels turn (options.min_rim_speed_mps, from the log's wheel samples
+// and vehicle.yaml's radius). Empty without fixes.
+std::vector<OutageSpan> PlanOutages(const DriveLog& log, const OutagePlanOptions& options = {});
+
+// The log without the fixes strictly inside the spans (the fixes at their ends kept).
+DriveLog WithoutFixesInside(const DriveLog& log, const std::vector<OutageSpan>& spans);
+
+struct PredictionError {
+  // Per span: the predicted chord minus the GNSS chord (m); positive: the model ran ahead.
+  std::vector<double> errors_m;
+  std::vector<double> distances_m;  // the reference's chords (m)
+
+  bool against_pose = false;  // the reference poses (pose.csv) rather than the fixes
+
+  long spans() const { return static_cast<long>(errors_m.size()); }
+  double rms_m() const;             // NaN without spans
+  double mean_m() const;            // the signed mean, NaN without spans
+  double standard_error_m() const;  // the mean's, NaN with fewer than two spans
+  double mean_distance_m() const;   // NaN without spans
+};
+
+// Adds one span's error per span (estimates: the front end's on the log WithoutFixesInside the
+// spans, in time order), against the log's reference poses where it has them, else its fixes.
+// A span whose estimates or poses do not cover it is left out.
+void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spans,
+                         const std::vector<WardEstimate>& estimates, PredictionError* error);
+
+}  // namespace slipgraph
