@@ -1,64 +1,87 @@
 #include "evaluation/outage_prediction.h"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include "model/option_check.h"
 
 namespace slipgraph {
-namespace {
 
-// The wheels' mean rim speed over [t_start, t_end] (m/s): the mean over the samples in it of the
-// mean of |omega| r over the log's wheels; NaN without a sample in it.
-double MeanRimSpeed(const DriveLog& log, double t_start, double t_end) {
-  const int wheels = log.wheel_count();
-  const auto first =
-      std::lower_bound(log.wheels.begin(), log.wheels.end(), t_start,
-                       [](const WheelSample& sample, double t) { return sample.t < t; });
-  double sum = 0.0;
-  long samples = 0;
-  for (auto it = first; it != log.wheels.end() && it->t <= t_end; ++it) {
-    double speed = 0.0;
-    for (int w = 0; w < wheels; ++w) speed += std::abs(it->omega_radps[w]);
-    sum += speed / wheels * log.vehicle.wheel_radius_m;
-    ++samples;
-  }
-  return samples > 0 ? sum / samples : std::nan("");
+bool OutagePlanOptions::IsValid(std::string* error) const {
+  return OptionCheck("OutagePlanOptions", error)
+      .Positive("horizon_s", horizon_s)
+      .NonNegative("recover_s", recover_s)
+      .NonNegative("offset_s", offset_s)
+      .NonNegative("min_rim_speed_mps", min_rim_speed_mps)
+      .AtLeast("max_span_horizons", max_span_horizons, 1.0)
+      .Positive("max_pose_gap_s", max_pose_gap_s);
 }
 
-// The reference pose's planar position at t, linear between samples; false outside them.
-bool PoseAt(const std::vector<PoseSample>& poses, double t, double* x, double* y) {
-  const auto after = std::lower_bound(
-      poses.begin(), poses.end(), t, [](const PoseSample& pose, double at) { return pose.t < at; });
-  if (after == poses.end() || (after == poses.begin() && after->t > t)) return false;
-  if (after->t == t || after == poses.begin()) {
-    *x = after->x, *y = after->y;
+namespace {
+
+// The wheels' mean rim speed over [t_start_s, t_end_s] (m/s): the mean over the samples in it of
+// the mean of |omega| r over the log's wheels; NaN without a sample in it.
+double MeanRimSpeedMps(const DriveLog& log, double t_start_s, double t_end_s) {
+  const int wheels = log.wheel_count();
+  const auto first =
+      std::lower_bound(log.wheels.begin(), log.wheels.end(), t_start_s,
+                       [](const WheelSample& sample, double t_s) { return sample.t < t_s; });
+  double sum_mps = 0.0;
+  long samples = 0;
+  for (auto it = first; it != log.wheels.end() && it->t <= t_end_s; ++it) {
+    double sum_radps = 0.0;
+    for (int w = 0; w < wheels; ++w) sum_radps += std::abs(it->omega_radps[w]);
+    sum_mps += sum_radps / wheels * log.vehicle.wheel_radius_m;
+    ++samples;
+  }
+  return samples > 0 ? sum_mps / samples : std::nan("");
+}
+
+// The reference pose's planar position at t_s, linear between the samples around it; false
+// outside them or where they are more than max_gap_s apart.
+bool PoseAt(const std::vector<PoseSample>& poses, double t_s, double max_gap_s, double* x_m,
+            double* y_m) {
+  const auto after =
+      std::lower_bound(poses.begin(), poses.end(), t_s,
+                       [](const PoseSample& pose, double at_s) { return pose.t < at_s; });
+  if (after == poses.end()) return false;
+  if (after->t == t_s) {
+    *x_m = after->x, *y_m = after->y;
     return true;
   }
+  if (after == poses.begin()) return false;
   const PoseSample& before = *(after - 1);
-  const double w = (t - before.t) / (after->t - before.t);
-  *x = before.x + w * (after->x - before.x);
-  *y = before.y + w * (after->y - before.y);
+  if (after->t - before.t > max_gap_s) return false;
+  const double w = (t_s - before.t) / (after->t - before.t);
+  *x_m = before.x + w * (after->x - before.x);
+  *y_m = before.y + w * (after->y - before.y);
   return true;
 }
 
 }  // namespace
 
 std::vector<OutageSpan> PlanOutages(const DriveLog& log, const OutagePlanOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw std::invalid_argument(error);
   std::vector<OutageSpan> spans;
   if (log.gps.empty() || log.wheel_count() == 0) return spans;
   const std::vector<GpsSample>& fixes = log.gps;
-  double next_start = fixes.front().t + options.offset_s;
+  double next_start_s = fixes.front().t + options.offset_s;
   size_t a = 0;
   while (true) {
-    while (a < fixes.size() && fixes[a].t < next_start) ++a;
+    while (a < fixes.size() && fixes[a].t < next_start_s) ++a;
     if (a >= fixes.size()) break;
     size_t b = a + 1;
     while (b < fixes.size() && fixes[b].t < fixes[a].t + options.horizon_s) ++b;
     if (b >= fixes.size()) break;
-    // A gap in the fixes longer than the span itself is an outage of the log's own, not a span.
-    if (fixes[b].t - fixes[a].t <= 1.5 * options.horizon_s &&
-        MeanRimSpeed(log, fixes[a].t, fixes[b].t) >= options.min_rim_speed_mps) {
+    // A gap in the fixes much longer than the span is an outage of the log's own, not a span.
+    if (fixes[b].t - fixes[a].t <= options.max_span_horizons * options.horizon_s &&
+        MeanRimSpeedMps(log, fixes[a].t, fixes[b].t) >= options.min_rim_speed_mps) {
       spans.push_back({a, b, fixes[a].t, fixes[b].t});
     }
-    next_start = fixes[b].t + options.recover_s;
+    // The next span starts at fix b or later: spans never overlap, and the loop ends.
+    next_start_s = fixes[b].t + options.recover_s;
+    a = b;
   }
   return spans;
 }
@@ -77,69 +100,71 @@ DriveLog WithoutFixesInside(const DriveLog& log, const std::vector<OutageSpan>& 
 
 double PredictionError::rms_m() const {
   if (errors_m.empty()) return std::nan("");
-  double sum = 0.0;
-  for (const double e : errors_m) sum += e * e;
-  return std::sqrt(sum / errors_m.size());
+  double sum_m2 = 0.0;
+  for (const double e_m : errors_m) sum_m2 += e_m * e_m;
+  return std::sqrt(sum_m2 / errors_m.size());
 }
 
 double PredictionError::mean_m() const {
   if (errors_m.empty()) return std::nan("");
-  double sum = 0.0;
-  for (const double e : errors_m) sum += e;
-  return sum / errors_m.size();
+  double sum_m = 0.0;
+  for (const double e_m : errors_m) sum_m += e_m;
+  return sum_m / errors_m.size();
 }
 
 double PredictionError::standard_error_m() const {
   if (errors_m.size() < 2) return std::nan("");
   const double mean = mean_m();
-  double sum = 0.0;
-  for (const double e : errors_m) sum += (e - mean) * (e - mean);
-  return std::sqrt(sum / (errors_m.size() - 1) / errors_m.size());
+  double sum_m2 = 0.0;
+  for (const double e_m : errors_m) sum_m2 += (e_m - mean) * (e_m - mean);
+  return std::sqrt(sum_m2 / (errors_m.size() - 1) / errors_m.size());
 }
 
 double PredictionError::mean_distance_m() const {
   if (distances_m.empty()) return std::nan("");
-  double sum = 0.0;
-  for (const double d : distances_m) sum += d;
-  return sum / distances_m.size();
+  double sum_m = 0.0;
+  for (const double d_m : distances_m) sum_m += d_m;
+  return sum_m / distances_m.size();
 }
 
 void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spans,
-                         const std::vector<WardEstimate>& estimates, PredictionError* error) {
+                         const std::vector<WardEstimate>& estimates, PredictionError* error,
+                         const OutagePlanOptions& options) {
+  error->against_pose = !log.pose.empty();
   for (const OutageSpan& span : spans) {
     // The path from the estimate at or just before the span's start to the last one before its
     // end, each estimate held until the next (the filter's own zero-order view between samples).
     auto it =
-        std::upper_bound(estimates.begin(), estimates.end(), span.t_start,
-                         [](double t, const WardEstimate& estimate) { return t < estimate.t; });
-    if (it == estimates.begin() || estimates.empty() || estimates.back().t < span.t_end) continue;
+        std::upper_bound(estimates.begin(), estimates.end(), span.t_start_s,
+                         [](double t_s, const WardEstimate& estimate) { return t_s < estimate.t; });
+    if (it == estimates.begin() || estimates.back().t < span.t_end_s) continue;
     --it;
-    double heading = 0.0, x = 0.0, y = 0.0, t = span.t_start;
-    for (; it != estimates.end() && t < span.t_end; ++it) {
-      const double next =
-          std::min(span.t_end, it + 1 != estimates.end() ? (it + 1)->t : span.t_end);
-      const double dt = next - t;
-      if (dt <= 0.0) continue;
-      const double v = it->x[ward::kVbx], yaw_rate = it->x[ward::kYawRate];
-      // The heading at the interval's middle (exact for a constant yaw rate's chord direction to
-      // second order).
-      const double mid = heading + 0.5 * yaw_rate * dt;
-      x += v * std::cos(mid) * dt;
-      y += v * std::sin(mid) * dt;
-      heading += yaw_rate * dt;
-      t = next;
+    double heading_rad = 0.0, x_m = 0.0, y_m = 0.0, t_s = span.t_start_s;
+    for (; it != estimates.end() && t_s < span.t_end_s; ++it) {
+      const double next_s =
+          it + 1 != estimates.end() ? std::min(span.t_end_s, (it + 1)->t) : span.t_end_s;
+      const double dt_s = next_s - t_s;
+      if (dt_s <= 0.0) continue;
+      const double v_mps = it->x[ward::kVbx], yaw_rate_radps = it->x[ward::kYawRate];
+      // The direction of the interval's chord at a constant yaw rate: the heading at its middle.
+      const double chord_rad = heading_rad + 0.5 * yaw_rate_radps * dt_s;
+      x_m += v_mps * std::cos(chord_rad) * dt_s;
+      y_m += v_mps * std::sin(chord_rad) * dt_s;
+      heading_rad += yaw_rate_radps * dt_s;
+      t_s = next_s;
     }
-    if (!std::isfinite(x) || !std::isfinite(y)) continue;
-    double ax = log.gps[span.first_fix].x, ay = log.gps[span.first_fix].y;
-    double bx = log.gps[span.last_fix].x, by = log.gps[span.last_fix].y;
-    error->against_pose = !log.pose.empty();
+    double ax_m = log.gps[span.first_fix].x, ay_m = log.gps[span.first_fix].y;
+    double bx_m = log.gps[span.last_fix].x, by_m = log.gps[span.last_fix].y;
     if (error->against_pose &&
-        (!PoseAt(log.pose, span.t_start, &ax, &ay) || !PoseAt(log.pose, span.t_end, &bx, &by))) {
+        (!PoseAt(log.pose, span.t_start_s, options.max_pose_gap_s, &ax_m, &ay_m) ||
+         !PoseAt(log.pose, span.t_end_s, options.max_pose_gap_s, &bx_m, &by_m))) {
       continue;
     }
-    const double reference = std::hypot(bx - ax, by - ay);
-    error->errors_m.push_back(std::hypot(x, y) - reference);
-    error->distances_m.push_back(reference);
+    const double predicted_m = std::hypot(x_m, y_m);
+    const double reference_m = std::hypot(bx_m - ax_m, by_m - ay_m);
+    if (!std::isfinite(predicted_m) || !std::isfinite(reference_m)) continue;
+    error->errors_m.push_back(predicted_m - reference_m);
+    error->distances_m.push_back(reference_m);
   }
 }
 

@@ -20,6 +20,8 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <string>
 #include <vector>
 
 #include "io/drive_log.h"
@@ -28,8 +30,8 @@
 namespace slipgraph {
 
 struct OutageSpan {
-  size_t first_fix = 0, last_fix = 0;  // indices into log.gps: the fixes at the span's ends
-  double t_start = 0.0, t_end = 0.0;   // their times
+  size_t first_fix = 0, last_fix = 0;     // indices into log.gps: the fixes at the span's ends
+  double t_start_s = 0.0, t_end_s = 0.0;  // their times
 };
 
 struct OutagePlanOptions {
@@ -40,14 +42,24 @@ struct OutagePlanOptions {
   // A span counts where the wheels' mean rim speed over it is at least this (m/s): standing
   // still, every model predicts the robot stands still.
   double min_rim_speed_mps = 0.2;
+  // A span whose fixes are further apart than this many horizons spans a gap in the log's own
+  // fixes and is not taken.
+  double max_span_horizons = 1.5;
+  // A reference pose between two samples further apart than this is not interpolated (s).
+  double max_pose_gap_s = 1.0;
+  // Each field in its range; the first that is not is named in *error.
+  bool IsValid(std::string* error) const;
 };
 
 // Spans from fix to fix, each horizon_s long or a little more, recover_s apart, over the whole
 // log, and only where the wheels turn (options.min_rim_speed_mps, from the log's wheel samples
-// and vehicle.yaml's radius). Empty without fixes.
+// and vehicle.yaml's radius: plan on the log as read, so that every model's run on it is scored
+// on the same spans). In time order, not overlapping; empty without fixes. Throws
+// std::invalid_argument on options that are not valid.
 std::vector<OutageSpan> PlanOutages(const DriveLog& log, const OutagePlanOptions& options = {});
 
-// The log without the fixes strictly inside the spans (the fixes at their ends kept).
+// The log without the fixes strictly inside the spans (the fixes at their ends kept); spans as
+// PlanOutages gives them (in time order, not overlapping).
 DriveLog WithoutFixesInside(const DriveLog& log, const std::vector<OutageSpan>& spans);
 
 struct PredictionError {
@@ -66,8 +78,9 @@ struct PredictionError {
 
 // Adds one span's error per span (estimates: the front end's on the log WithoutFixesInside the
 // spans, in time order), against the log's reference poses where it has them, else its fixes.
-// A span whose estimates or poses do not cover it is left out.
+// A span whose estimates or poses do not cover it, or whose values are not finite, is left out.
 void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spans,
-                         const std::vector<WardEstimate>& estimates, PredictionError* error);
+                         const std::vector<WardEstimate>& estimates, PredictionError* error,
+                         const OutagePlanOptions& options = {});
 
 }  // namespace slipgraph

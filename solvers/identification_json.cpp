@@ -15,7 +15,9 @@ nlohmann::json ToJson(const ModelScore& s) {
           {"false_immobilized_fraction", JsonNumber(s.false_immobilized_fraction)},
           {"prediction_2s",
            {{"spans", s.prediction_spans},
-            {"reference", s.prediction_against_pose ? "pose" : "gnss"},
+            {"reference", s.prediction_spans == 0     ? "none"
+                          : s.prediction_against_pose ? "pose"
+                                                      : "gnss"},
             {"rms_m", JsonNumber(s.prediction_rms_m)},
             {"mean_m", JsonNumber(s.prediction_mean_m)},
             {"mean_se_m", JsonNumber(s.prediction_mean_se_m)},

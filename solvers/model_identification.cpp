@@ -189,9 +189,10 @@ std::string FallingBranchLeavesTheWheels(const std::vector<DriveLog>& logs,
                                          bool use_gps) {
   const double limit = TrustOptions{}.suspect_fraction;
   for (const DriveLog& log : logs) {
-    const double off = ScoreModel(log, fitted, use_gps, /*gnss_fading=*/true).off_wheels_fraction;
-    if (off <= limit ||
-        ScoreModel(log, start, use_gps, /*gnss_fading=*/true).off_wheels_fraction > limit) {
+    const double off = ScoreModel(log, fitted, use_gps, /*gnss_fading=*/true, /*predict=*/false)
+                           .off_wheels_fraction;
+    if (off <= limit || ScoreModel(log, start, use_gps, /*gnss_fading=*/true, /*predict=*/false)
+                                .off_wheels_fraction > limit) {
       continue;
     }
     std::ostringstream out;
@@ -468,7 +469,7 @@ std::string DescribeIdentification(const IdentificationResult& r) {
 }
 
 ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool use_gps,
-                      bool gnss_fading) {
+                      bool gnss_fading, bool predict) {
   DriveLog log = input_log;
   ApplyCalibration(model, &log);
   // As `filter --no-gnss-fading` runs it (a bank when the model has law samples): the paper's
@@ -502,14 +503,16 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
     score.velocity_rmse = ev.velocity_rmse;
     score.false_immobilized_fraction = ev.false_immobilized_fraction();
   }
-  if (use_gps && !log.gps.empty()) {
-    // Two runs whose outages alternate, so that most of the drive is predicted once.
+  if (predict && use_gps && !log.gps.empty()) {
+    // Two runs whose outages alternate, so that most of the drive is predicted once; the spans
+    // planned on the log as read (the calibration scales the wheels, which choose them), so that
+    // every model is scored on the same spans.
     PredictionError prediction;
     OutagePlanOptions plan;
     run.ekf.record_innovations = false;
     for (const double offset_s : {0.0, plan.horizon_s}) {
       plan.offset_s = offset_s;
-      const std::vector<OutageSpan> spans = PlanOutages(log, plan);
+      const std::vector<OutageSpan> spans = PlanOutages(input_log, plan);
       if (spans.empty()) continue;
       const FilterResult predicted = RunEkf(WithoutFixesInside(log, spans), model, run);
       AddPredictionErrors(log, spans, predicted.estimates, &prediction);

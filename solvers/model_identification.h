@@ -140,7 +140,8 @@ struct ModelScore {
   double prediction_mean_se_m = std::nan("");
   double prediction_distance_m = std::nan("");
 };
+// predict: also the 2-s prediction error (two more runs of the front end).
 ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true,
-                      bool gnss_fading = false);
+                      bool gnss_fading = false, bool predict = true);
 
 }  // namespace slipgraph

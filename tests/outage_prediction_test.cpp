@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "sim/simulation.h"
 #include "solvers/model_identification.h"
@@ -58,21 +59,33 @@ TEST(OutagePrediction, SpansRunFromFixToFixWhereTheWheelsTurn) {
   ASSERT_EQ(spans.size(), 6u);
   const double starts[] = {0, 4, 8, 20, 24, 28};
   for (size_t i = 0; i < spans.size(); ++i) {
-    EXPECT_EQ(spans[i].t_start, starts[i]);
-    EXPECT_EQ(spans[i].t_end, starts[i] + 2.0);
+    EXPECT_EQ(spans[i].t_start_s, starts[i]);
+    EXPECT_EQ(spans[i].t_end_s, starts[i] + 2.0);
     EXPECT_EQ(spans[i].first_fix, static_cast<size_t>(starts[i]));
     EXPECT_EQ(spans[i].last_fix, static_cast<size_t>(starts[i]) + 2);
   }
   OutagePlanOptions offset;
   offset.offset_s = 2.0;
-  EXPECT_EQ(PlanOutages(log, offset).front().t_start, 2.0);
+  EXPECT_EQ(PlanOutages(log, offset).front().t_start_s, 2.0);
+
+  // A gap in the log's own fixes longer than 1.5 horizons is not a span.
+  DriveLog gap = log;
+  gap.gps.erase(gap.gps.begin() + 5, gap.gps.begin() + 8);  // 5, 6, 7 s
+  const std::vector<OutageSpan> around_gap = PlanOutages(gap);
+  ASSERT_GE(around_gap.size(), 2u);
+  EXPECT_EQ(around_gap[0].t_start_s, 0.0);
+  EXPECT_EQ(around_gap[1].t_start_s, 10.0);  // 4 -> 8 s is 4 s: not taken; the next at 10 s
+
+  OutagePlanOptions invalid;
+  invalid.recover_s = std::nan("");
+  EXPECT_THROW(PlanOutages(log, invalid), std::invalid_argument);
 
   // Only the fixes strictly inside a span go: 31 fixes less one per span.
   const DriveLog withheld = WithoutFixesInside(log, spans);
   ASSERT_EQ(withheld.gps.size(), 31u - spans.size());
   for (const GpsSample& fix : withheld.gps) {
     for (const OutageSpan& span : spans) {
-      EXPECT_FALSE(fix.t > span.t_start && fix.t < span.t_end) << fix.t;
+      EXPECT_FALSE(fix.t > span.t_start_s && fix.t < span.t_end_s) << fix.t;
     }
   }
 }
@@ -91,16 +104,16 @@ TEST(OutagePrediction, TheChordOfTheIntegratedPathAgainstTheFixes) {
   // A model 10 % fast runs 10 % ahead along the same arc.
   PredictionError fast;
   AddPredictionErrors(log, spans, CircleEstimates(1.1), &fast);
-  EXPECT_NEAR(fast.mean_m(), 0.1 * 4.0 * std::sin(0.5), 0.01);
+  EXPECT_NEAR(fast.mean_m(), 0.1 * 4.0 * std::sin(0.5), 1e-4);
   EXPECT_NEAR(fast.rms_m(), fast.mean_m(), 1e-9);
   EXPECT_NEAR(fast.standard_error_m(), 0.0, 1e-9);
 
   // Against reference poses where the log has them: the poses' chord, not the fixes'.
   DriveLog with_pose = log;
   for (GpsSample& fix : with_pose.gps) fix.x += 0.3 * std::sin(7.0 * fix.t);
-  for (int i = 0; i <= 300; ++i) {
+  for (int i = 0; i <= 430; ++i) {  // every 0.07 s: no span's end falls on a sample
     PoseSample pose;
-    pose.t = 0.1 * i;
+    pose.t = 0.07 * i;
     pose.x = 2.0 * std::sin(0.5 * pose.t);
     pose.y = 2.0 - 2.0 * std::cos(0.5 * pose.t);
     with_pose.pose.push_back(pose);
@@ -108,7 +121,17 @@ TEST(OutagePrediction, TheChordOfTheIntegratedPathAgainstTheFixes) {
   PredictionError against_pose;
   AddPredictionErrors(with_pose, spans, CircleEstimates(1.0), &against_pose);
   EXPECT_TRUE(against_pose.against_pose);
-  EXPECT_LT(against_pose.rms_m(), 2e-3);  // the poses' linear interpolation within 0.1 s
+  ASSERT_EQ(against_pose.spans(), 6);
+  // Linear interpolation between poses 0.07 s apart on a circle of 2 m: the chord's error is
+  // under (0.07 m)^2 / (8 x 2 m) = 3e-4 m at each end.
+  EXPECT_LT(against_pose.rms_m(), 1e-3);
+  EXPECT_GT(against_pose.rms_m(), 1e-6);  // interpolated, not read at a sample
+  // A gap in the poses is not bridged: the spans whose ends fall in it are left out.
+  DriveLog pose_gap = with_pose;
+  pose_gap.pose.erase(pose_gap.pose.begin() + 50, pose_gap.pose.begin() + 100);  // 3.5-7 s
+  PredictionError around_pose_gap;
+  AddPredictionErrors(pose_gap, spans, CircleEstimates(1.0), &around_pose_gap);
+  EXPECT_EQ(around_pose_gap.spans(), 5);  // 4-6 s out
 
   // Estimates that end before a span does leave it out.
   std::vector<WardEstimate> short_run = CircleEstimates(1.0);
