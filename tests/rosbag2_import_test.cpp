@@ -26,10 +26,14 @@ using testing::StoredMessage;
 
 std::string Temp(const std::string& name) { return ::testing::TempDir() + "/" + name; }
 
+// The tiny bag's mapping with format ros_bag, in a file of the running test's own (ctest runs
+// this file's tests side by side: one file written by several would be read half written).
 std::string Ros2Mapping() {
   std::string text = testing::kBagMapping;
   text.replace(text.find("ros1_bag"), 8, "ros_bag");
-  return testing::WriteText(::testing::TempDir(), "ros_bag.yaml", text);
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string prefix = test == nullptr ? "" : std::string(test->name()) + ".";
+  return testing::WriteText(::testing::TempDir(), prefix + "ros_bag.yaml", text);
 }
 
 // The tiny ROS 1 bag's messages as a ROS 2 bag stores them.
