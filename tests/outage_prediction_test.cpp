@@ -141,11 +141,12 @@ TEST(OutagePrediction, TheChordOfTheIntegratedPathAgainstTheFixes) {
   EXPECT_EQ(partial.spans(), 4);
 }
 
-// End to end: a simulated drive with a reference pose (2 cm) beside its 0.5 m fixes, scored with
-// its own vehicle.yaml and with a model whose wheels are 10 % larger than the robot's (the effect
-// hidden from that model: through the outages the front end sees the rim speed 10 % fast). The
-// right model's mean error is within its noise; the wrong one runs ahead by most of a tenth of
-// the distance. Against the fixes alone the spans' errors are a metre either way (their noise).
+// End to end: a simulated drive on gravel with a reference pose (2 cm) beside its 0.5 m fixes,
+// scored with its own vehicle.yaml (whose tire law is the mean of four soils, not gravel's) and
+// with a model whose wheels are 10 % larger than the robot's (the effect hidden from that model:
+// through the outages the front end sees the rim speed 10 % fast). The right radius predicts
+// within a few cm; the wrong one runs ahead by most of a tenth of the distance. Against the
+// fixes alone the spans' errors are a metre either way (their noise).
 TEST(OutagePrediction, AWrongWheelRadiusRunsAhead) {
   sim::Scenario sc = testing::FlatLagrScenario("gravel", 1.0, 120.0);
   sc.commands = {{40.0, 1.0, 0.0}, {40.0, 0.8, 0.15}, {40.0, 1.2, -0.1}};
@@ -169,9 +170,9 @@ TEST(OutagePrediction, AWrongWheelRadiusRunsAhead) {
   EXPECT_LT(exact.rms_m(), 0.04);
   EXPECT_LT(std::abs(exact.mean_m()), 3.0 * exact.standard_error_m());
 
-  // The models: the right one within a few cm over 2 m (measured 0.046 m RMS, mean -0.032: the
-  // front end's velocity on this log runs 1.6 cm/s slow with or without GNSS), the wrong one
-  // 0.17 m ahead.
+  // The models: the right radius within a few cm over 2 m (measured 0.046 m RMS, mean -0.032:
+  // under the mean law the front end's velocity on gravel runs 1.6 cm/s slow over the spans,
+  // with or without GNSS), the wrong one 0.17 m ahead.
   const ModelScore good = ScoreModel(log, right);
   const ModelScore bad = ScoreModel(log, wrong);
   ASSERT_GE(good.prediction_spans, 40);
