@@ -43,6 +43,7 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
         << " m, mean " << Figure(nominal.prediction_mean_m) << " -> "
         << Figure(fitted.prediction_mean_m) << " +- " << Figure(fitted.prediction_mean_se_m)
         << " m (" << fitted.prediction_spans << " spans of " << Figure(fitted.prediction_distance_m)
+        << " m; the reference's stated sd alone would give " << Figure(fitted.prediction_floor_m)
         << " m)";
   }
   if (std::isfinite(fitted.velocity_rmse)) {

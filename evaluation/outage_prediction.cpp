@@ -14,7 +14,8 @@ bool OutagePlanOptions::IsValid(std::string* error) const {
       .NonNegative("offset_s", offset_s)
       .NonNegative("min_rim_speed_mps", min_rim_speed_mps)
       .AtLeast("max_span_horizons", max_span_horizons, 1.0)
-      .Positive("max_pose_gap_s", max_pose_gap_s);
+      .Positive("max_pose_gap_s", max_pose_gap_s)
+      .NonNegative("stated_fix_sd_xy_m", stated_fix_sd_xy_m);
 }
 
 namespace {
@@ -37,14 +38,16 @@ double MeanRimSpeedMps(const DriveLog& log, double t_start_s, double t_end_s) {
   return samples > 0 ? sum_mps / samples : std::nan("");
 }
 
-// The reference pose's planar position at t_s, linear between the samples around it; false
-// outside them or where they are more than max_gap_s apart.
+// The reference pose's planar position at t_s, linear between the samples around it, and its
+// stated sd (the larger of x's and y's, NaN where not stated); false outside the samples or where
+// they are more than max_gap_s apart.
 bool PoseAt(const std::vector<PoseSample>& poses, double t_s, double max_gap_s, double* x_m,
-            double* y_m) {
+            double* y_m, double* sd_m) {
   const auto after =
       std::lower_bound(poses.begin(), poses.end(), t_s,
                        [](const PoseSample& pose, double at_s) { return pose.t < at_s; });
   if (after == poses.end()) return false;
+  *sd_m = std::max(after->sd_x, after->sd_y);
   if (after->t == t_s) {
     *x_m = after->x, *y_m = after->y;
     return true;
@@ -56,6 +59,11 @@ bool PoseAt(const std::vector<PoseSample>& poses, double t_s, double max_gap_s, 
   *x_m = before.x + w * (after->x - before.x);
   *y_m = before.y + w * (after->y - before.y);
   return true;
+}
+
+// A fix's position sd: its row's where stated, else the model's.
+double FixSdM(const GpsSample& fix, double stated_m) {
+  return std::isfinite(fix.sd_xy) && fix.sd_xy > 0.0 ? fix.sd_xy : stated_m;
 }
 
 }  // namespace
@@ -120,6 +128,13 @@ double PredictionError::standard_error_m() const {
   return std::sqrt(sum_m2 / (errors_m.size() - 1) / errors_m.size());
 }
 
+double PredictionError::floor_rms_m() const {
+  if (floors_m.empty()) return std::nan("");
+  double sum_m2 = 0.0;
+  for (const double f_m : floors_m) sum_m2 += f_m * f_m;
+  return std::sqrt(sum_m2 / floors_m.size());
+}
+
 double PredictionError::mean_distance_m() const {
   if (distances_m.empty()) return std::nan("");
   double sum_m = 0.0;
@@ -153,11 +168,14 @@ void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spa
       heading_rad += yaw_rate_radps * dt_s;
       t_s = next_s;
     }
-    double ax_m = log.gps[span.first_fix].x, ay_m = log.gps[span.first_fix].y;
-    double bx_m = log.gps[span.last_fix].x, by_m = log.gps[span.last_fix].y;
+    const GpsSample& a = log.gps[span.first_fix];
+    const GpsSample& b = log.gps[span.last_fix];
+    double ax_m = a.x, ay_m = a.y, bx_m = b.x, by_m = b.y;
+    double a_sd_m = FixSdM(a, options.stated_fix_sd_xy_m);
+    double b_sd_m = FixSdM(b, options.stated_fix_sd_xy_m);
     if (error->against_pose &&
-        (!PoseAt(log.pose, span.t_start_s, options.max_pose_gap_s, &ax_m, &ay_m) ||
-         !PoseAt(log.pose, span.t_end_s, options.max_pose_gap_s, &bx_m, &by_m))) {
+        (!PoseAt(log.pose, span.t_start_s, options.max_pose_gap_s, &ax_m, &ay_m, &a_sd_m) ||
+         !PoseAt(log.pose, span.t_end_s, options.max_pose_gap_s, &bx_m, &by_m, &b_sd_m))) {
       continue;
     }
     const double predicted_m = std::hypot(x_m, y_m);
@@ -165,6 +183,7 @@ void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spa
     if (!std::isfinite(predicted_m) || !std::isfinite(reference_m)) continue;
     error->errors_m.push_back(predicted_m - reference_m);
     error->distances_m.push_back(reference_m);
+    error->floors_m.push_back(std::hypot(a_sd_m, b_sd_m));
   }
 }
 

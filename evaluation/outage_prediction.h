@@ -47,6 +47,8 @@ struct OutagePlanOptions {
   double max_span_horizons = 1.5;
   // A reference pose between two samples further apart than this is not interpolated (s).
   double max_pose_gap_s = 1.0;
+  // A fix's position sd where its row states none (m): the model's (SensorNoise::gps_sd_xy_m).
+  double stated_fix_sd_xy_m = 0.5;
   // Each field in its range; the first that is not is named in *error.
   bool IsValid(std::string* error) const;
 };
@@ -66,6 +68,9 @@ struct PredictionError {
   // Per span: the predicted chord minus the GNSS chord (m); positive: the model ran ahead.
   std::vector<double> errors_m;
   std::vector<double> distances_m;  // the reference's chords (m)
+  // Per span: the sd the reference's own noise puts in its chord, sqrt(sd_a^2 + sd_b^2) of the
+  // positions at its ends (m; NaN for poses that state no sd).
+  std::vector<double> floors_m;
 
   bool against_pose = false;  // the reference poses (pose.csv) rather than the fixes
 
@@ -74,6 +79,11 @@ struct PredictionError {
   double mean_m() const;            // the signed mean, NaN without spans
   double standard_error_m() const;  // the mean's, NaN with fewer than two spans
   double mean_distance_m() const;   // NaN without spans
+  // The RMS the reference's stated noise alone would give, were its errors independent from one
+  // end of a span to the other (m): a model whose RMS is near it predicts as well as this
+  // reference can tell. A receiver whose errors are correlated over 2 s, or whose stated sd is
+  // generous, gives less. NaN without spans or where an end's sd is not known.
+  double floor_rms_m() const;
 };
 
 // Adds one span's error per span (estimates: the front end's on the log WithoutFixesInside the

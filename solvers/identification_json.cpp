@@ -21,7 +21,8 @@ nlohmann::json ToJson(const ModelScore& s) {
             {"rms_m", JsonNumber(s.prediction_rms_m)},
             {"mean_m", JsonNumber(s.prediction_mean_m)},
             {"mean_se_m", JsonNumber(s.prediction_mean_se_m)},
-            {"distance_m", JsonNumber(s.prediction_distance_m)}}}};
+            {"distance_m", JsonNumber(s.prediction_distance_m)},
+            {"floor_m", JsonNumber(s.prediction_floor_m)}}}};
 }
 
 nlohmann::json ToJson(const IdentificationResult& r) {

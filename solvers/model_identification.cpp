@@ -509,13 +509,14 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
     // every model is scored on the same spans.
     PredictionError prediction;
     OutagePlanOptions plan;
+    plan.stated_fix_sd_xy_m = model.measurement.gps_sd_xy_m;
     run.ekf.record_innovations = false;
     for (const double offset_s : {0.0, plan.horizon_s}) {
       plan.offset_s = offset_s;
       const std::vector<OutageSpan> spans = PlanOutages(input_log, plan);
       if (spans.empty()) continue;
       const FilterResult predicted = RunEkf(WithoutFixesInside(log, spans), model, run);
-      AddPredictionErrors(log, spans, predicted.estimates, &prediction);
+      AddPredictionErrors(log, spans, predicted.estimates, &prediction, plan);
     }
     score.prediction_spans = prediction.spans();
     score.prediction_against_pose = prediction.against_pose;
@@ -523,6 +524,7 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
     score.prediction_mean_m = prediction.mean_m();
     score.prediction_mean_se_m = prediction.standard_error_m();
     score.prediction_distance_m = prediction.mean_distance_m();
+    score.prediction_floor_m = prediction.floor_rms_m();
   }
   return score;
 }

@@ -139,6 +139,7 @@ struct ModelScore {
   double prediction_mean_m = std::nan("");
   double prediction_mean_se_m = std::nan("");
   double prediction_distance_m = std::nan("");
+  double prediction_floor_m = std::nan("");  // the RMS the reference's stated sd would give
 };
 // predict: also the 2-s prediction error (two more runs of the front end).
 ModelScore ScoreModel(const DriveLog& log, const ModelConfig& model, bool use_gps = true,

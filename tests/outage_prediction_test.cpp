@@ -100,6 +100,14 @@ TEST(OutagePrediction, TheChordOfTheIntegratedPathAgainstTheFixes) {
   EXPECT_NEAR(exact.mean_distance_m(), 4.0 * std::sin(0.5), 1e-12);
   EXPECT_LT(exact.rms_m(), 1e-4);
   EXPECT_FALSE(exact.against_pose);
+  // The fixes state no sd: the default stated 0.5 m at each end.
+  EXPECT_NEAR(exact.floor_rms_m(), std::sqrt(0.5), 1e-12);
+  DriveLog stated = log;
+  stated.gps[4].sd_xy = 0.1;
+  stated.gps[6].sd_xy = 0.2;
+  PredictionError with_sd;
+  AddPredictionErrors(stated, spans, CircleEstimates(1.0), &with_sd);
+  EXPECT_NEAR(with_sd.floors_m[1], std::hypot(0.1, 0.2), 1e-12);  // the span 4-6 s
 
   // A model 10 % fast runs 10 % ahead along the same arc.
   PredictionError fast;
