@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "io/measurement_stream.h"
 #include "model/option_check.h"
 
 namespace slipgraph {
@@ -20,22 +21,36 @@ bool OutagePlanOptions::IsValid(std::string* error) const {
 
 namespace {
 
-// The wheels' mean rim speed over [t_start_s, t_end_s] (m/s): the mean over the samples in it of
-// the mean of |omega| r over the log's wheels; NaN without a sample in it.
+// The driven sides' mean rim speed over [t_start_s, t_end_s] (m/s): the mean over the wheel
+// samples in it of the mean of |omega| r over the two sides (DrivenSideSpeeds); NaN without a
+// sample in it.
 double MeanRimSpeedMps(const DriveLog& log, double t_start_s, double t_end_s) {
-  const int wheels = log.wheel_count();
   const auto first =
       std::lower_bound(log.wheels.begin(), log.wheels.end(), t_start_s,
                        [](const WheelSample& sample, double t_s) { return sample.t < t_s; });
   double sum_mps = 0.0;
   long samples = 0;
   for (auto it = first; it != log.wheels.end() && it->t <= t_end_s; ++it) {
-    double sum_radps = 0.0;
-    for (int w = 0; w < wheels; ++w) sum_radps += std::abs(it->omega_radps[w]);
-    sum_mps += sum_radps / wheels * log.vehicle.wheel_radius_m;
+    const SideSpeeds sides = DrivenSideSpeeds(*it, log.vehicle.type);
+    sum_mps += 0.5 * (std::abs(sides.left_radps) + std::abs(sides.right_radps)) *
+               log.vehicle.wheel_radius_m;
     ++samples;
   }
   return samples > 0 ? sum_mps / samples : std::nan("");
+}
+
+// The mean and the root mean square of `values`, NaN when empty.
+double Mean(const std::vector<double>& values) {
+  if (values.empty()) return std::nan("");
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / values.size();
+}
+double Rms(const std::vector<double>& values) {
+  if (values.empty()) return std::nan("");
+  double sum_sq = 0.0;
+  for (const double v : values) sum_sq += v * v;
+  return std::sqrt(sum_sq / values.size());
 }
 
 // The reference pose's planar position at t_s, linear between the samples around it, and its
@@ -106,19 +121,9 @@ DriveLog WithoutFixesInside(const DriveLog& log, const std::vector<OutageSpan>& 
   return out;
 }
 
-double PredictionError::rms_m() const {
-  if (errors_m.empty()) return std::nan("");
-  double sum_m2 = 0.0;
-  for (const double e_m : errors_m) sum_m2 += e_m * e_m;
-  return std::sqrt(sum_m2 / errors_m.size());
-}
+double PredictionError::rms_m() const { return Rms(errors_m); }
 
-double PredictionError::mean_m() const {
-  if (errors_m.empty()) return std::nan("");
-  double sum_m = 0.0;
-  for (const double e_m : errors_m) sum_m += e_m;
-  return sum_m / errors_m.size();
-}
+double PredictionError::mean_m() const { return Mean(errors_m); }
 
 double PredictionError::standard_error_m() const {
   if (errors_m.size() < 2) return std::nan("");
@@ -128,19 +133,9 @@ double PredictionError::standard_error_m() const {
   return std::sqrt(sum_m2 / (errors_m.size() - 1) / errors_m.size());
 }
 
-double PredictionError::floor_rms_m() const {
-  if (floors_m.empty()) return std::nan("");
-  double sum_m2 = 0.0;
-  for (const double f_m : floors_m) sum_m2 += f_m * f_m;
-  return std::sqrt(sum_m2 / floors_m.size());
-}
+double PredictionError::floor_rms_m() const { return Rms(floors_m); }
 
-double PredictionError::mean_distance_m() const {
-  if (distances_m.empty()) return std::nan("");
-  double sum_m = 0.0;
-  for (const double d_m : distances_m) sum_m += d_m;
-  return sum_m / distances_m.size();
-}
+double PredictionError::mean_distance_m() const { return Mean(distances_m); }
 
 void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spans,
                          const std::vector<WardEstimate>& estimates, PredictionError* error,
@@ -149,11 +144,9 @@ void AddPredictionErrors(const DriveLog& log, const std::vector<OutageSpan>& spa
   for (const OutageSpan& span : spans) {
     // The path from the estimate at or just before the span's start to the last one before its
     // end, each estimate held until the next (the filter's own zero-order view between samples).
-    auto it =
-        std::upper_bound(estimates.begin(), estimates.end(), span.t_start_s,
-                         [](double t_s, const WardEstimate& estimate) { return t_s < estimate.t; });
-    if (it == estimates.begin() || estimates.back().t < span.t_end_s) continue;
-    --it;
+    const long first = LatestAtOrBefore(estimates, span.t_start_s);
+    if (first < 0 || estimates.back().t < span.t_end_s) continue;
+    auto it = estimates.begin() + first;
     double heading_rad = 0.0, x_m = 0.0, y_m = 0.0, t_s = span.t_start_s;
     for (; it != estimates.end() && t_s < span.t_end_s; ++it) {
       const double next_s =
