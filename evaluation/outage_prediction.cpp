@@ -62,7 +62,7 @@ bool PoseAt(const std::vector<PoseSample>& poses, double t_s, double max_gap_s, 
       std::lower_bound(poses.begin(), poses.end(), t_s,
                        [](const PoseSample& pose, double at_s) { return pose.t < at_s; });
   if (after == poses.end()) return false;
-  *sd_m = std::max(after->sd_x, after->sd_y);
+  *sd_m = std::fmax(after->sd_x, after->sd_y);  // NaN only where neither is stated
   if (after->t == t_s) {
     *x_m = after->x, *y_m = after->y;
     return true;
