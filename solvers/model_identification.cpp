@@ -11,6 +11,7 @@
 
 #include "evaluation/evaluation.h"
 #include "evaluation/outage_prediction.h"
+#include "factors/traction.h"
 #include "io/estimate_file.h"
 #include "io/measurement_stream.h"
 #include "solvers/batch_smoother.h"
@@ -203,6 +204,45 @@ std::string FallingBranchLeavesTheWheels(const std::vector<DriveLog>& logs,
   return "";
 }
 
+// The speed the driven wheels' rims reach on the logs: the 99th percentile of r |w| over both
+// sides' samples (a spike in one encoder does not set it); NaN without wheel samples.
+double FastRimSpeed(const std::vector<DriveLog>& logs) {
+  std::vector<double> speeds;
+  for (const DriveLog& log : logs) {
+    for (const WheelSample& w : log.wheels) {
+      const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
+      for (double omega : {s.left_radps, s.right_radps}) {
+        const double speed = log.vehicle.wheel_radius_m * std::abs(omega);
+        if (std::isfinite(speed)) speeds.push_back(speed);
+      }
+    }
+  }
+  if (speeds.empty()) return std::nan("");
+  const size_t k = static_cast<size_t>(0.99 * (speeds.size() - 1));
+  std::nth_element(speeds.begin(), speeds.begin() + k, speeds.end());
+  return speeds[k];
+}
+
+// Where the law's traction (eq. 8, per newton) reverses at a slip speed at or below
+// `rim_speed`, that speed, said as "the fitted law's traction reverses at X m/s of slip speed,
+// below the wheels' rim speed Y m/s"; empty when it keeps its sign. Eq. (8) is odd and, for
+// v_rel > 0, concave through zero, so its sign at the rim speed decides, and bisection finds the
+// reversal.
+std::string TractionReversesWithin(const TireParams& tire, double rim_speed) {
+  const auto force = [&](double v_rel) { return TractionForceN(1.0, v_rel, tire); };
+  if (!(rim_speed > 0.0) || force(rim_speed) > 0.0) return "";
+  double low = 0.0, high = rim_speed;
+  for (int i = 0; i < 60; ++i) {
+    const double middle = 0.5 * (low + high);
+    (force(middle) > 0.0 ? low : high) = middle;
+  }
+  std::ostringstream out;
+  out << std::setprecision(3) << "the fitted law's traction reverses at " << high
+      << " m/s of slip speed, below the wheels' rim speed " << rim_speed
+      << " m/s (a stuck robot's wheels would pull it back)";
+  return out.str();
+}
+
 // u = r (w_r - w_l) = c (yaw rate - a) over the wheel samples with the nearest IMU sample: least
 // squares of u on the gyro with an intercept (a: the gyro's offset). That way round because the
 // gyro is the precise one (encoder noise in a regressor would bias c up: 0.82 m for a 0.55 m
@@ -328,12 +368,17 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   // A law with a falling branch (C2 < 0) must still run in the front end that will use it: eq.
   // (8)'s linear falling branch makes the velocity's dynamics unstable at large slip, and the
   // default front end, whose GNSS fading widens its covariance, can settle on a wrong root there,
-  // a disturbance holding the body far ahead of its wheels (docs/identify.md). Where the law
-  // sends a fitted log's velocity off the wheels and the starting model does not, C2's lower
-  // bound is raised to 0 and the problem solved again from where it stands.
+  // a disturbance holding the body far ahead of its wheels (docs/identify.md). Where the law's
+  // traction reverses within the rim speeds the wheels reach (a hold-back's slip: the law must
+  // still pull a stuck robot forward, and a held-out stretch may need it where the fitted one did
+  // not), or it sends a fitted log's velocity off the wheels and the starting model does not,
+  // C2's lower bound is raised to 0 and the problem solved again from where it stands.
   if (options.keep_front_end_on_wheels && problem->law[kLawC2] < 0.0) {
-    const std::string refused = FallingBranchLeavesTheWheels(
-        input_logs, model, WithFittedLaw(model, *problem), options.use_gps);
+    const ModelConfig fitted = WithFittedLaw(model, *problem);
+    std::string refused = TractionReversesWithin(fitted.tire, FastRimSpeed(logs));
+    if (refused.empty()) {
+      refused = FallingBranchLeavesTheWheels(input_logs, model, fitted, options.use_gps);
+    }
     if (!refused.empty() && priors.law_max[kLawC2] <= 0.0) {
       result.notes.push_back(refused + ": kept, C2's upper bound allows no other");
     } else if (!refused.empty()) {

@@ -17,9 +17,10 @@
 //      EKF per log
 //      (no bank: the law is what is sought). Their sd and correlations from the problem's
 //      covariance; a parameter whose sd is not under half its prior's is reported as not
-//      identified (the prior, not the data, set it). A law with a falling branch (C2 < 0) that
-//      sends the default front end off the wheels on the fitted logs is solved again with
-//      C2 >= 0 (IdentifyOptions::keep_front_end_on_wheels).
+//      identified (the prior, not the data, set it). A law with a falling branch (C2 < 0) whose
+//      traction reverses within the wheels' rim speeds, or that sends the default front end off
+//      the wheels on the fitted logs, is solved again with C2 >= 0
+//      (IdentifyOptions::keep_front_end_on_wheels).
 //   3. The effective track: the wheels' speed difference r (w_r - w_l) regressed on the yaw gyro
 //      (less its offset), r (w_r - w_l) = c yaw rate; applied to the model for
 //      skid-steer vehicles (a skid-steer turns as if its track were wider), reported for all.
@@ -48,9 +49,10 @@ struct IdentifyOptions {
   // terrain's trades the two (mismatch suite hiddenm, seeds 1-4: a true +5 % read as -0.4 to
   // -1.7 %, a true 0 as -0.2 to -2.6 %; held-out velocity better with the radius left alone).
   bool fit_radius = false;
-  // Run each fitted log with the default front end (GNSS fading) and the fitted law; where a law
-  // with a falling branch sends the velocity off the wheels (solvers/trust_check.h) and the
-  // starting model does not, solve again with C2 >= 0.
+  // Where a law with a falling branch reverses its traction at a slip speed the wheels' rims
+  // reach (their 99th percentile on the fitted logs), or, run with the default front end (GNSS
+  // fading) on each fitted log, sends the velocity off the wheels (solvers/trust_check.h) where
+  // the starting model does not, solve again with C2 >= 0.
   bool keep_front_end_on_wheels = true;
   int max_iterations = 100;
   int threads = 1;
@@ -98,7 +100,8 @@ struct IdentificationResult {
   double gnss_radius_error_sd = 0.0;
   long gnss_radius_fixes = 0;
   long track_samples = 0;
-  // The first fit's falling branch sent the default front end off the wheels: C2 held >= 0.
+  // The first fit's falling branch reversed the traction within the rim speeds or sent the
+  // default front end off the wheels: C2 held >= 0 (the note says which).
   bool falling_branch_refused = false;
   std::vector<std::array<double, 2>> offsets;  // per log, [c_ax, c_gz] at the solution
   ceres::Solver::Summary summary;

@@ -8,8 +8,8 @@
 //   - a hidden effect the model lacks (wheels 5 % larger than vehicle.yaml says): the law
 //     absorbs what it can and the held-out error still falls; the radius is reported against
 //     GNSS, not applied;
-//   - a law whose falling branch sends the default front end off the wheels is solved again
-//     without one.
+//   - a law whose falling branch sends the default front end off the wheels, or reverses the
+//     traction at a slip speed the wheels reach, is solved again without one.
 #include "solvers/model_identification.h"
 
 #include <gtest/gtest.h>
@@ -79,10 +79,11 @@ TEST(ModelIdentification, SensorNoiseFromTheSignalsThemselves) {
 }
 
 TEST(ModelIdentification, TheIdentifiedLawPredictsTheHeldOutHalfBetter) {
-  // Measured held-out velocity RMSE, nominal -> identified: seed 6 0.065 -> 0.015, seed 7
-  // 0.099 -> 0.056, seed 8 0.137 -> 0.079 (its law solved again with C2 >= 0; 0.063 with the
-  // falling branch: 0.089 is the bound asserted); seed 5: 0.023 -> 0.029, where the nominal law
-  // happened to fit, not asserted but bounded. False immobilized after: at most 0.09 %.
+  // Measured held-out velocity RMSE, nominal -> identified: seed 6 0.064 -> 0.015, seed 7
+  // 0.099 -> 0.076 (its law solved again with C2 >= 0, its traction having reversed at 1.2 m/s
+  // of slip speed; 0.016 with the falling branch), seed 8 0.136 -> 0.038; seed 5: 0.022 ->
+  // 0.023 (solved again too), where the nominal law happened to fit, not asserted but bounded.
+  // False immobilized after: at most 0.09 %.
   for (uint64_t seed : {5, 6, 7, 8}) {
     const DriveLog log = testing::SimulatedScenario("hiddenm/none", seed);
     const Split split = Halves(log);
@@ -95,7 +96,7 @@ TEST(ModelIdentification, TheIdentifiedLawPredictsTheHeldOutHalfBetter) {
       EXPECT_LT(after.velocity_rmse, 0.05);
     } else {
       EXPECT_GT(before.velocity_rmse, 0.05) << seed;  // something to fix
-      EXPECT_LT(after.velocity_rmse, 0.65 * before.velocity_rmse) << seed;
+      EXPECT_LT(after.velocity_rmse, 0.8 * before.velocity_rmse) << seed;
     }
     EXPECT_LT(after.false_immobilized_fraction, 0.002) << seed;
   }
@@ -103,10 +104,10 @@ TEST(ModelIdentification, TheIdentifiedLawPredictsTheHeldOutHalfBetter) {
 
 TEST(ModelIdentification, WheelsLargerThanTheModelSaysAHiddenEffect) {
   // The wheels roll 5 % further than vehicle.yaml's radius says. Measured held-out velocity
-  // RMSE, seeds 5-8: 0.087 -> 0.056, 0.113 -> 0.070, 0.145 -> 0.105, 0.180 -> 0.133 (seeds 7
-  // and 8 solved again with C2 >= 0; with their falling branches 0.092 and 0.096; seed 7's
-  // bound is 0.109). The radius against GNSS reads +1.2 to +4.4 % (the mean slip is in it: a
-  // true 0 reads -0.5 to -3.4 % on hiddenm/none): reported, not applied.
+  // RMSE, seeds 5-8: 0.087 -> 0.104, 0.110 -> 0.067, 0.134 -> 0.101, 0.172 -> 0.169 (seeds 5, 7
+  // and 8 solved again with C2 >= 0; seed 7 with its falling branch 0.091). The radius against
+  // GNSS reads +1.2 to +4.4 % (the mean slip is in it: a true 0 reads -0.5 to -3.4 % on
+  // hiddenm/none): reported, not applied.
   for (uint64_t seed : {6, 7}) {
     const DriveLog log = testing::SimulatedScenario("hiddenm/wheel_radius_error", seed);
     const Split split = Halves(log);
@@ -114,7 +115,7 @@ TEST(ModelIdentification, WheelsLargerThanTheModelSaysAHiddenEffect) {
     const IdentificationResult r = IdentifyModel({split.train}, nominal);
     const ModelScore before = ScoreModel(split.held_out, nominal);
     const ModelScore after = ScoreModel(split.held_out, r.model);
-    EXPECT_LT(after.velocity_rmse, 0.75 * before.velocity_rmse) << seed;
+    EXPECT_LT(after.velocity_rmse, 0.8 * before.velocity_rmse) << seed;
     ASSERT_TRUE(std::isfinite(r.gnss_radius_error));
     EXPECT_GT(r.gnss_radius_error, 0.0) << seed;
     EXPECT_EQ(r.model.calibration.wheel_radius_scale_left, 1.0);
@@ -147,6 +148,39 @@ TEST(ModelIdentification, AFallingBranchThatSendsTheFrontEndOffTheWheelsIsSolved
   const ModelScore failed = ScoreModel(split.held_out, falling.model, true, /*gnss_fading=*/true);
   EXPECT_GT(failed.off_wheels_fraction, 0.2);
   EXPECT_GT(failed.velocity_rmse, 0.5);
+}
+
+TEST(ModelIdentification, ALawWhoseTractionReversesWithinTheRimSpeedsIsSolvedAgain) {
+  // hiddenm/none seed 4: the first fit on the first half has C1 0.29, C2 -0.5, traction reversed
+  // at 0.59 m/s of slip speed while the wheels' rims reach 1.35 m/s. The drive has no hold-back,
+  // so the fitted half never tests the law there, and the default front end stays on the wheels
+  // with it; but the held-out half behind the paper's filter leaves them (velocity RMSE 0.53 m/s
+  // against the nominal law's 0.12, measured), and on ward21m/04 (the same robot, soils of
+  // another family, hold-backs) the default front end runs 0.31 m/s off the truth. Solved again
+  // with C2 >= 0: 0.12 and 0.014 m/s.
+  const DriveLog log = testing::SimulatedScenario("hiddenm/none", 4);
+  const Split split = Halves(log);
+  const DriveLog holdbacks = testing::SimulatedScenario("ward21m/04", 1);
+  const ModelConfig nominal = DefaultModelConfig(log.vehicle);
+  const IdentificationResult r = IdentifyModel({split.train}, nominal);
+  EXPECT_TRUE(r.falling_branch_refused);
+  EXPECT_GE(r.model.tire.C2, 0.0);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.front().find("traction reverses"), std::string::npos) << r.notes.front();
+  EXPECT_LT(ScoreModel(split.held_out, r.model).velocity_rmse, 0.2);
+  EXPECT_LT(
+      ScoreModel(holdbacks, r.model, true, /*gnss_fading=*/true, /*predict=*/false).velocity_rmse,
+      0.05);
+
+  // The control: without the check the law keeps its falling branch.
+  IdentifyOptions unchecked;
+  unchecked.keep_front_end_on_wheels = false;
+  const IdentificationResult falling = IdentifyModel({split.train}, nominal, unchecked);
+  EXPECT_LT(falling.model.tire.C2, -0.3);
+  EXPECT_GT(ScoreModel(split.held_out, falling.model).velocity_rmse, 0.4);
+  EXPECT_GT(ScoreModel(holdbacks, falling.model, true, /*gnss_fading=*/true, /*predict=*/false)
+                .velocity_rmse,
+            0.2);
 }
 
 TEST(ModelIdentification, OneLawOverTwoLogsEachWithItsOffsets) {
