@@ -60,6 +60,9 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
     if (e.name == "clock_offset") {
       out << "    (for every estimator, the front end too: add it to the model file's "
              "`calibration: {imu_time_offset: S}`)\n";
+    } else if (e.name == "imu_mounting_pitch") {
+      out << "    (for every estimator, the front end too: add it to the model file's "
+             "`calibration: {imu_mounting_pitch: RAD}`)\n";
     }
   }
   out << "  streams (normalized residuals):\n";

@@ -18,7 +18,7 @@
 #include "io/yaml_config.h"
 #include "solvers/identification_json.h"
 #include "solvers/model_identification.h"
-#include "workbench/imu_clock_offset.h"
+#include "workbench/imu_calibration.h"
 
 namespace slipgraph {
 namespace {
@@ -57,6 +57,54 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
 
 }  // namespace
 
+// `--clock`, `--mounting`: the workbench's test of the effect on the fitted logs
+// (workbench/imu_calibration.h), said on the terminal; the model's calibration takes what it
+// finds where it is told from zero and the logs' halves agree. Its JSON.
+nlohmann::json ReadImuCalibration(const std::string& effect, const std::vector<DriveLog>& train,
+                                  const ImuCalibrationOptions& options, ModelConfig* model,
+                                  std::ostream& text) {
+  const bool clock = effect == "clock_offset";
+  const double scale = clock ? 1000.0 : 1.0;  // ms; rad
+  const std::string unit = clock ? " ms late" : " rad nose-down";
+  std::string key;
+  for (const auto& [name, calibration_key] : ImuCalibrationEffects()) {
+    if (name == effect) key = calibration_key;
+  }
+  const auto current = [&]() {
+    return clock ? model->calibration.imu_time_offset_s : model->calibration.imu_mounting_pitch_rad;
+  };
+  const ImuCalibrationReading found = EstimateImuCalibration(train, *model, effect, options);
+  text << (clock ? "IMU clock against the other streams" : "IMU mounting pitch")
+       << " (the workbench's test on " << found.logs << " log(s), significant on "
+       << found.significant_logs << "): ";
+  if (std::isfinite(found.value)) {
+    text << std::showpos << scale * found.value << std::noshowpos << " +- " << scale * found.sd
+         << unit;
+  } else {
+    text << "not tested";
+  }
+  const std::string units = clock ? " s" : " rad";
+  if (found.taken) {
+    *model = WithImuCalibration(*model, effect, found.value);
+    text << "; the model's calibration." << key << " takes it: " << current() << units << "\n";
+  } else if (found.significant_logs > 0 && !found.halves_agree) {
+    text << "; the logs' halves do not agree (" << found.halves << " tested, Cochran's Q "
+         << found.heterogeneity << ", p " << found.heterogeneity_p << "): not taken as "
+         << (clock ? "a clock" : "a mounting") << ", left at " << current() << units << "\n";
+  } else {
+    text << "; not told from zero, left at " << current() << units << "\n";
+  }
+  return {{clock ? "offset_s" : "pitch_rad", JsonNumber(found.value)},
+          {clock ? "sd_s" : "sd_rad", JsonNumber(found.sd)},
+          {"logs", found.logs},
+          {"significant_logs", found.significant_logs},
+          {"halves", found.halves},
+          {"heterogeneity", JsonNumber(found.heterogeneity)},
+          {"heterogeneity_p", JsonNumber(found.heterogeneity_p)},
+          {"taken", found.taken},
+          {clock ? "imu_time_offset_s" : "imu_mounting_pitch_rad", current()}};
+}
+
 void RegisterIdentifyCommand(CLI::App* app, int* status) {
   struct Options {
     std::vector<std::string> logs, validate;
@@ -64,7 +112,7 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     JsonOutput json;
     double train = 0.5;
     std::string part = "first";
-    bool no_gps = false, clock_offset = false;
+    bool no_gps = false, clock_offset = false, mounting = false;
     ReadOptions read;  // --skip-bad, --max-bad
     IdentifyOptions identify;
   };
@@ -101,6 +149,10 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
                 "workbench's clock_offset test on each fitted log and on its two halves (three "
                 "batch solves a log); the model's calibration.imu_time_offset takes it where it "
                 "is told from zero and the halves agree");
+  cmd->add_flag("--mounting", options->mounting,
+                "First, how far the IMU is pitched nose-down on the body: the workbench's "
+                "imu_mounting_pitch test, as --clock; the model's calibration.imu_mounting_pitch "
+                "takes it where it is told from zero and the halves agree");
   cmd->add_option("--threads", options->identify.threads, "Solver threads")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -157,46 +209,21 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
               << "\n";
     std::ostream& text = options->json.text();
     ModelConfig start = model;
-    nlohmann::json clock_json;
-    if (options->clock_offset) {
-      ImuClockOffsetOptions clock_options;
-      clock_options.use_gps = !options->no_gps;
-      clock_options.threads = options->identify.threads;
-      const ImuClockOffset found = EstimateImuClockOffset(train, model, clock_options);
-      text << "IMU clock against the other streams (the workbench's test on " << found.logs
-           << " log(s), significant on " << found.significant_logs << "): ";
-      if (std::isfinite(found.offset_s)) {
-        text << std::showpos << 1000.0 * found.offset_s << std::noshowpos << " +- "
-             << 1000.0 * found.sd_s << " ms late";
-      } else {
-        text << "not tested";
-      }
-      if (found.taken) {
-        start.calibration.imu_time_offset_s += found.offset_s;
-        text << "; the model's calibration.imu_time_offset takes it: "
-             << start.calibration.imu_time_offset_s << " s\n";
-      } else if (found.significant_logs > 0 && !found.halves_agree) {
-        text << "; the logs' halves do not agree (" << found.halves << " tested, Cochran's Q "
-             << found.heterogeneity << ", p " << found.heterogeneity_p
-             << "): not taken as a clock, left at " << start.calibration.imu_time_offset_s
-             << " s\n";
-      } else {
-        text << "; not told from zero, left at " << start.calibration.imu_time_offset_s << " s\n";
-      }
-      clock_json = {{"offset_s", JsonNumber(found.offset_s)},
-                    {"sd_s", JsonNumber(found.sd_s)},
-                    {"logs", found.logs},
-                    {"significant_logs", found.significant_logs},
-                    {"halves", found.halves},
-                    {"heterogeneity", JsonNumber(found.heterogeneity)},
-                    {"heterogeneity_p", JsonNumber(found.heterogeneity_p)},
-                    {"taken", found.taken},
-                    {"imu_time_offset_s", start.calibration.imu_time_offset_s}};
+    nlohmann::json calibration_json;
+    for (const auto& [effect, wanted] :
+         {std::pair<const char*, bool>{"clock_offset", options->clock_offset},
+          {"imu_mounting_pitch", options->mounting}}) {
+      if (!wanted) continue;
+      ImuCalibrationOptions calibration_options;
+      calibration_options.use_gps = !options->no_gps;
+      calibration_options.threads = options->identify.threads;
+      calibration_json[effect == std::string("clock_offset") ? "imu_clock" : "imu_mounting"] =
+          ReadImuCalibration(effect, train, calibration_options, &start, text);
     }
     const IdentificationResult result = IdentifyModel(train, start, options->identify);
     text << DescribeIdentification(result);
     nlohmann::json json = ToJson(result);
-    if (options->clock_offset) json["imu_clock"] = clock_json;
+    for (const auto& [key, value] : calibration_json.items()) json[key] = value;
     if (!held_out.empty()) {
       // Scored without the GNSS fading memory and by the default front end (the fading takes out
       // part of what a better law would: docs/identify.md).

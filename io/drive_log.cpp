@@ -1,6 +1,7 @@
 #include "io/drive_log.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace slipgraph {
 
@@ -60,10 +61,20 @@ void ApplyCalibration(const ModelConfig& model, DriveLog* log) {
   }
   if (c.track_width_m > 0.0) log->vehicle.track_width_m = c.track_width_m;
   if (c.imu_time_offset_s != 0.0) MoveImuStampsBack(c.imu_time_offset_s, log);
+  if (c.imu_mounting_pitch_rad != 0.0) RotateImuAxesBack(c.imu_mounting_pitch_rad, log);
 }
 
 void MoveImuStampsBack(double offset_s, DriveLog* log) {
   for (ImuSample& s : log->imu) s.t -= offset_s;
+}
+
+void RotateImuAxesBack(double pitch_rad, DriveLog* log) {
+  const double c = std::cos(pitch_rad), s = std::sin(pitch_rad);
+  for (ImuSample& imu : log->imu) {
+    const double fx = imu.ax * c + imu.az * s, fz = -imu.ax * s + imu.az * c;
+    const double wx = imu.gx * c + imu.gz * s, wz = -imu.gx * s + imu.gz * c;
+    imu.ax = fx, imu.az = fz, imu.gx = wx, imu.gz = wz;
+  }
 }
 
 }  // namespace slipgraph

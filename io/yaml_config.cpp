@@ -279,7 +279,8 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
        {{"wheel_radius_scale_left", &m.calibration.wheel_radius_scale_left, false},
         {"wheel_radius_scale_right", &m.calibration.wheel_radius_scale_right, false},
         {"track_width", &m.calibration.track_width_m, false},
-        {"imu_time_offset", &m.calibration.imu_time_offset_s, false}}},
+        {"imu_time_offset", &m.calibration.imu_time_offset_s, false},
+        {"imu_mounting_pitch", &m.calibration.imu_mounting_pitch_rad, false}}},
       {"tire_uncertainty",
        {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
         {"slip_relative_sd", &m.tire_uncertainty.slip_relative_sd, false},
@@ -515,7 +516,8 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   section("calibration", {{"wheel_radius_scale_left", m.calibration.wheel_radius_scale_left},
                           {"wheel_radius_scale_right", m.calibration.wheel_radius_scale_right},
                           {"track_width", m.calibration.track_width_m},
-                          {"imu_time_offset", m.calibration.imu_time_offset_s}});
+                          {"imu_time_offset", m.calibration.imu_time_offset_s},
+                          {"imu_mounting_pitch", m.calibration.imu_mounting_pitch_rad}});
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
                                {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},
                                {"slip_floor", m.tire_uncertainty.slip_floor_mps},

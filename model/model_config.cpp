@@ -77,6 +77,10 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "calibration.imu_time_offset must be within [-1, 1] s";
     return false;
   }
+  if (!(std::abs(calibration.imu_mounting_pitch_rad) <= 0.2)) {
+    *error = "calibration.imu_mounting_pitch must be within [-0.2, 0.2] rad";
+    return false;
+  }
   if (!(calibration.track_width_m >= 0.0)) {
     *error = "calibration.track_width must be non-negative (0: vehicle.yaml's)";
     return false;

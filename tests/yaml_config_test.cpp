@@ -127,6 +127,8 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
       InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("calibration: {imu_time_offset: 1.5}\n"), LagrVehicle()),
                InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("calibration: {imu_mounting_pitch: 0.3}\n"), LagrVehicle()),
+               InputError);
 }
 
 TEST(YamlConfig, WrittenModelReadsBackTheSame) {
@@ -138,6 +140,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.calibration.wheel_radius_scale_right = 0.97;
   m.calibration.track_width_m = 0.81;
   m.calibration.imu_time_offset_s = -0.035;
+  m.calibration.imu_mounting_pitch_rad = 0.021;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -149,6 +152,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_right, 0.97);
   EXPECT_DOUBLE_EQ(back.calibration.track_width_m, 0.81);
   EXPECT_DOUBLE_EQ(back.calibration.imu_time_offset_s, -0.035);
+  EXPECT_DOUBLE_EQ(back.calibration.imu_mounting_pitch_rad, 0.021);
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {

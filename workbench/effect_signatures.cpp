@@ -304,15 +304,7 @@ std::vector<EffectSignature> MakeSignatures() {
          s.g = HighPass(s.t, s.g, 5.0);
          return std::vector<SignatureSeries>{s};
        },
-       [](double delta, DriveLog* log) {
-         // Rotate the sensor axes back by delta about body y.
-         const double cd = std::cos(delta), sd = std::sin(delta);
-         for (ImuSample& imu : log->imu) {
-           const double fx = imu.ax * cd + imu.az * sd, fz = -imu.ax * sd + imu.az * cd;
-           const double wx = imu.gx * cd + imu.gz * sd, wz = -imu.gx * sd + imu.gz * cd;
-           imu.ax = fx, imu.az = fz, imu.gx = wx, imu.gz = wz;
-         }
-       }});
+       [](double delta, DriveLog* log) { RotateImuAxesBack(delta, log); }});
   list.push_back({"slope_slip", "score test on the graph of its term's column (traction x |grade|)",
                   nullptr,
                   [](const ModelResiduals& m, const DriveLog&, const ModelConfig&) {

@@ -1,4 +1,4 @@
-#include "workbench/imu_clock_offset.h"
+#include "workbench/imu_calibration.h"
 
 #include <boost/math/distributions/chi_squared.hpp>
 #include <cassert>
@@ -12,17 +12,18 @@
 namespace slipgraph {
 namespace {
 
-// The clock_offset candidate on a log: its magnitude and weight (1 / sd^2), and whether its
+// The effect's candidate on a log: its magnitude and weight (1 / sd^2), and whether its
 // test finds it; untested where the test gives no sd.
 struct Reading {
   double magnitude = 0.0, weight = 0.0;
   bool significant = false, tested = false;
 };
 
-Reading Read(const DriveLog& log, const ModelConfig& model, const DiagnosisOptions& options) {
+Reading Read(const DriveLog& log, const ModelConfig& model, const std::string& effect,
+             const DiagnosisOptions& options) {
   Reading r;
   for (const CandidateScore& c : Diagnose(log, model, options).candidates) {
-    if (c.effect == "clock_offset" && std::isfinite(c.magnitude) && c.magnitude_sd > 0.0) {
+    if (c.effect == effect && std::isfinite(c.magnitude) && c.magnitude_sd > 0.0) {
       r = {c.magnitude, 1.0 / (c.magnitude_sd * c.magnitude_sd), c.significant, true};
     }
   }
@@ -30,10 +31,11 @@ Reading Read(const DriveLog& log, const ModelConfig& model, const DiagnosisOptio
 }
 
 // A half of a log: untested where it is too short for the front end to run on.
-Reading ReadHalf(const DriveLog& half, const ModelConfig& model, const DiagnosisOptions& options) {
+Reading ReadHalf(const DriveLog& half, const ModelConfig& model, const std::string& effect,
+                 const DiagnosisOptions& options) {
   if (half.wheels.size() < 2) return Reading{};
   try {
-    return Read(half, model, options);
+    return Read(half, model, effect, options);
   } catch (const std::exception&) {
     return Reading{};
   }
@@ -57,24 +59,44 @@ Combined Combine(const std::vector<Reading>& readings) {
 
 }  // namespace
 
-bool ImuClockOffsetOptions::IsValid(std::string* error) const {
+bool ImuCalibrationOptions::IsValid(std::string* error) const {
   if (!(halves_level > 0.0 && halves_level < 1.0 && min_sigmas >= 0.0 && threads > 0)) {
-    *error = "ImuClockOffsetOptions: halves_level in (0, 1), min_sigmas >= 0, threads > 0";
+    *error = "ImuCalibrationOptions: halves_level in (0, 1), min_sigmas >= 0, threads > 0";
     return false;
   }
   return true;
 }
 
-ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const ModelConfig& model,
-                                      const ImuClockOffsetOptions& options) {
+const std::vector<std::pair<std::string, std::string>>& ImuCalibrationEffects() {
+  static const std::vector<std::pair<std::string, std::string>> kEffects = {
+      {"clock_offset", "imu_time_offset"}, {"imu_mounting_pitch", "imu_mounting_pitch"}};
+  return kEffects;
+}
+
+ModelConfig WithImuCalibration(const ModelConfig& model, const std::string& effect, double value) {
+  ModelConfig out = model;
+  if (effect == "clock_offset") {
+    out.calibration.imu_time_offset_s += value;
+  } else if (effect == "imu_mounting_pitch") {
+    out.calibration.imu_mounting_pitch_rad += value;
+  } else {
+    throw std::invalid_argument("no IMU calibration for effect '" + effect + "'");
+  }
+  return out;
+}
+
+ImuCalibrationReading EstimateImuCalibration(const std::vector<DriveLog>& logs,
+                                             const ModelConfig& model, const std::string& effect,
+                                             const ImuCalibrationOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
-  EffectRegistry clock_only;
-  const EffectSignature* signature = EffectRegistry::Catalogue().FindSignature("clock_offset");
+  WithImuCalibration(model, effect, 0.0);  // throws for an effect it does not read
+  EffectRegistry effect_only;
+  const EffectSignature* signature = EffectRegistry::Catalogue().FindSignature(effect);
   assert(signature != nullptr);  // the catalogue's own signature
-  clock_only.Add(*signature);
+  effect_only.Add(*signature);
   DiagnosisOptions diagnosis;
-  diagnosis.effects = &clock_only;
+  diagnosis.effects = &effect_only;
   diagnosis.fit_candidates = 0;
   diagnosis.threads = options.threads;
   diagnosis.smoother.filter.use_gps = options.use_gps;
@@ -82,27 +104,27 @@ ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const M
   plain.effects.clear();  // the registry has no terms
   plain.effect_windows.clear();
 
-  ImuClockOffset out;
+  ImuCalibrationReading out;
   std::vector<Reading> wholes, halves;
   for (const DriveLog& raw : logs) {
     if (raw.wheels.size() < 2) continue;
     DriveLog log = raw;
     ApplyCalibration(plain, &log);
-    const Reading whole = Read(log, plain, diagnosis);
+    const Reading whole = Read(log, plain, effect, diagnosis);
     if (!whole.tested) continue;
     wholes.push_back(whole);
     out.significant_logs += whole.significant ? 1 : 0;
     const double middle = 0.5 * (log.wheels.front().t + log.wheels.back().t);
     for (const DriveLog& half : {SliceLog(log, -1e300, middle), SliceLog(log, middle, 1e300)}) {
-      const Reading r = ReadHalf(half, plain, diagnosis);
+      const Reading r = ReadHalf(half, plain, effect, diagnosis);
       if (r.tested) halves.push_back(r);
     }
   }
   out.logs = static_cast<int>(wholes.size());
   const Combined combined = Combine(wholes);
   if (combined.weight > 0.0) {
-    out.offset_s = combined.mean;
-    out.sd_s = 1.0 / std::sqrt(combined.weight);
+    out.value = combined.mean;
+    out.sd = 1.0 / std::sqrt(combined.weight);
   }
   out.halves = static_cast<int>(halves.size());
   if (halves.size() >= 2) {
@@ -116,7 +138,7 @@ ImuClockOffset EstimateImuClockOffset(const std::vector<DriveLog>& logs, const M
     out.halves_agree = out.heterogeneity_p >= options.halves_level;
   }
   out.taken = out.significant_logs > 0 && out.halves_agree &&
-              std::abs(out.offset_s) > options.min_sigmas * out.sd_s;
+              std::abs(out.value) > options.min_sigmas * out.sd;
   return out;
 }
 
