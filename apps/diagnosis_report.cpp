@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/estimate_plots.h"
+#include "workbench/imu_calibration.h"
 
 namespace slipgraph {
 namespace {
@@ -57,12 +58,12 @@ void PrintDiagnosis(const Diagnosis& d, std::ostream& out) {
   for (const EffectEstimate& e : d.corrected) {
     out << "  corrected in the measurements: " << e.name << " = " << e.value << " +- " << e.sd
         << "\n";
-    if (e.name == "clock_offset") {
+    for (const ImuCalibrationEffect& calibration : ImuCalibrationEffects()) {
+      if (e.name != calibration.effect) continue;
       out << "    (for every estimator, the front end too: add it to the model file's "
-             "`calibration: {imu_time_offset: S}`)\n";
-    } else if (e.name == "imu_mounting_pitch") {
-      out << "    (for every estimator, the front end too: add it to the model file's "
-             "`calibration: {imu_mounting_pitch: RAD}`)\n";
+             "`calibration: {"
+          << calibration.key << ": " << e.value << "}` (" << calibration.unit
+          << "), on top of any it has)\n";
     }
   }
   out << "  streams (normalized residuals):\n";

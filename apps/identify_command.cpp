@@ -55,55 +55,46 @@ void PrintScores(const std::string& name, const ModelScore& nominal, const Model
   out << "\n";
 }
 
-}  // namespace
-
 // `--clock`, `--mounting`: the workbench's test of the effect on the fitted logs
 // (workbench/imu_calibration.h), said on the terminal; the model's calibration takes what it
 // finds where it is told from zero and the logs' halves agree. Its JSON.
-nlohmann::json ReadImuCalibration(const std::string& effect, const std::vector<DriveLog>& train,
+nlohmann::json ReadImuCalibration(const ImuCalibrationEffect& effect,
+                                  const std::vector<DriveLog>& train,
                                   const ImuCalibrationOptions& options, ModelConfig* model,
                                   std::ostream& text) {
-  const bool clock = effect == "clock_offset";
-  const double scale = clock ? 1000.0 : 1.0;  // ms; rad
-  const std::string unit = clock ? " ms late" : " rad nose-down";
-  std::string key;
-  for (const auto& [name, calibration_key] : ImuCalibrationEffects()) {
-    if (name == effect) key = calibration_key;
-  }
-  const auto current = [&]() {
-    return clock ? model->calibration.imu_time_offset_s : model->calibration.imu_mounting_pitch_rad;
-  };
-  const ImuCalibrationReading found = EstimateImuCalibration(train, *model, effect, options);
-  text << (clock ? "IMU clock against the other streams" : "IMU mounting pitch")
-       << " (the workbench's test on " << found.logs << " log(s), significant on "
+  const ImuCalibrationReading found = EstimateImuCalibration(train, *model, effect.effect, options);
+  text << effect.title << " (the workbench's test on " << found.logs << " log(s), significant on "
        << found.significant_logs << "): ";
   if (std::isfinite(found.value)) {
-    text << std::showpos << scale * found.value << std::noshowpos << " +- " << scale * found.sd
-         << unit;
+    text << std::showpos << effect.display_scale * found.value << std::noshowpos << " +- "
+         << effect.display_scale * found.sd << " " << effect.display_unit;
   } else {
     text << "not tested";
   }
-  const std::string units = clock ? " s" : " rad";
+  if (found.taken) *model = WithImuCalibration(*model, effect.effect, found.value);
+  const double kept = model->calibration.*effect.field;
   if (found.taken) {
-    *model = WithImuCalibration(*model, effect, found.value);
-    text << "; the model's calibration." << key << " takes it: " << current() << units << "\n";
+    text << "; the model's calibration." << effect.key << " takes it: " << kept << " "
+         << effect.unit << "\n";
   } else if (found.significant_logs > 0 && !found.halves_agree) {
     text << "; the logs' halves do not agree (" << found.halves << " tested, Cochran's Q "
-         << found.heterogeneity << ", p " << found.heterogeneity_p << "): not taken as "
-         << (clock ? "a clock" : "a mounting") << ", left at " << current() << units << "\n";
+         << found.heterogeneity << ", p " << found.heterogeneity_p << "): not taken, left at "
+         << kept << " " << effect.unit << "\n";
   } else {
-    text << "; not told from zero, left at " << current() << units << "\n";
+    text << "; not told from zero, left at " << kept << " " << effect.unit << "\n";
   }
-  return {{clock ? "offset_s" : "pitch_rad", JsonNumber(found.value)},
-          {clock ? "sd_s" : "sd_rad", JsonNumber(found.sd)},
+  return {{effect.json_value, JsonNumber(found.value)},
+          {effect.json_sd, JsonNumber(found.sd)},
           {"logs", found.logs},
           {"significant_logs", found.significant_logs},
           {"halves", found.halves},
           {"heterogeneity", JsonNumber(found.heterogeneity)},
           {"heterogeneity_p", JsonNumber(found.heterogeneity_p)},
           {"taken", found.taken},
-          {clock ? "imu_time_offset_s" : "imu_mounting_pitch_rad", current()}};
+          {std::string(effect.key) + "_" + effect.unit, kept}};
 }
+
+}  // namespace
 
 void RegisterIdentifyCommand(CLI::App* app, int* status) {
   struct Options {
@@ -210,14 +201,13 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
     std::ostream& text = options->json.text();
     ModelConfig start = model;
     nlohmann::json calibration_json;
-    for (const auto& [effect, wanted] :
-         {std::pair<const char*, bool>{"clock_offset", options->clock_offset},
-          {"imu_mounting_pitch", options->mounting}}) {
-      if (!wanted) continue;
+    for (const ImuCalibrationEffect& effect : ImuCalibrationEffects()) {
+      const bool clock = effect.effect == std::string("clock_offset");
+      if (!(clock ? options->clock_offset : options->mounting)) continue;
       ImuCalibrationOptions calibration_options;
       calibration_options.use_gps = !options->no_gps;
       calibration_options.threads = options->identify.threads;
-      calibration_json[effect == std::string("clock_offset") ? "imu_clock" : "imu_mounting"] =
+      calibration_json[effect.json_object] =
           ReadImuCalibration(effect, train, calibration_options, &start, text);
     }
     const IdentificationResult result = IdentifyModel(train, start, options->identify);

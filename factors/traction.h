@@ -8,6 +8,8 @@
 // differentiable everywhere, including v_rel = 0 (see smooth_math.h).
 #pragma once
 
+#include <cmath>
+
 #include "factors/smooth_math.h"
 #include "model/vehicle.h"
 
@@ -28,6 +30,21 @@ inline T TractionForceOf(const N& normal_force_n, const T& v_rel_mps, const S& c
 template <typename N, typename T>
 inline T TractionForceN(const N& normal_force_n, const T& v_rel_mps, const TireParams& tire) {
   return TractionForceOf(normal_force_n, v_rel_mps, tire.C1, tire.At, tire.C2, tire.At);
+}
+
+// The slip speed v_rel in (0, up_to_mps] at which eq. (8)'s traction changes sign (a falling
+// branch, C2 < 0, that outweighs the saturated C1), or NaN where it keeps its sign up to there.
+// For v_rel > 0 the law is concave through zero, so its sign at up_to_mps decides and bisection
+// finds the change; the law is odd, so braking reverses at the same speed.
+inline double TractionReversalSpeedMps(const TireParams& tire, double up_to_mps) {
+  const auto force = [&](double v_rel) { return TractionForceN(1.0, v_rel, tire); };
+  if (!(up_to_mps > 0.0) || !(force(up_to_mps) <= 0.0)) return std::nan("");
+  double low = 0.0, high = up_to_mps;
+  for (int i = 0; i < 60; ++i) {
+    const double middle = 0.5 * (low + high);
+    (force(middle) > 0.0 ? low : high) = middle;
+  }
+  return high;
 }
 
 // Relative velocity of a tire, v_rel = r w - v_fwd (Ward & Iagnemma, below eq. 8).

@@ -111,10 +111,15 @@ struct CalibrationConfig {
   double wheel_radius_scale_right = 1.0;
   double track_width_m = 0.0;      // 0: vehicle.yaml's
   double imu_time_offset_s = 0.0;  // subtracted from the IMU's stamps; within +- 1 s
-  // The IMU's axes pitched nose-down by this about body y (rad; within +- 0.2): its accelerometer
-  // and gyro rotated back (attitude.csv is taken as the body's).
+  // The IMU's axes pitched nose-down by this about body y (rad; within +-
+  // kMaxImuMountingPitchRad): its accelerometer and gyro rotated back (attitude.csv is taken as
+  // the body's).
   double imu_mounting_pitch_rad = 0.0;
 };
+
+// The largest IMU mounting pitch taken (rad, 11 degrees): the calibration's bound and the
+// workbench's plausible range.
+constexpr double kMaxImuMountingPitchRad = 0.2;
 
 // The largest tire_sd.slip_stiffness taken (error messages say [0, 2]): a slope uncertain by a
 // factor e^2 either way.

@@ -204,9 +204,9 @@ std::string FallingBranchLeavesTheWheels(const std::vector<DriveLog>& logs,
   return "";
 }
 
-// The speed the driven wheels' rims reach on the logs: the 99th percentile of r |w| over both
-// sides' samples (a spike in one encoder does not set it); NaN without wheel samples.
-double FastRimSpeed(const std::vector<DriveLog>& logs) {
+// The speed the driven wheels' rims reach on the logs (m/s): the 99th percentile of r |w| over
+// both sides' samples (a spike in one encoder does not set it); NaN without wheel samples.
+double FastRimSpeedMps(const std::vector<DriveLog>& logs) {
   std::vector<double> speeds;
   for (const DriveLog& log : logs) {
     for (const WheelSample& w : log.wheels) {
@@ -223,22 +223,14 @@ double FastRimSpeed(const std::vector<DriveLog>& logs) {
   return speeds[k];
 }
 
-// Where the law's traction (eq. 8, per newton) reverses at a slip speed at or below
-// `rim_speed`, that speed, said as "the fitted law's traction reverses at X m/s of slip speed,
-// below the wheels' rim speed Y m/s"; empty when it keeps its sign. Eq. (8) is odd and, for
-// v_rel > 0, concave through zero, so its sign at the rim speed decides, and bisection finds the
-// reversal.
-std::string TractionReversesWithin(const TireParams& tire, double rim_speed) {
-  const auto force = [&](double v_rel) { return TractionForceN(1.0, v_rel, tire); };
-  if (!(rim_speed > 0.0) || force(rim_speed) > 0.0) return "";
-  double low = 0.0, high = rim_speed;
-  for (int i = 0; i < 60; ++i) {
-    const double middle = 0.5 * (low + high);
-    (force(middle) > 0.0 ? low : high) = middle;
-  }
+// "the fitted law's traction reverses at X m/s of slip speed, below the wheels' rim speed Y m/s
+// (...)" where it does (TractionReversalSpeedMps); empty where it keeps its sign.
+std::string TractionReversesWithin(const TireParams& tire, double rim_speed_mps) {
+  const double reversal_mps = TractionReversalSpeedMps(tire, rim_speed_mps);
+  if (std::isnan(reversal_mps)) return "";
   std::ostringstream out;
-  out << std::setprecision(3) << "the fitted law's traction reverses at " << high
-      << " m/s of slip speed, below the wheels' rim speed " << rim_speed
+  out << std::setprecision(3) << "the fitted law's traction reverses at " << reversal_mps
+      << " m/s of slip speed, below the wheels' rim speed " << rim_speed_mps
       << " m/s (a stuck robot's wheels would pull it back)";
   return out.str();
 }
@@ -375,7 +367,7 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   // C2's lower bound is raised to 0 and the problem solved again from where it stands.
   if (options.keep_front_end_on_wheels && problem->law[kLawC2] < 0.0) {
     const ModelConfig fitted = WithFittedLaw(model, *problem);
-    std::string refused = TractionReversesWithin(fitted.tire, FastRimSpeed(logs));
+    std::string refused = TractionReversesWithin(fitted.tire, FastRimSpeedMps(logs));
     if (refused.empty()) {
       refused = FallingBranchLeavesTheWheels(input_logs, model, fitted, options.use_gps);
     }

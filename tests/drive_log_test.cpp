@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace slipgraph {
 namespace {
 
@@ -53,6 +55,29 @@ TEST(DriveLog, CalibrationScalesEachSidesWheelsSetsTheTrackAndMovesTheImuStamps)
   EXPECT_EQ(log.vehicle.track_width_m, 0.8);
   EXPECT_DOUBLE_EQ(log.imu[3].t, 3.45);
   EXPECT_EQ(log.wheels[3].t, 3.0);
+}
+
+TEST(DriveLog, CalibrationRotatesAPitchedImuBackOntoTheBody) {
+  // The body's specific force and rate, seen by an IMU pitched nose-down by 0.1 rad about body
+  // y as sim/sensor_models.cpp pitches it: x' = x cos d - z sin d, z' = x sin d + z cos d.
+  const double d = 0.1, fx = 0.4, fz = 9.81, wx = 0.05, wz = 0.3;
+  DriveLog log = TwoWheelLog();
+  for (ImuSample& s : log.imu) {
+    s.ax = fx * std::cos(d) - fz * std::sin(d), s.az = fx * std::sin(d) + fz * std::cos(d);
+    s.gx = wx * std::cos(d) - wz * std::sin(d), s.gz = wx * std::sin(d) + wz * std::cos(d);
+    s.ay = 0.2, s.gy = 0.01;
+  }
+  ModelConfig model;
+  model.calibration.imu_mounting_pitch_rad = d;
+  ApplyCalibration(model, &log);
+  for (const ImuSample& s : log.imu) {
+    EXPECT_NEAR(s.ax, fx, 1e-12);
+    EXPECT_NEAR(s.az, fz, 1e-12);
+    EXPECT_NEAR(s.gx, wx, 1e-12);
+    EXPECT_NEAR(s.gz, wz, 1e-12);
+    EXPECT_EQ(s.ay, 0.2);  // about y: y unchanged
+    EXPECT_EQ(s.gy, 0.01);
+  }
 }
 
 }  // namespace

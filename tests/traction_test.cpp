@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/jacobian_check.h"
 
 namespace slipgraph {
@@ -14,6 +16,21 @@ TEST(Traction, HandComputedPoint) {
   EXPECT_NEAR(TractionForceN(500.0, 0.1, kTire), 348.36588670535497, 1e-9);
   EXPECT_NEAR(TractionForceN(500.0, -0.1, kTire), -348.36588670535497, 1e-9);  // braking
   EXPECT_EQ(TractionForceN(500.0, 0.0, kTire), 0.0);
+}
+
+TEST(Traction, AFallingBranchReversesWhereC1IsOutweighed) {
+  // C1 0.29, At 200 (saturated within a few cm/s), C2 -0.5: 0.29 (1 - exp(-200 v)) = 0.5 v at
+  // v = 0.58 m/s.
+  TireParams tire{0.29, 200.0, -0.5};
+  const double v = TractionReversalSpeedMps(tire, 1.35);
+  EXPECT_NEAR(v, 0.58, 1e-3);
+  EXPECT_NEAR(TractionForceN(1.0, v, tire), 0.0, 1e-9);
+  EXPECT_TRUE(std::isnan(TractionReversalSpeedMps(tire, 0.5)));  // not within 0.5 m/s
+  tire.C2 = 0.05;
+  EXPECT_TRUE(std::isnan(TractionReversalSpeedMps(tire, 100.0)));  // no falling branch
+  tire = {0.3, 20.0, -0.1};                                        // 3 m/s
+  EXPECT_NEAR(TractionReversalSpeedMps(tire, 10.0), 0.3 * (1.0 - std::exp(-20.0 * 3.0)) / 0.1,
+              1e-6);
 }
 
 TEST(Traction, RelativeVelocity) { EXPECT_DOUBLE_EQ(TireRelativeVelocityMps(4.0, 0.25, 0.8), 0.2); }

@@ -67,21 +67,26 @@ bool ImuCalibrationOptions::IsValid(std::string* error) const {
   return true;
 }
 
-const std::vector<std::pair<std::string, std::string>>& ImuCalibrationEffects() {
-  static const std::vector<std::pair<std::string, std::string>> kEffects = {
-      {"clock_offset", "imu_time_offset"}, {"imu_mounting_pitch", "imu_mounting_pitch"}};
+const std::vector<ImuCalibrationEffect>& ImuCalibrationEffects() {
+  static const std::vector<ImuCalibrationEffect> kEffects = {
+      {"clock_offset", &CalibrationConfig::imu_time_offset_s, "imu_time_offset",
+       "IMU clock against the other streams", "s", 1000.0, "ms late", "imu_clock", "offset_s",
+       "sd_s"},
+      {"imu_mounting_pitch", &CalibrationConfig::imu_mounting_pitch_rad, "imu_mounting_pitch",
+       "IMU mounting pitch", "rad", 1.0, "rad nose-down", "imu_mounting", "pitch_rad", "sd_rad"}};
   return kEffects;
+}
+
+const ImuCalibrationEffect& FindImuCalibrationEffect(const std::string& effect) {
+  for (const ImuCalibrationEffect& e : ImuCalibrationEffects()) {
+    if (effect == e.effect) return e;
+  }
+  throw std::invalid_argument("no IMU calibration for effect '" + effect + "'");
 }
 
 ModelConfig WithImuCalibration(const ModelConfig& model, const std::string& effect, double value) {
   ModelConfig out = model;
-  if (effect == "clock_offset") {
-    out.calibration.imu_time_offset_s += value;
-  } else if (effect == "imu_mounting_pitch") {
-    out.calibration.imu_mounting_pitch_rad += value;
-  } else {
-    throw std::invalid_argument("no IMU calibration for effect '" + effect + "'");
-  }
+  out.calibration.*FindImuCalibrationEffect(effect).field += value;
   return out;
 }
 
@@ -90,7 +95,7 @@ ImuCalibrationReading EstimateImuCalibration(const std::vector<DriveLog>& logs,
                                              const ImuCalibrationOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
-  WithImuCalibration(model, effect, 0.0);  // throws for an effect it does not read
+  FindImuCalibrationEffect(effect);  // throws for an effect it does not read
   EffectRegistry effect_only;
   const EffectSignature* signature = EffectRegistry::Catalogue().FindSignature(effect);
   assert(signature != nullptr);  // the catalogue's own signature

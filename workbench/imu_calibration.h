@@ -51,9 +51,25 @@ struct ImuCalibrationReading {
   bool taken = false;
 };
 
-// The effects it reads, each with its model file calibration key: {"clock_offset",
-// "imu_time_offset"}, {"imu_mounting_pitch", "imu_mounting_pitch"}.
-const std::vector<std::pair<std::string, std::string>>& ImuCalibrationEffects();
+// An effect it reads and where the model keeps it: the calibration field and its model file
+// key, what the terminal calls it and in which unit, the JSON's names.
+struct ImuCalibrationEffect {
+  const char* effect;  // the catalogue's name, e.g. "clock_offset"
+  double CalibrationConfig::*field;
+  const char* key;           // the model file's `calibration:` key
+  const char* title;         // e.g. "IMU clock against the other streams"
+  const char* unit;          // of the value in the model, e.g. "s"
+  double display_scale;      // the terminal's figure = value x this ...
+  const char* display_unit;  // ... in this, e.g. "ms late"
+  const char* json_object;   // identify's JSON: the object's name, e.g. "imu_clock"
+  const char* json_value;    // its value's and sd's names, e.g. "offset_s", "sd_s"
+  const char* json_sd;
+};
+// clock_offset (calibration.imu_time_offset_s) and imu_mounting_pitch
+// (calibration.imu_mounting_pitch_rad).
+const std::vector<ImuCalibrationEffect>& ImuCalibrationEffects();
+// The entry for `effect`; throws std::invalid_argument for an effect not among them.
+const ImuCalibrationEffect& FindImuCalibrationEffect(const std::string& effect);
 
 // Each log as the model calibrates it (ApplyCalibration; its halves cut at the middle of its
 // wheel data): the value found is on top of the model's calibration (imu_time_offset or
@@ -63,8 +79,8 @@ ImuCalibrationReading EstimateImuCalibration(const std::vector<DriveLog>& logs,
                                              const ModelConfig& model, const std::string& effect,
                                              const ImuCalibrationOptions& options = {});
 
-// The model with `value` added to the effect's calibration (throws std::invalid_argument for an
-// effect not among ImuCalibrationEffects).
+// The model with `value` added to the effect's calibration field (throws std::invalid_argument
+// for an effect not among ImuCalibrationEffects).
 ModelConfig WithImuCalibration(const ModelConfig& model, const std::string& effect, double value);
 
 }  // namespace slipgraph
