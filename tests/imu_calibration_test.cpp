@@ -67,7 +67,7 @@ TEST(ImuCalibrationReading, HalvesThatDisagreeAreNotTakenForAClock) {
 }
 
 TEST(ImuCalibrationReading, ReadsAPitchedImuAndNoneWhereItIsLevel) {
-  // Measured (seed 1, whole): 0.0302 +- 0.0025 rad pitched, 0.0013 +- 0.0025 level. On hiddenm
+  // Measured (seed 1, whole): 0.0300 +- 0.0023 rad pitched, 0.0015 +- 0.0023 level. On hiddenm
   // (chassis vibration in the z accelerometer, an AHRS error) the same test's sd is about 0.03
   // rad: not told from zero (docs/identify.md).
   const DriveLog pitched = testing::SimulatedScenario("hidden/imu_mounting_pitch");
