@@ -30,6 +30,7 @@
 //     given) and its check against GNSS (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
 //   --window-stiffness-sd SD: the window's slip-stiffness prior (WindowSmootherOptions::
 //     stiffness_prior_sd; 0: the law as given);
+//   --window-length S: the window's span in seconds (WindowSmootherOptions::window_s);
 //   --runs: list each run with false alarms (seed, run, estimator, samples, v RMSE);
 //   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
 //     trying a setting on seeds the figures are not reported on.
@@ -89,6 +90,7 @@ double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
 double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
 // --window-stiffness-sd: the window's slip stiffness prior.
 double g_window_stiffness_sd = WindowSmootherOptions{}.stiffness_prior_sd;
+double g_window_s = WindowSmootherOptions{}.window_s;
 // --runs: list the runs with false alarms.
 bool g_list_runs = false;
 double g_reject_distance_sd = WindowSmootherOptions{}.reject_distance_sd;
@@ -168,6 +170,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
       options.filter = g_front;
       options.reject_distance_sd = g_reject_distance_sd;
       options.stiffness_prior_sd = g_window_stiffness_sd;
+      options.window_s = g_window_s;
       if (!std::isnan(g_no_pull_back_sd)) options.no_pull_back_sd_density = g_no_pull_back_sd;
       options.disturbance_from_front_end = g_disturbance_from_front_end;
       const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
@@ -255,6 +258,8 @@ int main(int argc, char** argv) {
                       &o.change_mean_s, &o.held_mean_s, &o.mix_interval_s) >= 6;
     } else if (std::strcmp(argv[i], "--window-stiffness-sd") == 0 && has_value) {
       g_window_stiffness_sd = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--window-length") == 0 && has_value) {
+      g_window_s = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--stiffness-sd") == 0 && has_value) {
       g_stiffness_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--stiffness-margin") == 0 && has_value) {

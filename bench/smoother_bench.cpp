@@ -7,8 +7,9 @@
 //                                                          as given, one solve, no border nodes)
 //                                                                 one length per process (peak
 //                                                                 RSS); the chain solver or Ceres
-//   build/bench/smoother_bench window [--ceres] [ITERATIONS...]    2 s window at 100 Hz (chain
-//                                                                   Gauss-Newton, or ceres::Solve)
+//   build/bench/smoother_bench window [--ceres] [--length S] [ITERATIONS...]
+//                                              a window of S s (2) at 100 Hz (chain Gauss-Newton,
+//                                              or ceres::Solve)
 //   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES [--threads N]
 //                                                                 chunked mode, 60 s overlap
 //
@@ -165,7 +166,7 @@ double Percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
 }
 
-int Window(const std::vector<int>& iterations, bool chain) {
+int Window(const std::vector<int>& iterations, bool chain, double window_s) {
   const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
   const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
   std::printf(
@@ -176,6 +177,7 @@ int Window(const std::vector<int>& iterations, bool chain) {
   for (int n : iterations) {
     WindowSmootherOptions options;
     options.max_iterations = n;
+    options.window_s = window_s;
     options.solver = chain ? WindowSolver::kChainGaussNewton : WindowSolver::kCeres;
     const WindowSmootherResult r = SmoothWindowed(sim.log, model, options);
     std::vector<double> total = r.update_ms;  // with kChainGaussNewton it holds the covariance
@@ -231,21 +233,25 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::strcmp(argv[1], "window") == 0) {
     std::vector<int> iterations;
     bool chain = true;
+    double window_s = slipgraph::WindowSmootherOptions{}.window_s;
     for (int i = 2; i < argc; ++i) {
       if (std::strcmp(argv[i], "--ceres") == 0) {
         chain = false;
+      } else if (std::strcmp(argv[i], "--length") == 0 && i + 1 < argc) {
+        window_s = std::atof(argv[++i]);
       } else {
         iterations.push_back(std::atoi(argv[i]));
       }
     }
     if (iterations.empty()) iterations = {1, 2, 5};
-    return slipgraph::Window(iterations, chain);
+    return slipgraph::Window(iterations, chain, window_s);
   }
   std::fprintf(
       stderr,
       "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] "
       "[--function-tolerance F] [--step-sd S] [--against F2] [--stiffness-sd SD] | "
-      "window [--ceres] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES [--threads N]\n"
+      "window [--ceres] [--length S] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES [--threads "
+      "N]\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"
       "batch prints: | solver | threads | minutes | states | total s | iterations (both solves) | "
