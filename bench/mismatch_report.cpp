@@ -30,7 +30,8 @@
 //     given) and its check against GNSS (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
 //   --window-stiffness-sd SD: the window's slip-stiffness prior (WindowSmootherOptions::
 //     stiffness_prior_sd; 0: the law as given);
-//   --window-length S: the window's span in seconds (WindowSmootherOptions::window_s);
+//   --window-length S: with --window, the window's span in seconds (WindowSmootherOptions::
+//     window_s; `online --window S`);
 //   --runs: list each run with false alarms (seed, run, estimator, samples, v RMSE);
 //   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
 //     trying a setting on seeds the figures are not reported on.
@@ -90,6 +91,7 @@ double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
 double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
 // --window-stiffness-sd: the window's slip stiffness prior.
 double g_window_stiffness_sd = WindowSmootherOptions{}.stiffness_prior_sd;
+// --window-length: the window's span (with --window).
 double g_window_s = WindowSmootherOptions{}.window_s;
 // --runs: list the runs with false alarms.
 bool g_list_runs = false;

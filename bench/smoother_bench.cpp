@@ -8,8 +8,8 @@
 //                                                                 one length per process (peak
 //                                                                 RSS); the chain solver or Ceres
 //   build/bench/smoother_bench window [--ceres] [--length S] [ITERATIONS...]
-//                                              a window of S s (2) at 100 Hz (chain Gauss-Newton,
-//                                              or ceres::Solve)
+//                                              a window of S s (default 2) at 100 Hz (chain
+//                                              Gauss-Newton, or ceres::Solve)
 //   build/bench/smoother_bench chunked MINUTES CHUNK_MINUTES [--threads N]
 //                                                                 chunked mode, 60 s overlap
 //
@@ -170,10 +170,10 @@ int Window(const std::vector<int>& iterations, bool chain, double window_s) {
   const sim::SimResult sim = sim::Simulate(LongDrive(2.0), 1);
   const ModelConfig model = DefaultModelConfig(sim.log.vehicle);
   std::printf(
-      "| solver | iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 ms | p99 ms "
-      "| "
-      "update with the covariance p50 ms | p99 ms | fallbacks to Ceres | v RMSE m/s |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| solver | window s | iterations | updates | solve+marg. p50 ms | p99 ms | covariance p50 "
+      "ms | p99 ms | update with the covariance p50 ms | p99 ms | fallbacks to Ceres | v RMSE m/s "
+      "|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int n : iterations) {
     WindowSmootherOptions options;
     options.max_iterations = n;
@@ -187,8 +187,8 @@ int Window(const std::vector<int>& iterations, bool chain, double window_s) {
     const auto cov = [&](double p) {
       return r.covariance_ms.empty() ? std::nan("") : Percentile(r.covariance_ms, p);
     };
-    std::printf("| %s | %d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %.4f |\n",
-                chain ? "chain Gauss-Newton" : "Ceres", n, r.update_ms.size(),
+    std::printf("| %s | %g | %d | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %.4f |\n",
+                chain ? "chain Gauss-Newton" : "Ceres", window_s, n, r.update_ms.size(),
                 Percentile(r.update_ms, 0.5), Percentile(r.update_ms, 0.99), cov(0.5), cov(0.99),
                 Percentile(total, 0.5), Percentile(total, 0.99), r.chain_fallbacks,
                 Evaluate(sim.log, EstimateTable(r.estimates)).velocity_rmse);
@@ -250,8 +250,8 @@ int main(int argc, char** argv) {
       stderr,
       "usage: smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N] "
       "[--function-tolerance F] [--step-sd S] [--against F2] [--stiffness-sd SD] | "
-      "window [--ceres] [--length S] [ITERATIONS...] | chunked MINUTES CHUNK_MINUTES [--threads "
-      "N]\n"
+      "window [--ceres] [--length S] [ITERATIONS...] | "
+      "chunked MINUTES CHUNK_MINUTES [--threads N]\n"
       "chunked prints: | minutes | states | chunk min | chunks | simulation s | smoothing s "
       "| peak RSS MB | failed chunks | samples left at the EKF |\n"
       "batch prints: | solver | threads | minutes | states | total s | iterations (both solves) | "

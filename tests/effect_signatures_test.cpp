@@ -1,11 +1,13 @@
-// The signatures' physical limits: a drive's extent (99th percentiles, so a spike does not set
-// it), each catalogue effect's plausible range from it, and every magnitude the simulator's
-// catalogue uses plausible on the drive it hides it in.
+// The signatures' filters (the band-pass of the mounting pitch's test) and physical limits: a
+// drive's extent (99th percentiles, so a spike does not set it), each catalogue effect's
+// plausible range from it, and every magnitude the simulator's catalogue uses plausible on the
+// drive it hides it in.
 #include "workbench/effect_signatures.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "model/effect_catalogue.h"
 #include "sim/scenarios.h"
@@ -45,6 +47,35 @@ PlausibleRange RangeOf(const std::string& effect, const DriveLog& log) {
   EXPECT_NE(s, nullptr) << effect;
   EXPECT_TRUE(s != nullptr && s->plausible) << effect;
   return s != nullptr && s->plausible ? s->plausible(log) : PlausibleRange{};
+}
+
+TEST(EffectSignatures, TheBandPassKeepsSecondsAndLeavesOutADriftAndAVibration) {
+  // 100 s at 100 Hz: a drift of 0.01 a second, a swing of period 2 s and a 12 Hz vibration.
+  std::vector<double> t, drift, swing, vibration;
+  for (int i = 0; i < 10000; ++i) {
+    t.push_back(0.01 * i);
+    drift.push_back(0.01 * t.back());
+    swing.push_back(std::sin(M_PI * t.back()));
+    vibration.push_back(std::sin(24.0 * M_PI * t.back()));
+  }
+  const auto rms_inside = [&](const std::vector<double>& x) {  // away from the ends' 3 s
+    double sum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (t[i] < 3.0 || t[i] > 97.0) continue;
+      sum += x[i] * x[i];
+      ++count;
+    }
+    return std::sqrt(sum / count);
+  };
+  // A centred average takes a straight line through its own value: the drift is gone (but for
+  // a sample more on one side where the stamps' rounding decides, 1e-5 here).
+  EXPECT_LT(rms_inside(BandPass(t, drift, 0.5, 5.0)), 1e-4);
+  // A 2 s period passes at 0.77 of its amplitude (sinc(1/4) - sinc(5/2)); 12 Hz at a few percent.
+  EXPECT_NEAR(rms_inside(BandPass(t, swing, 0.5, 5.0)), 0.773 / std::sqrt(2.0), 0.01);
+  EXPECT_LT(rms_inside(BandPass(t, vibration, 0.5, 5.0)), 0.03);
+  // The high-pass keeps the vibration whole.
+  EXPECT_NEAR(rms_inside(HighPass(t, vibration, 5.0)), 1.0 / std::sqrt(2.0), 0.01);
 }
 
 TEST(EffectSignatures, ExtentIgnoresASpike) {

@@ -71,7 +71,7 @@ TEST(ImuCalibrationReading, HalvesThatDisagreeAreNotTakenForAClock) {
 struct MountingReadings {
   DriveLog pitched;
   ModelConfig model;
-  ImuCalibrationReading found, none;
+  ImuCalibrationReading found, level;
 };
 MountingReadings ReadMounting(const std::string& suite) {
   MountingReadings r;
@@ -79,9 +79,9 @@ MountingReadings ReadMounting(const std::string& suite) {
   const DriveLog level = testing::SimulatedScenario(suite + "/none");
   r.model = DefaultModelConfig(r.pitched.vehicle);
   r.found = EstimateImuCalibration({r.pitched}, r.model, "imu_mounting_pitch");
-  r.none = EstimateImuCalibration({level}, r.model, "imu_mounting_pitch");
+  r.level = EstimateImuCalibration({level}, r.model, "imu_mounting_pitch");
   std::printf("%s: pitched %.4f +- %.4f rad, level %.4f +- %.4f rad\n", suite.c_str(),
-              r.found.value, r.found.sd, r.none.value, r.none.sd);
+              r.found.value, r.found.sd, r.level.value, r.level.sd);
   return r;
 }
 
@@ -91,8 +91,8 @@ TEST(ImuCalibrationReading, ReadsAPitchedImuAndNoneWhereItIsLevel) {
   EXPECT_TRUE(r.found.taken);
   EXPECT_NEAR(r.found.value, 0.03, 0.006);
   EXPECT_NEAR(r.found.value, 0.03, 4.0 * r.found.sd);
-  EXPECT_FALSE(r.none.taken);
-  EXPECT_LT(std::abs(r.none.value), 4.0 * r.none.sd);
+  EXPECT_FALSE(r.level.taken);
+  EXPECT_LT(std::abs(r.level.value), 4.0 * r.level.sd);
   // Taken into the model, the log calibrated with it reads level.
   const ModelConfig calibrated = WithImuCalibration(r.model, "imu_mounting_pitch", r.found.value);
   EXPECT_EQ(calibrated.calibration.imu_mounting_pitch_rad, r.found.value);
@@ -104,15 +104,16 @@ TEST(ImuCalibrationReading, ReadsAPitchedImuAndNoneWhereItIsLevel) {
 
 TEST(ImuCalibrationReading, ReadsAPitchedImuUnderChassisVibration) {
   // hiddenm: chassis vibration in the accelerometer (a 10-15 Hz resonance, 0.25 m/s^2 at 1 m/s),
-  // an AHRS error, a tire law of another family. Through a 5 s high-pass alone the test's sd was
-  // 0.03 rad (the vibration shakes a_z and a_x at once); band-passed to 0.5-5 s, measured:
-  // 0.0297 +- 0.0035 rad pitched, -0.0001 +- 0.0035 level.
+  // an AHRS error, a tire law of another family. Measured: 0.0297 +- 0.0035 rad pitched, -0.0001
+  // +- 0.0035 level; without the band-pass's 0.5 s stage the sd is about 0.03 rad, which the
+  // bound on sd catches. The value's bounds are about 3.5 and 4 of that sd: the AHRS error both
+  // logs share moves a seed's reading by up to 0.017 rad (hiddenm seeds 3-20, docs/identify.md).
   const MountingReadings r = ReadMounting("hiddenm");
   EXPECT_TRUE(r.found.taken);
   EXPECT_LT(r.found.sd, 0.01);
   EXPECT_NEAR(r.found.value, 0.03, 0.012);
-  EXPECT_FALSE(r.none.taken);
-  EXPECT_LT(std::abs(r.none.value), 0.015);
+  EXPECT_FALSE(r.level.taken);
+  EXPECT_LT(std::abs(r.level.value), 0.015);
 }
 
 TEST(ImuCalibrationReading, TheCalibrationItWritesUndoesTheSimulatorsPitch) {

@@ -141,5 +141,11 @@ HeadingSeries AttitudeAndGyroHeadings(const ModelResiduals& m, const DriveLog& l
 // than the window, such as a sensor bias's walk. For signatures.
 std::vector<double> HighPass(const std::vector<double>& t, const std::vector<double>& x,
                              double window_s);
+// x's centred moving average over short_s less that over long_s (t ascending): keeps what varies
+// over seconds, such as a speed change, and leaves out both a bias's slow walk and a chassis's
+// vibration. A sinusoid passes at half its amplitude or more for periods between about 1.3
+// short_s and 1.6 long_s. For signatures.
+std::vector<double> BandPass(const std::vector<double>& t, const std::vector<double>& x,
+                             double short_s, double long_s);
 
 }  // namespace slipgraph

@@ -6,7 +6,7 @@
 //     against the wheels (the force balance): where the attitude comes from the IMU itself, on its
 //     own stamps, only the force balance speaks.
 //   - imu_mounting_pitch, how far the IMU's axes are pitched nose-down about body y (rad): the
-//     z accelerometer against the x one, both band-passed to 0.5-5 s (gravity, which the body's
+//     z accelerometer against the x one, both band-passed (gravity, which the body's
 //     attitude gives, taken out).
 // Each is one number for the whole drive, so the same test runs on each log's two halves too,
 // and where they disagree beyond their sd (Cochran's Q over every half) what it reads is some
