@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "factors/frames.h"
 #include "io/measurement_stream.h"
 #include "io/nearest_time.h"
 
@@ -20,6 +21,13 @@ bool TrustOptions::IsValid(std::string* error) const {
     *error =
         "TrustOptions: scale_window_s > 0, min_mean_slip < 0, flat_pitch_rad > 0 and "
         "moving_flag_fraction in [0, 1]";
+    return false;
+  }
+  if (!(stretch_z_limit > 0.0 && stretch_min_fixes >= 2 && stretch_start_margin_s >= 0.0 &&
+        stretch_end_margin_s >= 0.0)) {
+    *error =
+        "TrustOptions: stretch_z_limit > 0, stretch_min_fixes >= 2, stretch_start_margin_s and "
+        "stretch_end_margin_s >= 0";
     return false;
   }
   if (!(suspect_fraction >= 0.0 && suspect_fraction <= 1.0 && gnss_run_limit > 0.0 &&
@@ -47,6 +55,46 @@ bool OffTheWheels(const WardEstimate& e, double radius_m, const TrustOptions& o)
   const bool both_turn =
       std::abs(left) > o.min_speed_mps && std::abs(right) > o.min_speed_mps && left * right > 0.0;
   return both_turn && std::abs(v) > o.min_speed_mps && v * left < 0.0;
+}
+
+// Flags this close in time belong to one stretch (the slip's EMA may dip under its threshold
+// for a moment inside one stop).
+constexpr double kFlagGapS = 1.0;
+
+// What the fixes between t0 and t1 say against a robot at rest: z of the mean of each fix's
+// velocity along the body's heading (attitude at the fix), or without attitude of its squared
+// ground speed less the noise's share (zero mean at rest), in the larger of the stated sd and the
+// fixes' own scatter. NaN with fewer than min_fixes fixes.
+double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
+  std::vector<double> values, sds;
+  for (long i = std::max(0L, LatestAtOrBefore(log.gps, t0)); i < static_cast<long>(log.gps.size());
+       ++i) {
+    const GpsSample& fix = log.gps[i];
+    if (fix.t < t0) continue;
+    if (fix.t > t1) break;
+    if (!std::isfinite(fix.vx) || !std::isfinite(fix.vy)) continue;
+    const double sd = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
+    const double vz = std::isfinite(fix.vz) ? fix.vz : 0.0;
+    const long a = LatestAtOrBefore(log.attitude, fix.t);
+    if (a >= 0 && fix.t - log.attitude[a].t <= 1.0) {
+      const AttitudeSample& att = log.attitude[a];
+      values.push_back(GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, att.pitch, att.yaw, 1.0));
+      sds.push_back(sd);
+    } else {
+      const bool vertical = std::isfinite(fix.vz);
+      const double axes = vertical ? 3.0 : 2.0;
+      values.push_back(fix.vx * fix.vx + fix.vy * fix.vy + vz * vz - axes * sd * sd);
+      sds.push_back(std::sqrt(2.0 * axes) * sd * sd);
+    }
+  }
+  const size_t n = values.size();
+  if (n < static_cast<size_t>(std::max(2, min_fixes))) return std::nan("");
+  double mean = 0.0, stated = 0.0;
+  for (size_t i = 0; i < n; ++i) mean += values[i] / n, stated += sds[i] * sds[i] / n;
+  double scatter = 0.0;
+  for (const double v : values) scatter += (v - mean) * (v - mean) / (n - 1);
+  const double sd = std::sqrt(std::max(stated, scatter));
+  return sd > 0.0 ? std::abs(mean) * std::sqrt(static_cast<double>(n)) / sd : std::nan("");
 }
 
 }  // namespace
@@ -85,6 +133,33 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
       ++flagged_moving;
       flagged_moving_at.push_back(j);
     }
+  }
+  // Stretches of flags whose fixes, taken together, say the robot moves.
+  std::vector<char> counted(estimates.size(), 0);
+  for (size_t j : flagged_moving_at) counted[j] = 1;
+  for (size_t first = 0; first < estimates.size();) {
+    if (!estimates[first].slip.immobilized) {
+      ++first;
+      continue;
+    }
+    size_t last = first;  // the stretch's last flag
+    for (size_t j = first + 1;
+         j < estimates.size() && estimates[j].t - estimates[last].t <= kFlagGapS; ++j) {
+      if (estimates[j].slip.immobilized) last = j;
+    }
+    const double z =
+        RestZ(log, estimates[first].t + options.stretch_start_margin_s,
+              estimates[last].t - options.stretch_end_margin_s, options.stretch_min_fixes);
+    if (std::isfinite(z) && !(z <= report.worst_stretch_z)) report.worst_stretch_z = z;
+    if (z > options.stretch_z_limit) {
+      for (size_t j = first; j <= last; ++j) {
+        if (!estimates[j].slip.immobilized || counted[j]) continue;
+        counted[j] = 1;
+        ++flagged_moving;
+        flagged_moving_at.push_back(j);
+      }
+    }
+    first = last + 1;
   }
   report.flagged_moving_fraction = static_cast<double>(flagged_moving) / estimates.size();
   const bool flags_failed = report.flagged_moving_fraction > options.moving_flag_fraction;
@@ -213,13 +288,18 @@ std::string DescribeTrust(const TrustReport& report) {
   if (std::isfinite(report.lowest_window_slip)) {
     std::snprintf(slip, sizeof(slip), "a window %.0f %%", 100.0 * report.lowest_window_slip);
   }
-  char figures[384];
+  char stretch[64] = "no flagged stretch long enough to test";
+  if (std::isfinite(report.worst_stretch_z)) {
+    std::snprintf(stretch, sizeof(stretch), "a flagged stretch's fixes at worst z %.1f from rest",
+                  report.worst_stretch_z);
+  }
+  char figures[448];
   std::snprintf(figures, sizeof(figures),
-                "off the wheels %.2f %% of samples; flagged while GNSS moves %.2f %%; lowest "
+                "off the wheels %.2f %% of samples; flagged while GNSS moves %.2f %% (%s); lowest "
                 "apparent slip over %s; GNSS speed z over the run %.1f, over a window at worst "
                 "%.2f (%zu fixes)",
-                100.0 * report.off_wheels_fraction, 100.0 * report.flagged_moving_fraction, slip,
-                report.gnss_run_z, report.gnss_worst_window, report.gnss_fixes);
+                100.0 * report.off_wheels_fraction, 100.0 * report.flagged_moving_fraction, stretch,
+                slip, report.gnss_run_z, report.gnss_worst_window, report.gnss_fixes);
   out << "trust: " << (report.trusted ? "no sign of trouble" : "NOT TRUSTED") << " (" << figures
       << ")\n";
   for (const std::string& warning : report.warnings) out << "  WARNING: " << warning << "\n";

@@ -9,8 +9,15 @@
 //     wheels only downhill while braking; seconds of it on the flat say the wheel radius, the
 //     twist conversion or the velocity is wrong;
 //   flagged while moving: samples flagged immobilized while the GNSS fixes on both sides of
-//     them (each within 1.5 s) say the robot moves (ground speed above max(0.3 m/s, 3 sd)); more
-//     than moving_flag_fraction of all samples is a detector fooled by its model;
+//     them (each within 1.5 s) say the robot moves (ground speed above max(0.3 m/s, 3 sd)), or
+//     inside a stretch of flags whose fixes say so together (a slow robot's fix is within its
+//     noise of zero, a dozen of them are not): the mean of the fixes' velocity along the body's
+//     heading, over the stretch less its first stretch_start_margin_s (a fix averaged over the
+//     second before a stop) and its last stretch_end_margin_s (the flag outlasting a release),
+//     at least stretch_min_fixes of them, is more than stretch_z_limit times its sd above zero
+//     (the sd from the fixes' stated sd or their own scatter, the larger; without attitude, the
+//     fixes' squared ground speed less its noise's share, as in the GNSS check below); more than
+//     moving_flag_fraction of all samples is a detector fooled by its model;
 //   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
 //     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
 //     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";
@@ -37,18 +44,22 @@
 namespace slipgraph {
 
 struct TrustOptions {
-  double wheel_scale = 1.5;            // |v| above this x the faster side's |r w| ...
-  double wheel_margin_mps = 0.3;       // ... plus this: off the wheels
-  double min_speed_mps = 0.1;          // the sign check needs body and wheels faster than this
-  double suspect_fraction = 0.01;      // more samples off the wheels than this: untrusted
-  double gnss_run_limit = 4.0;         // sum z / sqrt(n) over the run
-  int gnss_window = 10;                // fixes
-  double gnss_window_limit = 2.0;      // mean z over a window (2 sqrt(10) = 6.3 sd of it)
-  int min_gnss_fixes = 5;              // fewer fixes: no GNSS verdict on the run
-  double scale_window_s = 5.0;         // the wheels' scale check's window ...
-  double min_mean_slip = -0.2;         // ... and its limit on the mean apparent slip
-  double flat_pitch_rad = 0.05;        // steeper samples are left out of it (about 3 degrees)
-  double moving_flag_fraction = 0.05;  // flagged immobilized while GNSS moves: at most this
+  double wheel_scale = 1.5;             // |v| above this x the faster side's |r w| ...
+  double wheel_margin_mps = 0.3;        // ... plus this: off the wheels
+  double min_speed_mps = 0.1;           // the sign check needs body and wheels faster than this
+  double suspect_fraction = 0.01;       // more samples off the wheels than this: untrusted
+  double gnss_run_limit = 4.0;          // sum z / sqrt(n) over the run
+  int gnss_window = 10;                 // fixes
+  double gnss_window_limit = 2.0;       // mean z over a window (2 sqrt(10) = 6.3 sd of it)
+  int min_gnss_fixes = 5;               // fewer fixes: no GNSS verdict on the run
+  double scale_window_s = 5.0;          // the wheels' scale check's window ...
+  double min_mean_slip = -0.2;          // ... and its limit on the mean apparent slip
+  double flat_pitch_rad = 0.05;         // steeper samples are left out of it (about 3 degrees)
+  double moving_flag_fraction = 0.05;   // flagged immobilized while GNSS moves: at most this
+  double stretch_z_limit = 3.0;         // a flagged stretch's fixes above zero by this many sd ...
+  int stretch_min_fixes = 4;            // ... from at least this many fixes ...
+  double stretch_start_margin_s = 1.5;  // ... none within this of its first flag ...
+  double stretch_end_margin_s = 1.0;    // ... nor of its last: it moves
 
   bool IsValid(std::string* error) const;
 };
@@ -61,6 +72,9 @@ struct TrustReport {
   double off_wheels_fraction = 0.0;
   // Samples flagged immobilized while GNSS says the robot moves, as a fraction of all samples.
   double flagged_moving_fraction = 0.0;
+  // The largest z of a flagged stretch's fixes against a robot at rest (NaN: no stretch had
+  // stretch_min_fixes fixes).
+  double worst_stretch_z = std::nan("");
   // The lowest mean apparent slip over a window of the wheels' scale check (NaN: no window).
   double lowest_window_slip = std::nan("");
   double gnss_run_z = std::nan("");         // sum z / sqrt(n); NaN without enough fixes

@@ -144,6 +144,10 @@ TEST(TrustCheck, InvalidOptionsAreRefused) {
   std::string error;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("gnss_window"), std::string::npos);
+  options = TrustOptions();
+  options.stretch_min_fixes = 1;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("stretch_min_fixes"), std::string::npos);
 }
 
 TEST(TrustCheck, ABodyThatRunsAheadOfItsWheelsForSecondsIsNotTrusted) {
@@ -187,6 +191,65 @@ TEST(TrustCheck, FlaggedImmobilizedWhileGnssMovesIsNotTrusted) {
   const TrustReport fine = CheckTrust(holdback.log, holdback.estimates);
   EXPECT_EQ(fine.flagged_moving_fraction, 0.0);
   EXPECT_TRUE(fine.trusted) << DescribeTrust(fine);
+}
+
+TEST(TrustCheck, AFlaggedStretchThatGnssSaysMovesSlowlyIsCounted) {
+  // 15 s of 60 flagged (25 %) while the robot creeps at 0.12 m/s: each fix is within its 0.1 m/s
+  // noise of rest, so no single pair says it moves, but the stretch's dozen fixes along the
+  // heading (30 deg, from the attitude stream) do.
+  const auto creeping = [](double) { return 0.12; };
+  const auto flags = [](SyntheticRun* run) {
+    for (WardEstimate& e : run->estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 35.0;
+  };
+  const auto with_attitude = [](SyntheticRun* run) {
+    for (const WardEstimate& e : run->estimates) {
+      AttitudeSample a;
+      a.t = e.t;
+      a.yaw = M_PI / 6.0;
+      run->log.attitude.push_back(a);
+    }
+  };
+  int counted = 0, at_rest_counted = 0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    SyntheticRun run = MakeRun(creeping, creeping, seed);
+    with_attitude(&run);
+    flags(&run);
+    const TrustReport report = CheckTrust(run.log, run.estimates);
+    if (report.flagged_moving_fraction > 0.2) {
+      ++counted;
+      EXPECT_FALSE(report.trusted);
+    }
+    // Control: held still for the stretch, GNSS at rest.
+    const auto held = [](double t) { return t >= 19.5 && t < 35.5 ? 0.0 : 0.12; };
+    SyntheticRun holdback = MakeRun(held, held, seed);
+    with_attitude(&holdback);
+    flags(&holdback);
+    const TrustReport fine = CheckTrust(holdback.log, holdback.estimates);
+    if (fine.flagged_moving_fraction > 0.0) ++at_rest_counted;
+    EXPECT_LT(fine.worst_stretch_z, 3.0);
+  }
+  // 0.12 m/s over 12 fixes of 0.1 m/s is 4.2 sd: found on most draws, never at rest.
+  EXPECT_GE(counted, 7);
+  EXPECT_EQ(at_rest_counted, 0);
+  // Without attitude the fixes' squared ground speed is tested: weaker, found at 0.25 m/s over
+  // 30 s, where a single pair of fixes still is not enough (0.3 m/s and 3 sd).
+  const auto slow = [](double) { return 0.25; };
+  SyntheticRun run = MakeRun(slow, slow, 3);
+  for (WardEstimate& e : run.estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 50.0;
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_FALSE(report.trusted);
+  EXPECT_GT(report.worst_stretch_z, 3.0);
+  EXPECT_EQ(report.suspect[2700], 1.0);
+}
+
+TEST(TrustCheck, AShortStopIsNotTestedAgainstItsFixes) {
+  // A 4 s hold-back leaves no fix outside the stretch's margins (1.5 s after its first flag, 1 s
+  // before its last): nothing to test, whatever the fixes say.
+  const auto driving = [](double) { return 0.2; };
+  SyntheticRun run = MakeRun(driving, driving, 4);
+  for (WardEstimate& e : run.estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 24.0;
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_TRUE(std::isnan(report.worst_stretch_z));
 }
 
 }  // namespace
