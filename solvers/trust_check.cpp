@@ -61,40 +61,94 @@ bool OffTheWheels(const WardEstimate& e, double radius_m, const TrustOptions& o)
 // for a moment inside one stop).
 constexpr double kFlagGapS = 1.0;
 
+// An attitude sample older than this does not give a fix its heading.
+constexpr double kAttitudeMaxAgeS = 1.0;
+
+// The attitude sample that gives a fix at t its heading, or null.
+const AttitudeSample* HeadingAt(const DriveLog& log, double t) {
+  const long a = LatestAtOrBefore(log.attitude, t);
+  if (a < 0 || t - log.attitude[a].t > kAttitudeMaxAgeS) return nullptr;
+  const AttitudeSample& attitude = log.attitude[a];
+  return std::isfinite(attitude.pitch) && std::isfinite(attitude.yaw) ? &attitude : nullptr;
+}
+
 // What the fixes between t0 and t1 say against a robot at rest: z of the mean of each fix's
-// velocity along the body's heading (attitude at the fix), or without attitude of its squared
-// ground speed less the noise's share (zero mean at rest), in the larger of the stated sd and the
-// fixes' own scatter. NaN with fewer than min_fixes fixes.
+// velocity along the body's heading, |mean| sqrt(n) / sd, the robot moving either way; or, where
+// a fix has no heading (no attitude near it), of the fixes' squared speed less the noise's share
+// (k sd^2 over k axes, zero-mean at rest with sd sqrt(2k) sd^2), one-sided: fixes quieter than
+// their stated sd are a robot at rest. sd is the larger of the stated and the fixes' own
+// scatter. NaN with fewer than min_fixes fixes.
 double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
-  std::vector<double> values, sds;
+  std::vector<const GpsSample*> fixes;
+  bool headed = true;
   for (long i = std::max(0L, LatestAtOrBefore(log.gps, t0)); i < static_cast<long>(log.gps.size());
        ++i) {
     const GpsSample& fix = log.gps[i];
-    if (fix.t < t0) continue;
+    if (fix.t < t0 || !std::isfinite(fix.vx) || !std::isfinite(fix.vy)) continue;
     if (fix.t > t1) break;
-    if (!std::isfinite(fix.vx) || !std::isfinite(fix.vy)) continue;
-    const double sd = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
-    const double vz = std::isfinite(fix.vz) ? fix.vz : 0.0;
-    const long a = LatestAtOrBefore(log.attitude, fix.t);
-    if (a >= 0 && fix.t - log.attitude[a].t <= 1.0) {
-      const AttitudeSample& att = log.attitude[a];
-      values.push_back(GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, att.pitch, att.yaw, 1.0));
-      sds.push_back(sd);
+    fixes.push_back(&fix);
+    headed = headed && HeadingAt(log, fix.t) != nullptr;
+  }
+  const size_t n = fixes.size();
+  if (n < static_cast<size_t>(std::max(2, min_fixes))) return std::nan("");
+  // One quantity for the whole stretch: m/s along the heading, or m^2/s^2 of squared speed.
+  std::vector<double> values(n), stated_sd(n);
+  for (size_t i = 0; i < n; ++i) {
+    const GpsSample& fix = *fixes[i];
+    const double sd_mps = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
+    const bool vertical = std::isfinite(fix.vz);
+    const double vz = vertical ? fix.vz : 0.0;
+    if (headed) {
+      const AttitudeSample& attitude = *HeadingAt(log, fix.t);
+      values[i] =
+          GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, attitude.pitch, attitude.yaw, 1.0);
+      stated_sd[i] = sd_mps;
     } else {
-      const bool vertical = std::isfinite(fix.vz);
       const double axes = vertical ? 3.0 : 2.0;
-      values.push_back(fix.vx * fix.vx + fix.vy * fix.vy + vz * vz - axes * sd * sd);
-      sds.push_back(std::sqrt(2.0 * axes) * sd * sd);
+      values[i] = fix.vx * fix.vx + fix.vy * fix.vy + vz * vz - axes * sd_mps * sd_mps;
+      stated_sd[i] = std::sqrt(2.0 * axes) * sd_mps * sd_mps;
     }
   }
-  const size_t n = values.size();
-  if (n < static_cast<size_t>(std::max(2, min_fixes))) return std::nan("");
   double mean = 0.0, stated = 0.0;
-  for (size_t i = 0; i < n; ++i) mean += values[i] / n, stated += sds[i] * sds[i] / n;
+  for (size_t i = 0; i < n; ++i) mean += values[i] / n, stated += stated_sd[i] * stated_sd[i] / n;
   double scatter = 0.0;
   for (const double v : values) scatter += (v - mean) * (v - mean) / (n - 1);
   const double sd = std::sqrt(std::max(stated, scatter));
-  return sd > 0.0 ? std::abs(mean) * std::sqrt(static_cast<double>(n)) / sd : std::nan("");
+  if (!(sd > 0.0)) return std::nan("");
+  return (headed ? std::abs(mean) : mean) * std::sqrt(static_cast<double>(n)) / sd;
+}
+
+// The stretches of flags (flags within kFlagGapS of each other) whose fixes together say the
+// robot moves (RestZ beyond options.stretch_z_limit): their flagged samples not yet `counted`
+// are appended to *moving and counted. Returns the largest stretch z (NaN: none tested).
+double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstimate>& estimates,
+                                const TrustOptions& options, std::vector<char>* counted,
+                                std::vector<size_t>* moving) {
+  double worst = std::nan("");
+  for (size_t first = 0; first < estimates.size();) {
+    if (!estimates[first].slip.immobilized) {
+      ++first;
+      continue;
+    }
+    size_t last = first;  // the stretch's last flag
+    for (size_t j = first + 1;
+         j < estimates.size() && estimates[j].t - estimates[last].t <= kFlagGapS; ++j) {
+      if (estimates[j].slip.immobilized) last = j;
+    }
+    const double z =
+        RestZ(log, estimates[first].t + options.stretch_start_margin_s,
+              estimates[last].t - options.stretch_end_margin_s, options.stretch_min_fixes);
+    if (std::isfinite(z) && !(z <= worst)) worst = z;
+    if (z > options.stretch_z_limit) {
+      for (size_t j = first; j <= last; ++j) {
+        if (!estimates[j].slip.immobilized || (*counted)[j]) continue;
+        (*counted)[j] = 1;
+        moving->push_back(j);
+      }
+    }
+    first = last + 1;
+  }
+  return worst;
 }
 
 }  // namespace
@@ -116,7 +170,6 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
 
   // Flagged immobilized while the GNSS fixes on both sides (each within 1.5 s) move: a held
   // robot's fixes stop, and a fix from before a hold-back's onset does not count alone.
-  long flagged_moving = 0;
   std::vector<size_t> flagged_moving_at;
   const auto moving = [&](const GpsSample& fix) {
     return std::hypot(fix.vx, fix.vy) >
@@ -130,38 +183,15 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     const GpsSample& after = log.gps[i + 1];
     if (estimates[j].t - before.t > 1.5 || after.t - estimates[j].t > 1.5) continue;
     if (moving(before) && moving(after)) {
-      ++flagged_moving;
       flagged_moving_at.push_back(j);
     }
   }
   // Stretches of flags whose fixes, taken together, say the robot moves.
   std::vector<char> counted(estimates.size(), 0);
   for (size_t j : flagged_moving_at) counted[j] = 1;
-  for (size_t first = 0; first < estimates.size();) {
-    if (!estimates[first].slip.immobilized) {
-      ++first;
-      continue;
-    }
-    size_t last = first;  // the stretch's last flag
-    for (size_t j = first + 1;
-         j < estimates.size() && estimates[j].t - estimates[last].t <= kFlagGapS; ++j) {
-      if (estimates[j].slip.immobilized) last = j;
-    }
-    const double z =
-        RestZ(log, estimates[first].t + options.stretch_start_margin_s,
-              estimates[last].t - options.stretch_end_margin_s, options.stretch_min_fixes);
-    if (std::isfinite(z) && !(z <= report.worst_stretch_z)) report.worst_stretch_z = z;
-    if (z > options.stretch_z_limit) {
-      for (size_t j = first; j <= last; ++j) {
-        if (!estimates[j].slip.immobilized || counted[j]) continue;
-        counted[j] = 1;
-        ++flagged_moving;
-        flagged_moving_at.push_back(j);
-      }
-    }
-    first = last + 1;
-  }
-  report.flagged_moving_fraction = static_cast<double>(flagged_moving) / estimates.size();
+  report.worst_stretch_z =
+      FlaggedStretchesThatMove(log, estimates, options, &counted, &flagged_moving_at);
+  report.flagged_moving_fraction = static_cast<double>(flagged_moving_at.size()) / estimates.size();
   const bool flags_failed = report.flagged_moving_fraction > options.moving_flag_fraction;
   if (flags_failed) {
     for (size_t j : flagged_moving_at) report.suspect[j] = 1.0;

@@ -11,13 +11,14 @@
 //   flagged while moving: samples flagged immobilized while the GNSS fixes on both sides of
 //     them (each within 1.5 s) say the robot moves (ground speed above max(0.3 m/s, 3 sd)), or
 //     inside a stretch of flags whose fixes say so together (a slow robot's fix is within its
-//     noise of zero, a dozen of them are not): the mean of the fixes' velocity along the body's
-//     heading, over the stretch less its first stretch_start_margin_s (a fix averaged over the
-//     second before a stop) and its last stretch_end_margin_s (the flag outlasting a release),
-//     at least stretch_min_fixes of them, is more than stretch_z_limit times its sd above zero
-//     (the sd from the fixes' stated sd or their own scatter, the larger; without attitude, the
-//     fixes' squared ground speed less its noise's share, as in the GNSS check below); more than
-//     moving_flag_fraction of all samples is a detector fooled by its model;
+//     noise of zero, a dozen of them are not): the fixes at least stretch_start_margin_s after
+//     the stretch's first flag (a fix averaged over the second before a stop) and
+//     stretch_end_margin_s before its last (a flag that outlasts a release), at least
+//     stretch_min_fixes of them, whose mean velocity along the body's heading is more than
+//     stretch_z_limit of its sd from zero either way (the sd from the fixes' stated sd or their
+//     own scatter, the larger); where a fix has no attitude, their squared speed (3-D with a
+//     vertical velocity) less its noise's share above zero, as in the GNSS check below. More
+//     than moving_flag_fraction of all samples is a detector fooled by its model;
 //   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
 //     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
 //     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";

@@ -193,61 +193,104 @@ TEST(TrustCheck, FlaggedImmobilizedWhileGnssMovesIsNotTrusted) {
   EXPECT_TRUE(fine.trusted) << DescribeTrust(fine);
 }
 
+// A run with an attitude stream on the fixes' heading (30 deg).
+void AddAttitude(SyntheticRun* run) {
+  for (const WardEstimate& e : run->estimates) {
+    AttitudeSample a;
+    a.t = e.t;
+    a.yaw = M_PI / 6.0;
+    run->log.attitude.push_back(a);
+  }
+}
+
+void Flag(SyntheticRun* run, double from_s, double to_s) {
+  for (WardEstimate& e : run->estimates) e.slip.immobilized = e.t >= from_s && e.t < to_s;
+}
+
 TEST(TrustCheck, AFlaggedStretchThatGnssSaysMovesSlowlyIsCounted) {
-  // 15 s of 60 flagged (25 %) while the robot creeps at 0.12 m/s: each fix is within its 0.1 m/s
-  // noise of rest, so no single pair says it moves, but the stretch's dozen fixes along the
-  // heading (30 deg, from the attitude stream) do.
-  const auto creeping = [](double) { return 0.12; };
-  const auto flags = [](SyntheticRun* run) {
-    for (WardEstimate& e : run->estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 35.0;
-  };
-  const auto with_attitude = [](SyntheticRun* run) {
-    for (const WardEstimate& e : run->estimates) {
-      AttitudeSample a;
-      a.t = e.t;
-      a.yaw = M_PI / 6.0;
-      run->log.attitude.push_back(a);
-    }
-  };
-  int counted = 0, at_rest_counted = 0;
+  // 15 s of 60 flagged (25 %) while the robot creeps at 0.15 m/s: each fix is within two of its
+  // 0.1 m/s sd of rest, so few pairs say it moves, but the stretch's 12 fixes along the heading
+  // do (5.2 sd of their mean).
+  const auto creeping = [](double) { return 0.15; };
+  const auto held = [](double t) { return t >= 19.5 && t < 35.5 ? 0.0 : 0.15; };
+  int counted = 0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     SyntheticRun run = MakeRun(creeping, creeping, seed);
-    with_attitude(&run);
-    flags(&run);
+    AddAttitude(&run);
+    Flag(&run, 20.0, 35.0);
     const TrustReport report = CheckTrust(run.log, run.estimates);
     if (report.flagged_moving_fraction > 0.2) {
       ++counted;
       EXPECT_FALSE(report.trusted);
+      EXPECT_EQ(report.suspect[2700], 1.0);
     }
     // Control: held still for the stretch, GNSS at rest.
-    const auto held = [](double t) { return t >= 19.5 && t < 35.5 ? 0.0 : 0.12; };
     SyntheticRun holdback = MakeRun(held, held, seed);
-    with_attitude(&holdback);
-    flags(&holdback);
+    AddAttitude(&holdback);
+    Flag(&holdback, 20.0, 35.0);
     const TrustReport fine = CheckTrust(holdback.log, holdback.estimates);
-    if (fine.flagged_moving_fraction > 0.0) ++at_rest_counted;
+    EXPECT_EQ(fine.flagged_moving_fraction, 0.0) << DescribeTrust(fine);
     EXPECT_LT(fine.worst_stretch_z, 3.0);
   }
-  // 0.12 m/s over 12 fixes of 0.1 m/s is 4.2 sd: found on most draws, never at rest.
-  EXPECT_GE(counted, 7);
-  EXPECT_EQ(at_rest_counted, 0);
-  // Without attitude the fixes' squared ground speed is tested: weaker, found at 0.25 m/s over
-  // 30 s, where a single pair of fixes still is not enough (0.3 m/s and 3 sd).
-  const auto slow = [](double) { return 0.25; };
-  SyntheticRun run = MakeRun(slow, slow, 3);
-  for (WardEstimate& e : run.estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 50.0;
-  const TrustReport report = CheckTrust(run.log, run.estimates);
-  EXPECT_FALSE(report.trusted);
-  EXPECT_GT(report.worst_stretch_z, 3.0);
-  EXPECT_EQ(report.suspect[2700], 1.0);
+  EXPECT_GE(counted, 9);
 }
 
-TEST(TrustCheck, AShortStopIsNotTestedAgainstItsFixes) {
-  // A 4 s hold-back leaves no fix outside the stretch's margins (1.5 s after its first flag, 1 s
-  // before its last): nothing to test, whatever the fixes say.
+TEST(TrustCheck, AStretchWithoutAttitudeIsTestedOnItsSquaredSpeedOneSided) {
+  // Without attitude the fixes' squared speed less the noise's share is tested: weaker, found at
+  // 0.3 m/s over 30 s (z about 7), where a single pair of fixes is not always enough (0.3 m/s and
+  // 3 sd).
+  const auto slow = [](double) { return 0.3; };
+  SyntheticRun run = MakeRun(slow, slow, 3);
+  Flag(&run, 20.0, 50.0);
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_FALSE(report.trusted);
+  EXPECT_GT(report.worst_stretch_z, 4.0);
+  EXPECT_EQ(report.suspect[4500], 1.0);
+  // At rest under fixes quieter than stated (sd stated twice the noise): their squared speed
+  // falls below the noise's share, which is no sign of motion.
+  const auto still = [](double) { return 0.0; };
+  SyntheticRun quiet = MakeRun(still, still, 3);
+  for (GpsSample& fix : quiet.log.gps) fix.sd_v = 0.2;
+  Flag(&quiet, 20.0, 50.0);
+  const TrustReport fine = CheckTrust(quiet.log, quiet.estimates);
+  EXPECT_LT(fine.worst_stretch_z, 0.0);
+  EXPECT_EQ(fine.flagged_moving_fraction, 0.0);
+}
+
+TEST(TrustCheck, AStretchIsJudgedByTheFixesOwnScatterWhenTheirSdIsStatedTooSmall) {
+  // At rest for 30 s with fixes whose sd is stated at a fifth of their 0.1 m/s noise: in the
+  // stated sd their mean is several sd from zero; in their own scatter it is not.
+  const auto still = [](double) { return 0.0; };
+  SyntheticRun run = MakeRun(still, still, 5);
+  AddAttitude(&run);
+  for (GpsSample& fix : run.log.gps) fix.sd_v = 0.02;
+  Flag(&run, 20.0, 50.0);
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_LT(report.worst_stretch_z, 3.0);
+  EXPECT_EQ(report.flagged_moving_fraction, 0.0);
+}
+
+TEST(TrustCheck, FlagsThatDipForAMomentAreOneStretch) {
+  // Two 7 s stretches 0.5 s apart are one stretch of 14.5 s: tested together (12 fixes inside
+  // the margins) at 0.15 m/s; apart, they have 4 and 5 fixes and a weaker test each.
+  const auto creeping = [](double) { return 0.15; };
+  SyntheticRun run = MakeRun(creeping, creeping, 1);
+  AddAttitude(&run);
+  for (WardEstimate& e : run.estimates) {
+    e.slip.immobilized = (e.t >= 20.0 && e.t < 27.0) || (e.t >= 27.5 && e.t < 34.5);
+  }
+  const TrustReport report = CheckTrust(run.log, run.estimates);
+  EXPECT_NEAR(report.flagged_moving_fraction, 14.0 / 60.0, 0.01) << DescribeTrust(report);
+  EXPECT_EQ(report.suspect[2000], 1.0);
+  EXPECT_EQ(report.suspect[3400], 1.0);
+}
+
+TEST(TrustCheck, AFlagTooShortForItsMarginsIsNotTested) {
+  // 4 s of flags leave 2 fixes between the margins (1.5 s after the first flag, 1 s before the
+  // last), fewer than the 4 the test needs: nothing to test, whatever the fixes say.
   const auto driving = [](double) { return 0.2; };
   SyntheticRun run = MakeRun(driving, driving, 4);
-  for (WardEstimate& e : run.estimates) e.slip.immobilized = e.t >= 20.0 && e.t < 24.0;
+  Flag(&run, 20.0, 24.0);
   const TrustReport report = CheckTrust(run.log, run.estimates);
   EXPECT_TRUE(std::isnan(report.worst_stretch_z));
 }
