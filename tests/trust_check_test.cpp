@@ -207,6 +207,17 @@ void Flag(SyntheticRun* run, double from_s, double to_s) {
   for (WardEstimate& e : run->estimates) e.slip.immobilized = e.t >= from_s && e.t < to_s;
 }
 
+// The trust check of a robot at rest, flagged from 20 to 50 s, its fixes' sd stated as
+// `stated_sd_mps` (their noise is 0.1 m/s), with or without attitude.
+TrustReport HeldRun(uint64_t seed, double stated_sd_mps, bool attitude) {
+  const auto still = [](double) { return 0.0; };
+  SyntheticRun run = MakeRun(still, still, seed);
+  if (attitude) AddAttitude(&run);
+  for (GpsSample& fix : run.log.gps) fix.sd_v = stated_sd_mps;
+  Flag(&run, 20.0, 50.0);
+  return CheckTrust(run.log, run.estimates);
+}
+
 TEST(TrustCheck, AFlaggedStretchThatGnssSaysMovesSlowlyIsCounted) {
   // 15 s of 60 flagged (25 %) while the robot creeps at 0.15 m/s: each fix is within two of its
   // 0.1 m/s sd of rest, so few pairs say it moves, but the stretch's 12 fixes along the heading
@@ -248,11 +259,7 @@ TEST(TrustCheck, AStretchWithoutAttitudeIsTestedOnItsSquaredSpeedOneSided) {
   EXPECT_EQ(report.suspect[4500], 1.0);
   // At rest under fixes quieter than stated (sd stated twice the noise): their squared speed
   // falls below the noise's share, which is no sign of motion.
-  const auto still = [](double) { return 0.0; };
-  SyntheticRun quiet = MakeRun(still, still, 3);
-  for (GpsSample& fix : quiet.log.gps) fix.sd_v = 0.2;
-  Flag(&quiet, 20.0, 50.0);
-  const TrustReport fine = CheckTrust(quiet.log, quiet.estimates);
+  const TrustReport fine = HeldRun(3, 0.2, false);
   EXPECT_LT(fine.worst_stretch_z, 0.0);
   EXPECT_EQ(fine.flagged_moving_fraction, 0.0);
 }
@@ -260,12 +267,7 @@ TEST(TrustCheck, AStretchWithoutAttitudeIsTestedOnItsSquaredSpeedOneSided) {
 TEST(TrustCheck, AStretchIsJudgedByTheFixesOwnScatterWhenTheirSdIsStatedTooSmall) {
   // At rest for 30 s with fixes whose sd is stated at a fifth of their 0.1 m/s noise: in the
   // stated sd their mean is several sd from zero; in their own scatter it is not.
-  const auto still = [](double) { return 0.0; };
-  SyntheticRun run = MakeRun(still, still, 5);
-  AddAttitude(&run);
-  for (GpsSample& fix : run.log.gps) fix.sd_v = 0.02;
-  Flag(&run, 20.0, 50.0);
-  const TrustReport report = CheckTrust(run.log, run.estimates);
+  const TrustReport report = HeldRun(5, 0.02, true);
   EXPECT_LT(report.worst_stretch_z, 3.0);
   EXPECT_EQ(report.flagged_moving_fraction, 0.0);
 }
