@@ -189,8 +189,14 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
   // Stretches of flags whose fixes, taken together, say the robot moves.
   std::vector<char> counted(estimates.size(), 0);
   for (size_t j : flagged_moving_at) counted[j] = 1;
+  const size_t one_by_one = flagged_moving_at.size();
   report.worst_stretch_z =
       FlaggedStretchesThatMove(log, estimates, options, &counted, &flagged_moving_at);
+  // A flag its stretch's fixes contradict is suspect whatever the run's share: their test needs
+  // seconds of them, which a hold-back's edges do not give.
+  for (size_t i = one_by_one; i < flagged_moving_at.size(); ++i) {
+    report.suspect[flagged_moving_at[i]] = 1.0;
+  }
   report.flagged_moving_fraction = static_cast<double>(flagged_moving_at.size()) / estimates.size();
   const bool flags_failed = report.flagged_moving_fraction > options.moving_flag_fraction;
   if (flags_failed) {

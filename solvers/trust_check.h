@@ -30,9 +30,10 @@
 //     sign: the run's sum / sqrt(n) above gnss_run_limit, or the mean over any gnss_window fixes
 //     above gnss_window_limit, mark the run; the window's estimates are marked.
 //
-// A run is untrusted when more than suspect_fraction of its samples are off the wheels, a window
-// fails the wheels' scale check, or the GNSS speeds disagree beyond their limits. The marks go to
-// the estimate file (column `suspect`).
+// A run is untrusted when more than suspect_fraction of its samples are off the wheels, more than
+// moving_flag_fraction are flagged while GNSS moves, a window fails the wheels' scale check, or
+// the GNSS speeds disagree beyond their limits. The marks go to the estimate file (column
+// `suspect`).
 #pragma once
 
 #include <cmath>
@@ -68,7 +69,9 @@ struct TrustOptions {
 struct TrustReport {
   bool trusted = true;
   std::vector<std::string> warnings;  // one line each, why it is not trusted
-  // Per estimate: 1 where it is off the wheels or inside a GNSS window that disagrees, else 0.
+  // Per estimate: 1 where it is off the wheels, inside a GNSS window or a window of the wheels'
+  // scale that fails, or flagged in a stretch whose fixes say the robot moves (every flag while
+  // GNSS moves where their share fails), else 0.
   std::vector<double> suspect;
   double off_wheels_fraction = 0.0;
   // Samples flagged immobilized while GNSS says the robot moves, as a fraction of all samples.

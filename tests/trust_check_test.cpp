@@ -287,6 +287,22 @@ TEST(TrustCheck, FlagsThatDipForAMomentAreOneStretch) {
   EXPECT_EQ(report.suspect[3400], 1.0);
 }
 
+TEST(TrustCheck, AFlagItsStretchsFixesContradictIsSuspectInATrustedRun) {
+  // 15 s of 60 flagged while the robot creeps at 0.15 m/s, the share allowed raised to a half so
+  // that the run passes: the flags its stretch's fixes contradict are marked all the same.
+  const auto creeping = [](double) { return 0.15; };
+  SyntheticRun run = MakeRun(creeping, creeping, 1);
+  AddAttitude(&run);
+  Flag(&run, 20.0, 35.0);
+  TrustOptions options;
+  options.moving_flag_fraction = 0.5;
+  const TrustReport report = CheckTrust(run.log, run.estimates, options);
+  EXPECT_TRUE(report.trusted) << DescribeTrust(report);
+  EXPECT_GT(report.worst_stretch_z, 3.0);
+  EXPECT_EQ(report.suspect[2700], 1.0);
+  EXPECT_EQ(report.suspect[1900], 0.0);
+}
+
 TEST(TrustCheck, AFlagTooShortForItsMarginsIsNotTested) {
   // 4 s of flags leave 2 fixes between the margins (1.5 s after the first flag, 1 s before the
   // last), fewer than the 4 the test needs: nothing to test, whatever the fixes say.
