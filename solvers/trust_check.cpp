@@ -73,13 +73,14 @@ const AttitudeSample* HeadingAt(const DriveLog& log, double t) {
 }
 
 // What the fixes between t0 and t1 say against a robot at rest: z of the mean of each fix's
-// velocity along the body's heading, |mean| sqrt(n) / sd, the robot moving either way; or, where
-// a fix has no heading (no attitude near it), of the fixes' squared speed less the noise's share
-// (k sd^2 over k axes, zero-mean at rest with sd sqrt(2k) sd^2), one-sided: fixes quieter than
-// their stated sd are a robot at rest. sd is the larger of the stated and the fixes' own
-// scatter. NaN with fewer than min_fixes fixes.
+// velocity along the body's heading, |mean| sqrt(n) / sd, the robot moving either way; or, when
+// any of them has no heading (no attitude within kAttitudeMaxAgeS), of all their squared speeds
+// less the noise's share (k sd^2 over k axes, zero-mean at rest with sd sqrt(2k) sd^2), signed:
+// fixes quieter than their stated sd are a robot at rest. sd is the larger of the stated and the
+// fixes' own scatter. NaN with fewer than min_fixes fixes.
 double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
   std::vector<const GpsSample*> fixes;
+  std::vector<const AttitudeSample*> headings;
   bool headed = true;
   for (long i = std::max(0L, LatestAtOrBefore(log.gps, t0)); i < static_cast<long>(log.gps.size());
        ++i) {
@@ -87,7 +88,8 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
     if (fix.t < t0 || !std::isfinite(fix.vx) || !std::isfinite(fix.vy)) continue;
     if (fix.t > t1) break;
     fixes.push_back(&fix);
-    headed = headed && HeadingAt(log, fix.t) != nullptr;
+    headings.push_back(HeadingAt(log, fix.t));
+    headed = headed && headings.back() != nullptr;
   }
   const size_t n = fixes.size();
   if (n < static_cast<size_t>(std::max(2, min_fixes))) return std::nan("");
@@ -99,9 +101,8 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
     const bool vertical = std::isfinite(fix.vz);
     const double vz = vertical ? fix.vz : 0.0;
     if (headed) {
-      const AttitudeSample& attitude = *HeadingAt(log, fix.t);
-      values[i] =
-          GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, attitude.pitch, attitude.yaw, 1.0);
+      values[i] = GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, headings[i]->pitch,
+                                         headings[i]->yaw, 1.0);
       stated_sd[i] = sd_mps;
     } else {
       const double axes = vertical ? 3.0 : 2.0;
@@ -119,11 +120,13 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
 }
 
 // The stretches of flags (flags within kFlagGapS of each other) whose fixes together say the
-// robot moves (RestZ beyond options.stretch_z_limit): their flagged samples not yet `counted`
-// are appended to *moving and counted. Returns the largest stretch z (NaN: none tested).
+// robot moves (RestZ beyond options.stretch_z_limit): every flag in them is marked in *suspect
+// (their test needs seconds of fixes, which a hold-back's edges do not give), and those not yet
+// `counted` are appended to *moving and counted. Returns the largest stretch z (NaN: none
+// tested).
 double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstimate>& estimates,
                                 const TrustOptions& options, std::vector<char>* counted,
-                                std::vector<size_t>* moving) {
+                                std::vector<size_t>* moving, std::vector<double>* suspect) {
   double worst = std::nan("");
   for (size_t first = 0; first < estimates.size();) {
     if (!estimates[first].slip.immobilized) {
@@ -141,7 +144,9 @@ double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstim
     if (std::isfinite(z) && !(z <= worst)) worst = z;
     if (z > options.stretch_z_limit) {
       for (size_t j = first; j <= last; ++j) {
-        if (!estimates[j].slip.immobilized || (*counted)[j]) continue;
+        if (!estimates[j].slip.immobilized) continue;
+        (*suspect)[j] = 1.0;
+        if ((*counted)[j]) continue;
         (*counted)[j] = 1;
         moving->push_back(j);
       }
@@ -189,14 +194,8 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
   // Stretches of flags whose fixes, taken together, say the robot moves.
   std::vector<char> counted(estimates.size(), 0);
   for (size_t j : flagged_moving_at) counted[j] = 1;
-  const size_t one_by_one = flagged_moving_at.size();
-  report.worst_stretch_z =
-      FlaggedStretchesThatMove(log, estimates, options, &counted, &flagged_moving_at);
-  // A flag its stretch's fixes contradict is suspect whatever the run's share: their test needs
-  // seconds of them, which a hold-back's edges do not give.
-  for (size_t i = one_by_one; i < flagged_moving_at.size(); ++i) {
-    report.suspect[flagged_moving_at[i]] = 1.0;
-  }
+  report.worst_stretch_z = FlaggedStretchesThatMove(log, estimates, options, &counted,
+                                                    &flagged_moving_at, &report.suspect);
   report.flagged_moving_fraction = static_cast<double>(flagged_moving_at.size()) / estimates.size();
   const bool flags_failed = report.flagged_moving_fraction > options.moving_flag_fraction;
   if (flags_failed) {

@@ -16,9 +16,11 @@
 //     stretch_end_margin_s before its last (a flag that outlasts a release), at least
 //     stretch_min_fixes of them, whose mean velocity along the body's heading is more than
 //     stretch_z_limit of its sd from zero either way (the sd from the fixes' stated sd or their
-//     own scatter, the larger); where a fix has no attitude, their squared speed (3-D with a
-//     vertical velocity) less its noise's share above zero, as in the GNSS check below. More
-//     than moving_flag_fraction of all samples is a detector fooled by its model;
+//     own scatter, the larger); when any of them has no attitude within 1 s, all of them are
+//     tested on their squared speed (3-D with a vertical velocity) less its noise's share, more
+//     than stretch_z_limit sd above zero (one-sided). Such a stretch's flags are suspect
+//     whatever their share; more than moving_flag_fraction of all samples flagged while moving
+//     is a detector fooled by its model, and marks every one;
 //   wheels: the body-x velocity off both driven sides' surface speeds r w by more than
 //     `wheel_scale` x the faster one plus `wheel_margin_mps`, or against both while both turn
 //     and the body moves (|v| and |r w| above min_speed_mps): a sample "off the wheels";
@@ -58,7 +60,7 @@ struct TrustOptions {
   double min_mean_slip = -0.2;          // ... and its limit on the mean apparent slip
   double flat_pitch_rad = 0.05;         // steeper samples are left out of it (about 3 degrees)
   double moving_flag_fraction = 0.05;   // flagged immobilized while GNSS moves: at most this
-  double stretch_z_limit = 3.0;         // a flagged stretch's fixes above zero by this many sd ...
+  double stretch_z_limit = 3.0;         // a flagged stretch's fixes from zero by this many sd ...
   int stretch_min_fixes = 4;            // ... from at least this many fixes ...
   double stretch_start_margin_s = 1.5;  // ... none within this of its first flag ...
   double stretch_end_margin_s = 1.0;    // ... nor of its last: it moves
@@ -77,7 +79,7 @@ struct TrustReport {
   // Samples flagged immobilized while GNSS says the robot moves, as a fraction of all samples.
   double flagged_moving_fraction = 0.0;
   // The largest z of a flagged stretch's fixes against a robot at rest (NaN: no stretch had
-  // stretch_min_fixes fixes).
+  // stretch_min_fixes fixes; below zero where the only test was one-sided and found quiet fixes).
   double worst_stretch_z = std::nan("");
   // The lowest mean apparent slip over a window of the wheels' scale check (NaN: no window).
   double lowest_window_slip = std::nan("");

@@ -266,32 +266,40 @@ TEST(TrustCheck, AStretchWithoutAttitudeIsTestedOnItsSquaredSpeedOneSided) {
 
 TEST(TrustCheck, AStretchIsJudgedByTheFixesOwnScatterWhenTheirSdIsStatedTooSmall) {
   // At rest for 30 s with fixes whose sd is stated at a fifth of their 0.1 m/s noise: in the
-  // stated sd their mean is several sd from zero; in their own scatter it is not.
-  const TrustReport report = HeldRun(5, 0.02, true);
-  EXPECT_LT(report.worst_stretch_z, 3.0);
-  EXPECT_EQ(report.flagged_moving_fraction, 0.0);
+  // stated sd their mean is 5 |N(0, 1)| sd from zero, beyond 3 on about half the draws; in their
+  // own scatter it is a t of 26 degrees of freedom.
+  int beyond = 0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    const TrustReport report = HeldRun(seed, 0.02, true);
+    if (report.worst_stretch_z > 3.0) ++beyond;
+  }
+  EXPECT_LE(beyond, 1);
 }
 
 TEST(TrustCheck, FlagsThatDipForAMomentAreOneStretch) {
-  // Two 7 s stretches 0.5 s apart are one stretch of 14.5 s: tested together (12 fixes inside
-  // the margins) at 0.15 m/s; apart, they have 4 and 5 fixes and a weaker test each.
+  // Two 5 s stretches 0.5 s apart are one stretch of 10.5 s: tested together (8 fixes inside the
+  // margins) at 0.15 m/s; apart, they have 3 fixes each, too few to be tested.
   const auto creeping = [](double) { return 0.15; };
-  SyntheticRun run = MakeRun(creeping, creeping, 1);
-  AddAttitude(&run);
-  for (WardEstimate& e : run.estimates) {
-    e.slip.immobilized = (e.t >= 20.0 && e.t < 27.0) || (e.t >= 27.5 && e.t < 34.5);
+  int counted = 0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    SyntheticRun run = MakeRun(creeping, creeping, seed);
+    AddAttitude(&run);
+    for (WardEstimate& e : run.estimates) {
+      e.slip.immobilized = (e.t >= 20.0 && e.t < 25.0) || (e.t >= 25.5 && e.t < 30.5);
+    }
+    const TrustReport report = CheckTrust(run.log, run.estimates);
+    EXPECT_FALSE(std::isnan(report.worst_stretch_z));
+    if (report.flagged_moving_fraction > 9.9 / 60.0) ++counted;
   }
-  const TrustReport report = CheckTrust(run.log, run.estimates);
-  EXPECT_NEAR(report.flagged_moving_fraction, 14.0 / 60.0, 0.01) << DescribeTrust(report);
-  EXPECT_EQ(report.suspect[2000], 1.0);
-  EXPECT_EQ(report.suspect[3400], 1.0);
+  EXPECT_GE(counted, 7);
 }
 
 TEST(TrustCheck, AFlagItsStretchsFixesContradictIsSuspectInATrustedRun) {
-  // 15 s of 60 flagged while the robot creeps at 0.15 m/s, the share allowed raised to a half so
-  // that the run passes: the flags its stretch's fixes contradict are marked all the same.
-  const auto creeping = [](double) { return 0.15; };
-  SyntheticRun run = MakeRun(creeping, creeping, 1);
+  // 15 s of 60 flagged while the robot drives at 0.5 m/s, the share allowed raised to a half so
+  // that the run passes: every flag of the stretch its fixes contradict is marked, the ones the
+  // fixes around them contradict one by one as well.
+  const auto driving = [](double) { return 0.5; };
+  SyntheticRun run = MakeRun(driving, driving, 1);
   AddAttitude(&run);
   Flag(&run, 20.0, 35.0);
   TrustOptions options;
@@ -299,8 +307,9 @@ TEST(TrustCheck, AFlagItsStretchsFixesContradictIsSuspectInATrustedRun) {
   const TrustReport report = CheckTrust(run.log, run.estimates, options);
   EXPECT_TRUE(report.trusted) << DescribeTrust(report);
   EXPECT_GT(report.worst_stretch_z, 3.0);
-  EXPECT_EQ(report.suspect[2700], 1.0);
+  for (size_t k = 2000; k < 3500; ++k) ASSERT_EQ(report.suspect[k], 1.0) << k;
   EXPECT_EQ(report.suspect[1900], 0.0);
+  EXPECT_EQ(report.suspect[3600], 0.0);
 }
 
 TEST(TrustCheck, AFlagTooShortForItsMarginsIsNotTested) {
