@@ -57,6 +57,21 @@ bool OffTheWheels(const WardEstimate& e, double radius_m, const TrustOptions& o)
   return both_turn && std::abs(v) > o.min_speed_mps && v * left < 0.0;
 }
 
+// A fix's squared speed, in 3-D when it has a vertical velocity (the body's speed on a grade),
+// less its noise's bias (sd^2 per axis), and the variance of that noise (2 sd^4 per axis): zero
+// mean at rest.
+struct SquaredSpeed {
+  double less_noise_m2ps2;
+  double noise_variance;
+};
+SquaredSpeed SquaredSpeedLessNoise(const GpsSample& fix, double sd_mps) {
+  const bool vertical = std::isfinite(fix.vz);
+  const double axes = vertical ? 3.0 : 2.0;
+  const double speed_sq = fix.vx * fix.vx + fix.vy * fix.vy + (vertical ? fix.vz * fix.vz : 0.0);
+  const double variance = sd_mps * sd_mps;
+  return {speed_sq - axes * variance, 2.0 * axes * variance * variance};
+}
+
 // Flags this close in time belong to one stretch (the slip's EMA may dip under its threshold
 // for a moment inside one stop).
 constexpr double kFlagGapS = 1.0;
@@ -94,24 +109,23 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
   const size_t n = fixes.size();
   if (n < static_cast<size_t>(std::max(2, min_fixes))) return std::nan("");
   // One quantity for the whole stretch: m/s along the heading, or m^2/s^2 of squared speed.
-  std::vector<double> values(n), stated_sd(n);
+  std::vector<double> values(n), stated_variance(n);
   for (size_t i = 0; i < n; ++i) {
     const GpsSample& fix = *fixes[i];
     const double sd_mps = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
-    const bool vertical = std::isfinite(fix.vz);
-    const double vz = vertical ? fix.vz : 0.0;
     if (headed) {
+      const double vz = std::isfinite(fix.vz) ? fix.vz : 0.0;
       values[i] = GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, headings[i]->pitch,
                                          headings[i]->yaw, 1.0);
-      stated_sd[i] = sd_mps;
+      stated_variance[i] = sd_mps * sd_mps;
     } else {
-      const double axes = vertical ? 3.0 : 2.0;
-      values[i] = fix.vx * fix.vx + fix.vy * fix.vy + vz * vz - axes * sd_mps * sd_mps;
-      stated_sd[i] = std::sqrt(2.0 * axes) * sd_mps * sd_mps;
+      const SquaredSpeed squared = SquaredSpeedLessNoise(fix, sd_mps);
+      values[i] = squared.less_noise_m2ps2;
+      stated_variance[i] = squared.noise_variance;
     }
   }
   double mean = 0.0, stated = 0.0;
-  for (size_t i = 0; i < n; ++i) mean += values[i] / n, stated += stated_sd[i] * stated_sd[i] / n;
+  for (size_t i = 0; i < n; ++i) mean += values[i] / n, stated += stated_variance[i] / n;
   double scatter = 0.0;
   for (const double v : values) scatter += (v - mean) * (v - mean) / (n - 1);
   const double sd = std::sqrt(std::max(stated, scatter));
@@ -120,13 +134,12 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
 }
 
 // The stretches of flags (flags within kFlagGapS of each other) whose fixes together say the
-// robot moves (RestZ beyond options.stretch_z_limit): every flag in them is marked in *suspect
-// (their test needs seconds of fixes, which a hold-back's edges do not give), and those not yet
-// `counted` are appended to *moving and counted. Returns the largest stretch z (NaN: none
-// tested).
+// robot moves (RestZ beyond options.stretch_z_limit): every flag in them is set in *moving and
+// marked in *suspect (their test needs seconds of fixes, which a hold-back's edges do not give).
+// Returns the largest stretch z (NaN: none tested).
 double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstimate>& estimates,
-                                const TrustOptions& options, std::vector<char>* counted,
-                                std::vector<size_t>* moving, std::vector<double>* suspect) {
+                                const TrustOptions& options, std::vector<char>* moving,
+                                std::vector<double>* suspect) {
   double worst = std::nan("");
   for (size_t first = 0; first < estimates.size();) {
     if (!estimates[first].slip.immobilized) {
@@ -145,10 +158,8 @@ double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstim
     if (z > options.stretch_z_limit) {
       for (size_t j = first; j <= last; ++j) {
         if (!estimates[j].slip.immobilized) continue;
+        (*moving)[j] = 1;
         (*suspect)[j] = 1.0;
-        if ((*counted)[j]) continue;
-        (*counted)[j] = 1;
-        moving->push_back(j);
       }
     }
     first = last + 1;
@@ -175,7 +186,7 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
 
   // Flagged immobilized while the GNSS fixes on both sides (each within 1.5 s) move: a held
   // robot's fixes stop, and a fix from before a hold-back's onset does not count alone.
-  std::vector<size_t> flagged_moving_at;
+  std::vector<char> flagged_moving(estimates.size(), 0);
   const auto moving = [&](const GpsSample& fix) {
     return std::hypot(fix.vx, fix.vy) >
            std::max(0.3, 3.0 * GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps));
@@ -187,19 +198,18 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     const GpsSample& before = log.gps[i];
     const GpsSample& after = log.gps[i + 1];
     if (estimates[j].t - before.t > 1.5 || after.t - estimates[j].t > 1.5) continue;
-    if (moving(before) && moving(after)) {
-      flagged_moving_at.push_back(j);
-    }
+    if (moving(before) && moving(after)) flagged_moving[j] = 1;
   }
   // Stretches of flags whose fixes, taken together, say the robot moves.
-  std::vector<char> counted(estimates.size(), 0);
-  for (size_t j : flagged_moving_at) counted[j] = 1;
-  report.worst_stretch_z = FlaggedStretchesThatMove(log, estimates, options, &counted,
-                                                    &flagged_moving_at, &report.suspect);
-  report.flagged_moving_fraction = static_cast<double>(flagged_moving_at.size()) / estimates.size();
+  report.worst_stretch_z =
+      FlaggedStretchesThatMove(log, estimates, options, &flagged_moving, &report.suspect);
+  const long flagged_moving_count = std::count(flagged_moving.begin(), flagged_moving.end(), 1);
+  report.flagged_moving_fraction = static_cast<double>(flagged_moving_count) / estimates.size();
   const bool flags_failed = report.flagged_moving_fraction > options.moving_flag_fraction;
   if (flags_failed) {
-    for (size_t j : flagged_moving_at) report.suspect[j] = 1.0;
+    for (size_t j = 0; j < estimates.size(); ++j) {
+      if (flagged_moving[j]) report.suspect[j] = 1.0;
+    }
   }
 
   // The wheels' scale: consecutive windows of scale_window_s, over their samples that move on
@@ -249,18 +259,14 @@ TrustReport CheckTrust(const DriveLog& log, const std::vector<WardEstimate>& est
     const WardEstimate& e = estimates[nearest];
     const double sd_gnss_mps = GnssVelocitySd(fix, log.vehicle.sensors.gps_sd_v_mps);
     const double v_mps = e.x[ward::kVbx], sd_v_mps = e.sd[ward::kVbx];
-    // The fix's speed in 3-D when it has a vertical velocity (the body's speed on a grade), its
-    // noise's bias (sd^2 per axis) and variance (2 sd^4 per axis) with it.
-    const bool vertical = std::isfinite(fix.vz);
-    const double axes = vertical ? 3.0 : 2.0;
-    const double speed_sq = fix.vx * fix.vx + fix.vy * fix.vy + (vertical ? fix.vz * fix.vz : 0.0);
+    const SquaredSpeed squared = SquaredSpeedLessNoise(fix, sd_gnss_mps);
     const double var_g = sd_gnss_mps * sd_gnss_mps;
     const double scale =
-        std::sqrt(4.0 * v_mps * v_mps * (var_g + sd_v_mps * sd_v_mps) + 2.0 * axes * var_g * var_g);
+        std::sqrt(4.0 * v_mps * v_mps * (var_g + sd_v_mps * sd_v_mps) + squared.noise_variance);
     if (!(scale > 0.0) || !std::isfinite(scale)) continue;
     // One fix cannot carry a run or a window: its z is clipped at kFixZLimit (an outlier of
     // 50 m/s is one fix at the limit; a drift is many fixes beyond 2).
-    const double fix_z = (speed_sq - axes * var_g - v_mps * v_mps) / scale;
+    const double fix_z = (squared.less_noise_m2ps2 - v_mps * v_mps) / scale;
     if (!std::isfinite(fix_z)) continue;  // an absurd value, e.g. 1e300 m/s
     z.push_back(std::clamp(fix_z, -kFixZLimit, kFixZLimit));
     at.push_back(nearest);
