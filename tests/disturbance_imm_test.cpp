@@ -25,7 +25,7 @@ Evaluation Suite(const std::vector<const char*>& names, uint64_t seed, bool mode
   options.multiple_model = false;
   options.disturbance_modes = modes;
   options.ekf.gnss_fading_fixes = 0.0;  // the modes alone, without the GNSS fading memory
-  return testing::EvaluateFrontEnd(names, seed, options);
+  return testing::EvaluateFrontEnd(names, seed, options, testing::PapersAccelBiasWalk);
 }
 
 TEST(DisturbanceImm, QuietWhileDrivingChangingAtAHoldBacksStart) {
@@ -56,12 +56,11 @@ TEST(DisturbanceImm, QuietWhileDrivingChangingAtAHoldBacksStart) {
 }
 
 // ward21m seed 2, runs 06 10 21, the runs GnssFadingPullsADriftingVelocityBack (ward_ekf_test)
-// is tested on. Measured (2026-11-26): false immobilized 46.1 % of samples with one filter,
-// 3.4 % with the modes; velocity RMSE 0.155 -> 0.051 m/s. What is left is run 10's false held
-// disturbance after the surge that follows its stall (docs/mismatch.md). The control: three
-// matched ward21 runs on the user's mean law (one filter, as --single-law): the same detections,
-// no false alarm, velocity error within 50 % (measured 0.0166 -> 0.0206 m/s: the quiet mode holds
-// v_bx at the mean law's slip, not the soil's).
+// is tested on, with the paper's accelerometer bias walk. Measured: false immobilized 44.4 % of
+// samples with one filter, 0.0 % with the modes; velocity RMSE 0.155 -> 0.037 m/s. The control:
+// three matched ward21 runs on the user's mean law (one filter, as --single-law): the same
+// detections, no false alarm, velocity error within 50 % (measured 0.0173 -> 0.0216 m/s: the
+// quiet mode holds v_bx at the mean law's slip, not the soil's).
 TEST(DisturbanceImm, HoldsADriftingVelocityAtTheWheelsAndStillFindsHoldBacks) {
   const std::vector<const char*> drifting = {"ward21m/06", "ward21m/10", "ward21m/21"};
   const Evaluation one = Suite(drifting, 2, false), modes = Suite(drifting, 2, true);

@@ -14,6 +14,7 @@
 
 #include "evaluation/evaluation.h"
 #include "io/estimate_file.h"
+#include "tests/front_end_runs.h"
 #include "tests/sim_test_util.h"
 
 namespace slipgraph {
@@ -32,6 +33,7 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
        {"ward21m/01", "ward21m/02", "ward21m/03", "ward21m/04", "ward21m/05", "ward21m/06"}) {
     const DriveLog log = testing::SimulatedScenario(name);
     ModelConfig model = DefaultModelConfig(log.vehicle);
+    testing::PapersAccelBiasWalk(&model);
     ASSERT_TRUE(model.law_samples.empty());
     // A law nobody fitted to this terrain is a guess by default.
     EXPECT_EQ(model.tire_slip_stiffness_relative_sd, 0.7);
@@ -56,7 +58,8 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
   const double before = Combine(plain_runs, "plain").nees_within_95_fraction();
   const double after = Combine(considered_runs, "considered").nees_within_95_fraction();
   std::printf("ward21m seed 1, runs 01-06: v NEES inside 95 %% %.3f -> %.3f\n", before, after);
-  // Measured: 0.481 -> 0.909 (0.445 -> 0.807 with the paper's filter, without GNSS fading).
+  // Measured: 0.576 -> 0.881, with the paper's accelerometer bias walk (which leaves the velocity
+  // drifting further than its sd on these runs; docs/mismatch.md).
   EXPECT_LT(before, 0.6);
   EXPECT_GT(after, before + 0.25);
 }

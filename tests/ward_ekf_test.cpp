@@ -96,16 +96,18 @@ NumericTable WheelOdometry(const DriveLog& log) {
 // Every run of ward21 seeds 1-4 (80 hold-backs; the bank with GNSS), against wheel odometry on
 // the same logs. Bounds: every hold-back detected, mean delay <= 0.4 s, false immobilized under
 // 0.2 % of samples (the paper's), velocity RMSE under half the odometry's. Odometry, the
-// control, fails the detection and velocity bounds on every seed (0/20, 0.20-0.23 m/s). Two
-// known failures are asserted as such, so that a change that mends or worsens them says so:
-// seed 2 misses one hold-back (19/20), seed 4 flags 0.90 % of its samples falsely. Measured:
-// seeds 1-4 v RMSE 0.0178 0.0187 0.0168 0.0234 m/s, delay 0.070 0.004 0.025 0.020 s.
+// control, fails the detection and velocity bounds on every seed (0/20, 0.20-0.23 m/s). Known
+// failures are asserted as such, so that a change that mends or worsens them says so: seed 2
+// misses one hold-back (19/20) and flags 0.27 % of its samples falsely (run 19, a robot at 0.09
+// m/s after a gentle hold-back, whose velocity sinks as the bias walk the attitude's stated sd
+// widens lets it; 0.000 % with the paper's walk), seed 4 flags 0.55 %. Measured: seeds 1-4 v
+// RMSE 0.0180 0.0202 0.0176 0.0222 m/s, delay 0.07 0.01 0.03 0.02 s.
 TEST(WardEkf, Ward21SeedsOneToFourAgainstWheelOdometry) {
   struct Expected {
     int detected;
     bool false_alarms_within_bound;
   };
-  const Expected expected[] = {{20, true}, {19, true}, {20, true}, {20, false}};
+  const Expected expected[] = {{20, true}, {19, false}, {20, true}, {20, false}};
   for (uint64_t seed = 1; seed <= 4; ++seed) {
     std::vector<Evaluation> ekf, odometry;
     for (const sim::ScenarioRun& run : sim::ExpandScenario("ward21", seed)) {
@@ -366,8 +368,9 @@ TEST(WardEkf, OptionsAreValidated) {
 
 // Fading memory on GNSS (EkfOptions::gnss_fading_*) on three ward21m runs of seed 2 whose
 // velocity drifts off while the wheels and GNSS agree (a peaked tire law and a slowly wrong
-// AHRS the model lacks; docs/mismatch.md). Measured: false immobilized 46.1 % of samples
-// without it, 11.9 % with it, velocity RMSE 0.155 -> 0.061 m/s. The control: on three matched
+// AHRS the model lacks; docs/mismatch.md), with the paper's accelerometer bias walk. Measured:
+// false immobilized 44.4 % of samples without it, 13.6 % with it, velocity RMSE 0.155 -> 0.062
+// m/s. The control: on three matched
 // ward21 runs, the paper's single filter (a bank does not fade), it changes neither the
 // detections nor, beyond 5 %, the velocity error.
 TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlone) {
@@ -375,7 +378,7 @@ TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlon
     FilterRunOptions options;
     options.multiple_model = false;
     options.ekf.gnss_fading_fixes = fading ? kGnssFadingFixes : 0.0;
-    return testing::EvaluateFrontEnd(names, seed, options);
+    return testing::EvaluateFrontEnd(names, seed, options, testing::PapersAccelBiasWalk);
   };
   const std::vector<const char*> drifting = {"ward21m/06", "ward21m/10", "ward21m/21"};
   const Evaluation without = suite(drifting, 2, false), with = suite(drifting, 2, true);
@@ -407,6 +410,7 @@ TEST(WardEkf, DoubtedOpposeMotionLetsTheVelocityFollowASurge) {
     options.multiple_model = false;
     return testing::EvaluateFrontEnd(names, seed, options, [scale](ModelConfig* model) {
       model->weak_constraints.oppose_motion_cauchy_scale_mps2 = scale;
+      testing::PapersAccelBiasWalk(model);
     });
   };
   const double kDefault = WeakConstraintConfig().oppose_motion_cauchy_scale_mps2;
@@ -428,6 +432,46 @@ TEST(WardEkf, DoubtedOpposeMotionLetsTheVelocityFollowASurge) {
   EXPECT_EQ(b.detected(), a.detected());
   EXPECT_EQ(b.false_immobilized_samples, a.false_immobilized_samples);
   EXPECT_LT(b.velocity_rmse, 1.06 * a.velocity_rmse);
+}
+
+// The attitude's slow error in the front end's accelerometer bias walk
+// (ProcessNoiseConfig::attitude_slow_error_*) on the three ward21m runs of seed 2 whose velocity
+// drifts off (their AHRS is off by up to 0.3 deg for tens of seconds, 0.05 m/s^2 of gravity the
+// paper's bias walk of 0.02 m/s^2 over 300 s cannot follow; docs/mismatch.md). The default
+// front end, with and without GNSS. Measured: false immobilized 13.6 -> 0.0 % of samples with
+// GNSS, 46.1 -> 15.2 % without; velocity RMSE 0.062 -> 0.025 and 0.166 -> 0.073 m/s. The control:
+// three matched ward21 runs (the bank, an AHRS of 0.002 rad stated and white): the same
+// detections and false alarms, the velocity error within 5 % (0.0159 -> 0.0164 m/s).
+TEST(WardEkf, TheAttitudesSlowErrorLetsTheBiasFollowAWrongAhrs) {
+  const auto suite = [](const std::vector<const char*>& names, uint64_t seed, bool gnss,
+                        bool slow_error) {
+    FilterRunOptions options;
+    options.use_gps = gnss;
+    return testing::EvaluateFrontEnd(names, seed, options, [slow_error](ModelConfig* model) {
+      if (!slow_error) testing::PapersAccelBiasWalk(model);
+    });
+  };
+  const std::vector<const char*> drifting = {"ward21m/06", "ward21m/10", "ward21m/21"};
+  for (const bool gnss : {true, false}) {
+    const Evaluation paper = suite(drifting, 2, gnss, false);
+    const Evaluation slow = suite(drifting, 2, gnss, true);
+    std::printf("ward21m seed 2, runs 06 10 21, %s: false %.4f -> %.4f, v RMSE %.4f -> %.4f\n",
+                gnss ? "GNSS" : "no GNSS", paper.false_immobilized_fraction(),
+                slow.false_immobilized_fraction(), paper.velocity_rmse, slow.velocity_rmse);
+    EXPECT_EQ(slow.detected(), paper.detected());
+    EXPECT_GT(paper.false_immobilized_fraction(), 0.1);
+    EXPECT_LT(slow.false_immobilized_fraction(), 0.5 * paper.false_immobilized_fraction());
+    EXPECT_LT(slow.velocity_rmse, 0.6 * paper.velocity_rmse);
+  }
+  const std::vector<const char*> matched = {"ward21/01", "ward21/02", "ward21/03"};
+  const Evaluation a = suite(matched, 1, true, false), b = suite(matched, 1, true, true);
+  std::printf(
+      "ward21 seed 1, runs 01-03: detected %d -> %d, false %ld -> %ld, v RMSE %.4f -> %.4f\n",
+      a.detected(), b.detected(), a.false_immobilized_samples, b.false_immobilized_samples,
+      a.velocity_rmse, b.velocity_rmse);
+  EXPECT_EQ(b.detected(), a.detected());
+  EXPECT_EQ(b.false_immobilized_samples, a.false_immobilized_samples);
+  EXPECT_LT(b.velocity_rmse, 1.05 * a.velocity_rmse);
 }
 
 }  // namespace
