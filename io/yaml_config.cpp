@@ -241,8 +241,7 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"accel_bias_tau", &q.accel_bias_tau_s, false},
         {"gyro_bias_sd", &q.gyro_bias_sd_radps, false},
         {"gyro_bias_tau", &q.gyro_bias_tau_s, false},
-        {"attitude_slow_error_share", &q.attitude_slow_error_share, false},
-        {"attitude_slow_error_tau", &q.attitude_slow_error_tau_s, false}}},
+        {"attitude_error_walk", &q.attitude_error_walk_s, false}}},
       {"measurement_noise",
        {{"imu_sd_accel", &m.measurement.imu_sd_accel_mps2, false},
         {"imu_sd_gyro", &m.measurement.imu_sd_gyro_radps, false},
@@ -485,8 +484,7 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                             {"accel_bias_tau", q.accel_bias_tau_s},
                             {"gyro_bias_sd", q.gyro_bias_sd_radps},
                             {"gyro_bias_tau", q.gyro_bias_tau_s},
-                            {"attitude_slow_error_share", q.attitude_slow_error_share},
-                            {"attitude_slow_error_tau", q.attitude_slow_error_tau_s}});
+                            {"attitude_error_walk", q.attitude_error_walk_s}});
   section("measurement_noise", {{"imu_sd_accel", m.measurement.imu_sd_accel_mps2},
                                 {"imu_sd_gyro", m.measurement.imu_sd_gyro_radps},
                                 {"wheels_sd_omega", m.measurement.wheels_sd_omega_radps},

@@ -39,7 +39,6 @@ bool ModelConfig::IsValid(std::string* error) const {
       {"process.accel_bias_tau", process.accel_bias_tau_s},
       {"process.gyro_bias_sd", process.gyro_bias_sd_radps},
       {"process.gyro_bias_tau", process.gyro_bias_tau_s},
-      {"process.attitude_slow_error_tau", process.attitude_slow_error_tau_s},
       {"measurement.imu_sd_accel", measurement.imu_sd_accel_mps2},
       {"measurement.imu_sd_gyro", measurement.imu_sd_gyro_radps},
       {"measurement.wheels_sd_omega", measurement.wheels_sd_omega_radps},
@@ -91,9 +90,8 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "immobilization.velocity_sd_margin must be finite and non-negative (0: off)";
     return false;
   }
-  if (!(process.attitude_slow_error_share >= 0.0 &&
-        std::isfinite(process.attitude_slow_error_share))) {
-    *error = "process.attitude_slow_error_share must be finite and non-negative (0: off)";
+  if (!(process.attitude_error_walk_s >= 0.0 && std::isfinite(process.attitude_error_walk_s))) {
+    *error = "process.attitude_error_walk must be finite and non-negative (0: off)";
     return false;
   }
   if (!(process.a_dist_decay_tau_s >= 0.0)) {

@@ -30,13 +30,12 @@ struct ProcessNoiseConfig {
   // The attitude source's slow error, beyond the paper. An AHRS's attitude is its own filter's
   // output: its error is correlated over seconds to minutes, not white at the sample rate, and
   // where the accelerometer drives the velocity it removes gravity with an error g * d(pitch)
-  // that acts as a bias. The front end's b_ax walks faster by a Gauss-Markov process of
-  // stationary sd g * share * (the attitude's stated pitch sd) and this correlation time.
-  // Chosen on ward21m and ward21 seeds 1-10, reported on 11-20 (docs/mismatch.md). share 0: the
-  // paper's bias. The EKF's only: the smoothers' bias walk, given the filter's estimates and
-  // GNSS on both sides, did better without it (docs/mismatch.md).
-  double attitude_slow_error_share = 0.5;
-  double attitude_slow_error_tau_s = 30.0;
+  // that acts as a bias. The front end's b_ax then also walks by g times the attitude's stated
+  // pitch sd in this time (a density of g sd_pitch / sqrt(time); its mean reversion stays
+  // accel_bias_tau). Chosen on ward21m and ward21 seeds 1-10, reported on 11-20
+  // (docs/mismatch.md). 0: off, the paper's walk. The EKF's only: the smoothers' bias walk did
+  // better without it (docs/mismatch.md).
+  double attitude_error_walk_s = 60.0;
   // 0: a_dist is a random walk (the paper). Positive: a Gauss-Markov process decaying toward
   // zero with this correlation time (s), of stationary sd w3 sqrt(tau / 2) (the same density
   // over times short against tau): a disturbance that does not persist (the quiet mode of

@@ -329,7 +329,9 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   FilterRunOptions filter;
   filter.use_gps = options.use_gps;
   filter.multiple_model = false;
-  filter.ekf.gnss_fading_fixes = 0.0;  // the paper's filter, as the figures in docs/identify.md
+  // The paper's filter, as the figures in docs/identify.md.
+  filter.ekf.gnss_fading_fixes = 0.0;
+  filter.papers_bias_walk = true;
   for (const DriveLog& log : logs) runs.push_back(RunEkf(log, model, filter));
   std::vector<const DriveLog*> log_pointers;
   std::vector<const std::vector<WardEstimate>*> initial;

@@ -97,15 +97,16 @@ void WardPropagator::Predict(double dt, const PropagationInput& input,
       dt;
   // b_ax walks by its own Gauss-Markov process and by the attitude's slow error, which reaches
   // the velocity only through the gravity the accelerometer input removes
-  // (ProcessNoiseConfig::attitude_slow_error_*).
-  const double bias_pitch_sd = input.accelerometer_driven ? input.pitch_sd_rad : 0.0;
-  if (dt != bias_noise_dt_ || bias_pitch_sd != bias_noise_pitch_sd_) {
+  // (ProcessNoiseConfig::attitude_error_walk_s).
+  const double bias_pitch_sd_rad = input.accelerometer_driven ? input.pitch_sd_rad : 0.0;
+  if (dt != bias_noise_dt_ || bias_pitch_sd_rad != bias_noise_pitch_sd_rad_) {
     bias_noise_dt_ = dt;
-    bias_noise_pitch_sd_ = bias_pitch_sd;
-    const double attitude_sd_mps2 =
-        params.gravity_mps2 * q_.attitude_slow_error_share * bias_pitch_sd;
-    accel_bias_q_ = GaussMarkovStepVariance(q_.accel_bias_sd_mps2, q_.accel_bias_tau_s, dt) +
-                    GaussMarkovStepVariance(attitude_sd_mps2, q_.attitude_slow_error_tau_s, dt);
+    bias_noise_pitch_sd_rad_ = bias_pitch_sd_rad;
+    const double attitude_mps2 = params.gravity_mps2 * bias_pitch_sd_rad;
+    accel_bias_q_ = GaussMarkovStepVariance(q_.accel_bias_sd_mps2, q_.accel_bias_tau_s, dt);
+    if (q_.attitude_error_walk_s > 0.0) {
+      accel_bias_q_ += attitude_mps2 * attitude_mps2 * dt / q_.attitude_error_walk_s;
+    }
     gyro_bias_q_ = GaussMarkovStepVariance(q_.gyro_bias_sd_radps, q_.gyro_bias_tau_s, dt);
   }
   q_diag(kAccelBias) = accel_bias_q_;

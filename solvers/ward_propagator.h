@@ -2,8 +2,8 @@
 // accelerometer-driven when an accelerometer input is held (its transition matrix by the chain
 // rule through the stages, factors/ward_accel_driven_step.h) and the paper's form otherwise (a
 // Jet pass), then the discrete process noise: white densities times dt, the biases' exact
-// Gauss-Markov variance (b_ax's with the attitude's slow error through gravity when the
-// accelerometer drives), and the disturbance's density w3 scaled by the accelerometer's recent
+// Gauss-Markov variance (b_ax's with a walk for the attitude's slow error through gravity when
+// the accelerometer drives), and the disturbance's density w3 scaled by the accelerometer's recent
 // normalized innovation squared (the adaptive w3).
 #pragma once
 
@@ -43,7 +43,7 @@ class WardPropagator {
   double accel_nis_ema_ = 1.0;
   // The biases' discrete variances for the last step length and attitude sd (recomputed when
   // either changes).
-  double bias_noise_dt_ = -1.0, bias_noise_pitch_sd_ = 0.0;
+  double bias_noise_dt_ = -1.0, bias_noise_pitch_sd_rad_ = 0.0;
   double accel_bias_q_ = 0.0, gyro_bias_q_ = 0.0;
 };
 

@@ -439,7 +439,7 @@ TEST(WardEkf, DoubtedOpposeMotionLetsTheVelocityFollowASurge) {
 }
 
 // The attitude's slow error in the front end's accelerometer bias walk
-// (ProcessNoiseConfig::attitude_slow_error_*) on the three ward21m runs of seed 2 whose velocity
+// (ProcessNoiseConfig::attitude_error_walk_s) on the three ward21m runs of seed 2 whose velocity
 // drifts off (their AHRS is off by up to 0.3 deg for tens of seconds, 0.05 m/s^2 of gravity the
 // paper's bias walk of 0.02 m/s^2 over 300 s cannot follow; docs/mismatch.md). The default
 // front end, with and without GNSS. Measured: false immobilized 13.6 -> 0.0 % of samples with

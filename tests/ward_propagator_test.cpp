@@ -43,6 +43,7 @@ TEST(WardPropagator, CovarianceIsTheStepJacobianSandwichPlusQ) {
     PropagationInput input;
     input.accelerometer_driven = driven;
     input.accel_input_mps2 = 0.3;
+    input.pitch_sd_rad = 0.01;
     const ProcessNoiseConfig q;
     ekf::StateVector x = Moving();
     ekf::StateMatrix P0 = 0.01 * ekf::StateMatrix::Identity();
@@ -56,18 +57,42 @@ TEST(WardPropagator, CovarianceIsTheStepJacobianSandwichPlusQ) {
     const ekf::StateMatrix A = NumericTransition(input, loads, dt);
     const ekf::StateMatrix expected = A * P0 * A.transpose() + P_zero;
     EXPECT_LT((P - expected).cwiseAbs().maxCoeff(), 1e-8) << (driven ? "driven" : "paper's");
-    // Q alone: diagonal, each entry as its source says.
-    EXPECT_DOUBLE_EQ(P_zero(kAccelBias, kAccelBias),
-                     GaussMarkovStepVariance(q.accel_bias_sd_mps2, q.accel_bias_tau_s, dt));
+    // Q alone: diagonal, each entry as its source says; the attitude's error walks the bias
+    // where the accelerometer drives (g sd_pitch in attitude_error_walk_s).
+    const double attitude_mps2 = kParams.gravity_mps2 * input.pitch_sd_rad;
+    EXPECT_DOUBLE_EQ(
+        P_zero(kAccelBias, kAccelBias),
+        GaussMarkovStepVariance(q.accel_bias_sd_mps2, q.accel_bias_tau_s, dt) +
+            (driven ? attitude_mps2 * attitude_mps2 * dt / q.attitude_error_walk_s : 0.0));
     EXPECT_DOUBLE_EQ(P_zero(kGyroBias, kGyroBias),
                      GaussMarkovStepVariance(q.gyro_bias_sd_radps, q.gyro_bias_tau_s, dt));
     EXPECT_DOUBLE_EQ(P_zero(kAdist, kAdist),
                      q.a_dist_mps3_per_sqrt_hz * q.a_dist_mps3_per_sqrt_hz * dt);
-    const double v_density_sq = driven ? AccelInputDensitySq(0.05, 0.0, kParams.gravity_mps2, 0.01)
-                                       : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz;
+    const double v_density_sq =
+        driven ? AccelInputDensitySq(0.05, input.pitch_sd_rad, kParams.gravity_mps2, 0.01)
+               : q.v_bx_mps2_per_sqrt_hz * q.v_bx_mps2_per_sqrt_hz;
     EXPECT_DOUBLE_EQ(P_zero(kVbx, kVbx), v_density_sq * dt);
     EXPECT_EQ(P_zero(kVbx, kAdist), 0.0);
   }
+}
+
+// The bias's step variance follows the attitude's stated sd from one step to the next.
+TEST(WardPropagator, TheBiasWalkFollowsTheAttitudesStatedSd) {
+  const AttitudeLoads<double> loads = ComputeAttitudeLoads(Attitude<double>{0.0, 0.0}, kParams);
+  const ProcessNoiseConfig q;
+  WardPropagator propagator(q, 0.05);
+  PropagationInput input;
+  input.accelerometer_driven = true;
+  double bias_q[2];
+  for (int i = 0; i < 2; ++i) {
+    input.pitch_sd_rad = i == 0 ? 0.002 : 0.02;
+    ekf::StateVector x = Moving();
+    ekf::StateMatrix P = ekf::StateMatrix::Zero();
+    propagator.Predict(0.01, input, loads, kParams, &x, &P);
+    bias_q[i] = P(kAccelBias, kAccelBias);
+  }
+  const double own = GaussMarkovStepVariance(q.accel_bias_sd_mps2, q.accel_bias_tau_s, 0.01);
+  EXPECT_NEAR((bias_q[1] - own) / (bias_q[0] - own), 100.0, 1e-6);
 }
 
 TEST(WardPropagator, DisturbanceNoiseGrowsWithTheAccelerometerNis) {

@@ -119,6 +119,9 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {decay_alpha: 1.5}\n"), LagrVehicle()),
                InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("tire: {C1: -1}\n"), LagrVehicle()), InputError);
+  EXPECT_THROW(
+      ReadModelYaml(WriteModel("process_noise: {attitude_error_walk: -1}\n"), LagrVehicle()),
+      InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {oppose_motion_cauchy_scale: -1}\n"),
                              LagrVehicle()),
                InputError);
@@ -141,6 +144,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.calibration.track_width_m = 0.81;
   m.calibration.imu_time_offset_s = -0.035;
   m.calibration.imu_mounting_pitch_rad = 0.021;
+  m.process.attitude_error_walk_s = 45.0;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -153,6 +157,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.calibration.track_width_m, 0.81);
   EXPECT_DOUBLE_EQ(back.calibration.imu_time_offset_s, -0.035);
   EXPECT_DOUBLE_EQ(back.calibration.imu_mounting_pitch_rad, 0.021);
+  EXPECT_DOUBLE_EQ(back.process.attitude_error_walk_s, 45.0);
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
