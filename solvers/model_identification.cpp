@@ -518,6 +518,7 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
   FilterRunOptions run;
   run.use_gps = use_gps;
   run.ekf.gnss_fading_fixes = gnss_fading ? kGnssFadingFixes : 0.0;
+  run.papers_bias_walk = !gnss_fading;  // the paper's filter, or the default front end
   run.ekf.record_innovations = true;
   const FilterResult result = RunEkf(log, model, run);
   ModelScore score;

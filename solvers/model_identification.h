@@ -118,10 +118,12 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& logs, const Mode
 // correlations, the noise and the track.
 std::string DescribeIdentification(const IdentificationResult& result);
 
-// The front end as `filter --no-gnss-fading` runs it (a bank when the model has law samples; one
-// EKF otherwise, as for an identified model), or with gnss_fading as `filter` runs it by default
-// (EkfOptions::gnss_fading_*), the model's calibration applied, on a log: scored without truth
-// and, when the log has it, against truth. docs/identify.md's figures are the paper's filter's.
+// The paper's front end (`filter --no-gnss-fading` with the paper's accelerometer bias walk,
+// `process_noise: {attitude_error_walk: 0}`; a bank when the model has law samples, one EKF
+// otherwise, as for an identified model), or with gnss_fading as `filter` runs it by default
+// (EkfOptions::gnss_fading_*, the model's bias walk), the model's calibration applied, on a log:
+// scored without truth and, when the log has it, against truth. docs/identify.md's figures are
+// the paper's filter's.
 struct ModelScore {
   long gnss_fixes = 0;
   double gnss_nis_mean = std::nan("");  // mean squared normalized GNSS innovation (1: consistent)
