@@ -17,6 +17,7 @@
 #include "sim/simulation.h"
 #include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
+#include "tests/front_end_runs.h"
 #include "tests/sim_test_util.h"
 
 namespace slipgraph {
@@ -362,10 +363,13 @@ TEST(WindowSmoother, RejectsASolveThatLeavesTheFrontEndAgainstTheMeasurements) {
 // Weak constraint 3 on the velocity: through a hold-back on ward21m (an AHRS whose slow error
 // the accelerometer integrates, a spring tether), the window without it holds the velocity
 // 3-7 cm/s below zero for seconds, 3-5 of its sd, while the front end's weak constraint 3 keeps
-// its own near zero; with it the window stays near zero and refines the front end again.
+// its own near zero; with it the window stays near zero and refines the front end again. Behind
+// the front end with the paper's accelerometer bias walk, on which it was measured (with the
+// attitude's error walk this run's front end is 0.147 m/s off, docs/mismatch.md).
 TEST(WindowSmoother, TheBodyDoesNotMoveAgainstItsWheelsInAHoldBack) {
   const DriveLog log = testing::SimulatedScenario("ward21m/08", 3);
-  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  ModelConfig model = DefaultModelConfig(log.vehicle);
+  testing::PapersAccelBiasWalk(&model);
   WindowSmootherOptions options;
   ASSERT_GT(options.no_pull_back_sd_density, 0.0);
   const WindowSmootherResult window = SmoothWindowed(log, model, options);
