@@ -118,7 +118,7 @@ def test_online_gives_the_estimate_file_the_cli_writes(sample, tmp_path):
         assert np.allclose(online[key], written[key], rtol=1e-5, atol=1e-5, equal_nan=True), key
     assert 0 < online.update_ms_p50 <= online.update_ms_p99
     assert online.rejected_updates == 0  # the bundled log's model is its own
-    # Issue 32's per-log bound: the window at most 5 % worse than the front end (on the suites
+    # The per-log target: the window at most 5 % worse than the front end (on the suites
     # it is worse by more on 5-6 % of runs, docs/smoother.md); on this 18-s log 0.0123 against
     # 0.0119 m/s.
     ekf_score = slipgraph.evaluate(sample, slipgraph.filter(sample))
