@@ -32,7 +32,8 @@
 //     stiffness_prior_sd; 0: the law as given);
 //   --window-length S: with --window, the window's span in seconds (WindowSmootherOptions::
 //     window_s; `online --window S`);
-//   --runs: list each run with false alarms (seed, run, estimator, samples, v RMSE);
+//   --runs: list each run with false alarms (seed, run, estimator, samples, v RMSE) or missed
+//     hold-backs;
 //   --model FILE: a model file (the `--model` of the subcommands) over each log's defaults, for
 //     trying a setting on seeds the figures are not reported on.
 #include <algorithm>
@@ -135,6 +136,13 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
                     static_cast<unsigned long long>(seed), run_name.c_str(), kNames[e],
                     ev.false_immobilized_samples, 100.0 * ev.false_immobilized_fraction(),
                     ev.velocity_rmse);
+      out.false_runs.push_back(line);
+    }
+    if (g_list_runs && ev.detected() < static_cast<int>(ev.events.size())) {
+      char line[200];
+      std::snprintf(line, sizeof(line), "seed %llu %s %s: %d of %zu hold-backs missed",
+                    static_cast<unsigned long long>(seed), run_name.c_str(), kNames[e],
+                    static_cast<int>(ev.events.size()) - ev.detected(), ev.events.size());
       out.false_runs.push_back(line);
     }
     if (CheckTrust(log, estimates).trusted) {
