@@ -272,6 +272,13 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"low_speed", &im.low_speed_mps, false},
         {"min_wheel_speed", &im.min_wheel_speed_mps, false},
         {"velocity_sd_margin", &im.velocity_sd_margin, false}}},
+      {"slip_persistence",
+       {{"interval", &m.slip_persistence.interval_s, false},
+        {"sd", &m.slip_persistence.sd_mps, false},
+        {"gate", &m.slip_persistence.gate_sd, false},
+        {"smoothing", &m.slip_persistence.smoothing_s, false},
+        {"min_rim_speed", &m.slip_persistence.min_rim_speed_mps, false},
+        {"max_rim_acceleration", &m.slip_persistence.max_rim_acceleration_mps2, false}}},
       {"offsets",
        {{"init_samples", &init_samples, false},
         {"ema_samples", &m.offset_ema_samples, false},
@@ -512,6 +519,13 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                              {"low_speed", im.low_speed_mps},
                              {"min_wheel_speed", im.min_wheel_speed_mps},
                              {"velocity_sd_margin", im.velocity_sd_margin}});
+  const SlipPersistenceConfig& sp = m.slip_persistence;
+  section("slip_persistence", {{"interval", sp.interval_s},
+                               {"sd", sp.sd_mps},
+                               {"gate", sp.gate_sd},
+                               {"smoothing", sp.smoothing_s},
+                               {"min_rim_speed", sp.min_rim_speed_mps},
+                               {"max_rim_acceleration", sp.max_rim_acceleration_mps2}});
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
                       {"ema_samples", m.offset_ema_samples},
                       {"rest_guard", m.offset_rest_guard_s}});

@@ -94,6 +94,21 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "process.attitude_error_walk must be finite and non-negative (0: off)";
     return false;
   }
+  const SlipPersistenceConfig& sp = slip_persistence;
+  if (!(sp.interval_s >= 0.0 && std::isfinite(sp.interval_s))) {
+    *error = "slip_persistence.interval must be finite and non-negative (0: off)";
+    return false;
+  }
+  if (sp.interval_s > 0.0) {
+    for (const auto& [name, value] :
+         {std::pair<const char*, double>{"slip_persistence.sd", sp.sd_mps},
+          {"slip_persistence.gate", sp.gate_sd},
+          {"slip_persistence.smoothing", sp.smoothing_s},
+          {"slip_persistence.min_rim_speed", sp.min_rim_speed_mps},
+          {"slip_persistence.max_rim_acceleration", sp.max_rim_acceleration_mps2}}) {
+      if (!CheckPositive(name, value, error)) return false;
+    }
+  }
   if (!(process.a_dist_decay_tau_s >= 0.0)) {
     *error = "process.a_dist_decay_tau must be non-negative (0: a random walk)";
     return false;
@@ -157,6 +172,11 @@ bool ModelConfig::InEffectWindow(const std::string& effect, double t) const {
   return std::any_of(effect_windows.begin(), effect_windows.end(), [&](const EffectWindow& w) {
     return w.effect == effect && t >= w.t_start_s && t < w.t_end_s;
   });
+}
+
+void UsePapersAccelBias(ModelConfig* model) {
+  model->process.attitude_error_walk_s = 0.0;
+  model->slip_persistence.interval_s = 0.0;
 }
 
 ModelConfig DefaultModelConfig(const Vehicle& vehicle) {

@@ -141,7 +141,7 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& given,
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   ModelConfig model = given;
-  if (options.papers_bias_walk) model.process.attitude_error_walk_s = 0.0;
+  if (options.papers_accel_bias) UsePapersAccelBias(&model);
   const double slope_sd = model.tire_slip_stiffness_relative_sd;
   if (!(slope_sd >= 0.0 && slope_sd <= kMaxSlipStiffnessRelativeSd)) {
     throw std::invalid_argument("RunEkf: tire_sd.slip_stiffness " + std::to_string(slope_sd) +

@@ -28,9 +28,10 @@ struct FilterRunOptions {
   // with their options. Where the law samples make a bank, the bank runs.
   bool disturbance_modes = false;
   DisturbanceImmOptions disturbance_modes_options;
-  // The paper's accelerometer bias walk whatever the model's attitude_error_walk_s (the workbench
-  // and identify start from the paper's filter, on which their figures were measured).
-  bool papers_bias_walk = false;
+  // The paper's accelerometer bias whatever the model says (UsePapersAccelBias: no attitude
+  // error walk, no wheels' check; the workbench and identify start from the paper's filter, on
+  // which their figures were measured).
+  bool papers_accel_bias = false;
   // The EKF's options valid, and the bank's when it runs.
   bool IsValid(std::string* error) const;
 };

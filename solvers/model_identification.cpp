@@ -331,7 +331,7 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   filter.multiple_model = false;
   // The paper's filter, as the figures in docs/identify.md.
   filter.ekf.gnss_fading_fixes = 0.0;
-  filter.papers_bias_walk = true;
+  filter.papers_accel_bias = true;
   for (const DriveLog& log : logs) runs.push_back(RunEkf(log, model, filter));
   std::vector<const DriveLog*> log_pointers;
   std::vector<const std::vector<WardEstimate>*> initial;
@@ -518,7 +518,7 @@ ModelScore ScoreModel(const DriveLog& input_log, const ModelConfig& model, bool 
   FilterRunOptions run;
   run.use_gps = use_gps;
   run.ekf.gnss_fading_fixes = gnss_fading ? kGnssFadingFixes : 0.0;
-  run.papers_bias_walk = !gnss_fading;  // the paper's filter, or the default front end
+  run.papers_accel_bias = !gnss_fading;  // the paper's filter, or the default front end
   run.ekf.record_innovations = true;
   const FilterResult result = RunEkf(log, model, run);
   ModelScore score;

@@ -38,6 +38,7 @@ WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOpti
     : propagator_(model.process, model.measurement.imu_sd_accel_mps2),
       gnss_fading_(options.gnss_fading_fixes, options.gnss_fading_threshold,
                    options.gnss_fading_max, options.gps_gate_chi2),
+      slip_persistence_(model.slip_persistence),
       params_(MakeParams(vehicle, model)),
       model_(model),
       options_(options),
@@ -75,7 +76,9 @@ void WardEkf::PredictTo(double t) {
   input.accel_input_mps2 = accel_input_mps2_ - offsets_.accel_x_mps2();
   input.pitch_sd_rad = pitch_sd_rad_;
   input.imu_period_s = imu_period_s_;
+  const double v_bx_before = x_(kVbx);
   propagator_.Predict(dt, input, loads_, params_, &x_, &P_);
+  if (input.accelerometer_driven) slip_persistence_.AddFeltVelocityChange(x_(kVbx) - v_bx_before);
   t_ = t;
 }
 
@@ -234,6 +237,7 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
   }
   const double dt_cycle = have_previous_cycle_ ? t_ - t_previous_cycle_ : 0.0;
   if (offsets_.ready()) ApplyWeakConstraints(dt_cycle);
+  if (offsets_.ready() && left_ok && right_ok) CheckBiasAgainstWheels();
   const bool fresh = t_ - last_wheels_t_ <= options_.encoder_timeout_s;
   previous_slip_ema_ = detector_.latest().slip_ema;
   detector_.Update(x_(kVbx), x_(kYawRate), x_(kOmegaLeft), x_(kOmegaRight), fresh,
@@ -269,6 +273,30 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
     row.AddOnState(p.state_index, p.z - x_(p.state_index), p.density * p.density / cycle_s);
     Update(row, nullptr, &unused);
     ++stats_.weak_constraints[static_cast<int>(p.constraint)];
+  }
+}
+
+void WardEkf::CheckBiasAgainstWheels() {
+  if (!slip_persistence_.enabled() ||
+      options_.velocity_model != VelocityModel::kAccelerometerDriven || !have_accel_input_) {
+    return;
+  }
+  const double rim_mps = 0.5 * params_.wheel_radius_m * (x_(kOmegaLeft) + x_(kOmegaRight));
+  SlipPersistence::Measurement m;
+  const auto outcome =
+      slip_persistence_.Cycle(t_, rim_mps, x_(kVbx), P_(kAccelBias, kAccelBias), &m);
+  switch (outcome) {
+    case SlipPersistence::Outcome::kMeasured: {
+      ekf::MeasurementRows row;
+      row.AddOnState(kAccelBias, m.innovation_mps2, m.variance, "slip_persistence");
+      Update(row, nullptr, &stats_.slip_persistence);
+      break;
+    }
+    case SlipPersistence::Outcome::kLeftOut:
+      ++stats_.slip_persistence.rejected;
+      break;
+    case SlipPersistence::Outcome::kNone:
+      break;
   }
 }
 

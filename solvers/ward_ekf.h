@@ -35,6 +35,7 @@
 #include "solvers/ekf_update.h"
 #include "solvers/immobilization_detector.h"
 #include "solvers/imu_offsets.h"
+#include "solvers/slip_persistence.h"
 #include "solvers/ward_propagator.h"
 #include "solvers/ward_updaters.h"
 #include "solvers/weak_constraints.h"
@@ -96,6 +97,9 @@ struct StreamCounters {
 
 struct EkfStats {
   StreamCounters imu, wheels, gps, attitude;
+  // The wheels' checks on the accelerometer bias (ModelConfig::slip_persistence): applied, and
+  // left out by their gate (a force the accelerometer felt).
+  StreamCounters slip_persistence;
   std::array<long, kWeakConstraintCount> weak_constraints{};  // applications per constraint
   long late_measurements = 0;  // stamped before the filter's time: applied at the filter time
   long offset_init_samples = 0;
@@ -190,6 +194,9 @@ class WardEkf {
   // recorded under their names with EkfOptions::record_innovations.
   bool Update(const ekf::MeasurementRows& rows, StreamGate* gate, StreamCounters* counters);
   void ApplyWeakConstraints(double dt_cycle);
+  // The wheel cycle's step of the wheels' check on b_ax (solvers/slip_persistence.h): its
+  // measurement, gated, when an interval closes.
+  void CheckBiasAgainstWheels();
   // After every measurement: keep the last sane (x, P); on a diverged one (not finite, or a state
   // beyond kDivergedMagnitude) go back to it with the covariance inflated, and count it. Never a
   // silent NaN, nor a yaw rate of 1e46 rad/s that is still finite.
@@ -199,6 +206,7 @@ class WardEkf {
   ward::AttitudeLoads<double> loads_;
   WardPropagator propagator_;
   GnssFading gnss_fading_;
+  SlipPersistence slip_persistence_;
   // kAccelerometerDriven: the accelerometer x reading driving the current prediction (the mean
   // over the interval ending at its stamp) and the IMU sample interval, for the input noise.
   double accel_input_mps2_ = 0.0;

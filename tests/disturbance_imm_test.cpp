@@ -25,7 +25,7 @@ Evaluation Suite(const std::vector<const char*>& names, uint64_t seed, bool mode
   options.multiple_model = false;
   options.disturbance_modes = modes;
   options.ekf.gnss_fading_fixes = 0.0;  // the modes alone, without the GNSS fading memory
-  return testing::EvaluateFrontEnd(names, seed, options, testing::PapersAccelBiasWalk);
+  return testing::EvaluateFrontEnd(names, seed, options, UsePapersAccelBias);
 }
 
 TEST(DisturbanceImm, QuietWhileDrivingChangingAtAHoldBacksStart) {

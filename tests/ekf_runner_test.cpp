@@ -33,7 +33,7 @@ TEST(EkfRunner, TheLawsSlopeUncertaintyWidensTheSdNotTheEstimate) {
        {"ward21m/01", "ward21m/02", "ward21m/03", "ward21m/04", "ward21m/05", "ward21m/06"}) {
     const DriveLog log = testing::SimulatedScenario(name);
     ModelConfig model = DefaultModelConfig(log.vehicle);
-    testing::PapersAccelBiasWalk(&model);
+    UsePapersAccelBias(&model);
     ASSERT_TRUE(model.law_samples.empty());
     // A law nobody fitted to this terrain is a guess by default.
     EXPECT_EQ(model.tire_slip_stiffness_relative_sd, 0.7);

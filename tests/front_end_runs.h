@@ -14,11 +14,6 @@
 namespace slipgraph {
 namespace testing {
 
-// The paper's accelerometer bias walk, without the attitude's slow error
-// (ProcessNoiseConfig::attitude_error_walk_s 0): for the tests whose figures were measured with
-// it, on drifting runs the attitude's walk mends (docs/mismatch.md).
-inline void PapersAccelBiasWalk(ModelConfig* model) { model->process.attitude_error_walk_s = 0.0; }
-
 // adjust, when given, changes the model of each run (its vehicle's default) before the run.
 inline Evaluation EvaluateFrontEnd(const std::vector<const char*>& names, uint64_t seed,
                                    const FilterRunOptions& options,

@@ -140,7 +140,7 @@ TEST(ModelIdentification, AFallingBranchThatSendsTheFrontEndOffTheWheelsIsSolved
   // The paper's accelerometer bias walk in the model: with the attitude's error walk the default
   // front end stays on the wheels with this falling branch (0 %, 0.056 m/s, measured); the check
   // is for a front end that does not.
-  testing::PapersAccelBiasWalk(&nominal);
+  UsePapersAccelBias(&nominal);
   const IdentificationResult r = IdentifyModel({split.train}, nominal);
   EXPECT_TRUE(r.falling_branch_refused);
   EXPECT_GE(r.model.tire.C2, 0.0);

@@ -23,7 +23,7 @@ Evaluation RunFront(const DriveLog& log, bool bank,
   FilterRunOptions options;
   options.multiple_model = bank;
   ModelConfig model = DefaultModelConfig(log.vehicle);
-  testing::PapersAccelBiasWalk(&model);
+  UsePapersAccelBias(&model);
   model.immobilization = detector;
   return Evaluate(log, EstimateTable(RunEkf(log, model, options).estimates));
 }

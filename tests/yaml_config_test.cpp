@@ -122,6 +122,12 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(
       ReadModelYaml(WriteModel("process_noise: {attitude_error_walk: -1}\n"), LagrVehicle()),
       InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("slip_persistence: {interval: -0.3}\n"), LagrVehicle()),
+               InputError);
+  EXPECT_THROW(ReadModelYaml(WriteModel("slip_persistence: {sd: 0}\n"), LagrVehicle()), InputError);
+  // Off, its other fields are not read.
+  EXPECT_NO_THROW(
+      ReadModelYaml(WriteModel("slip_persistence: {interval: 0, sd: 0}\n"), LagrVehicle()));
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {oppose_motion_cauchy_scale: -1}\n"),
                              LagrVehicle()),
                InputError);
@@ -145,6 +151,12 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.calibration.imu_time_offset_s = -0.035;
   m.calibration.imu_mounting_pitch_rad = 0.021;
   m.process.attitude_error_walk_s = 45.0;
+  m.slip_persistence.interval_s = 0.45;
+  m.slip_persistence.sd_mps = 0.007;
+  m.slip_persistence.gate_sd = 2.5;
+  m.slip_persistence.smoothing_s = 0.15;
+  m.slip_persistence.min_rim_speed_mps = 0.05;
+  m.slip_persistence.max_rim_acceleration_mps2 = 0.02;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -158,6 +170,12 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.calibration.imu_time_offset_s, -0.035);
   EXPECT_DOUBLE_EQ(back.calibration.imu_mounting_pitch_rad, 0.021);
   EXPECT_DOUBLE_EQ(back.process.attitude_error_walk_s, 45.0);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.interval_s, 0.45);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.sd_mps, 0.007);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.gate_sd, 2.5);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.smoothing_s, 0.15);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.min_rim_speed_mps, 0.05);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.max_rim_acceleration_mps2, 0.02);
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {

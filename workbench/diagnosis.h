@@ -42,7 +42,7 @@ struct DiagnosisOptions {
     // not hidden scores higher (sinkage resistance 49 -> 63; the problem takes its start and
     // weak constraint 2's gating from the filter).
     o.filter.ekf.gnss_fading_fixes = 0.0;
-    o.filter.papers_bias_walk = true;  // and its accelerometer bias walk
+    o.filter.papers_accel_bias = true;  // and its accelerometer bias
     return o;
   }();
   double alpha = 0.01;      // family-wise level of the candidate tests and the segment tests

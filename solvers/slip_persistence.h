@@ -1,0 +1,64 @@
+// The wheels' check on the accelerometer bias, beyond the paper (ModelConfig::slip_persistence).
+//
+// Where the accelerometer drives the velocity (docs/ekf.md), an error in the bias b_ax, or in the
+// gravity an AHRS's slowly wrong pitch removes, integrates into v_bx; on a slow robot 0.04 m/s^2
+// takes a third of a 0.12 m/s speed in a second, and the slip that follows reads as an
+// immobilization. Only GNSS (0.1 m/s a fix) and the tire law (whose error is of the same size)
+// hold it back. But the slip of a robot on steady ground persists: over an interval T the body's
+// speed changes as the wheels' rim speed does, at the slip the interval started with, unless a
+// force acts that the accelerometer feels clearly (a hold-back decelerates at 0.6-1.8 m/s^2 for
+// a tenth of a second). So
+//
+//   nu = (dv_felt - (v0 / w0) dw) / T    measures    b_ax(true) - b_ax(estimated)
+//
+// where dv_felt is the velocity change the prediction integrated from the accelerometer (with
+// the bias then estimated), w = r (w_l + w_r) / 2 the rim speed, dw its change over the interval,
+// v0 and w0 the filter's velocity and the rim speed (as measured) when it opened. Both changes
+// are taken from the same first-order smoothing (a time constant of smoothing_s) of the integrated
+// velocity and the rim speed, so that one encoder count's step does not read as an acceleration.
+// The slip's
+// own change over an interval is the measurement's noise, sd_mps in velocity (variance
+// (sd_mps / T)^2 on b_ax). A measurement beyond gate_sd of its predicted sd (the bias's variance
+// plus its own) is a force the accelerometer felt, not a bias: it is left out, and so is the next
+// interval's, which holds the smoothed tail of the same force; the slip that force made persists
+// from then on. Intervals open while the rim speed is above min_rim_speed_mps, and close
+// (measuring) when they are T long with the rim speed still above it, on the same side.
+#pragma once
+
+#include "model/model_config.h"
+
+namespace slipgraph {
+
+class SlipPersistence {
+ public:
+  explicit SlipPersistence(const SlipPersistenceConfig& config) : config_(config) {}
+
+  bool enabled() const { return config_.interval_s > 0.0; }
+  // The prediction's change of v_bx from the accelerometer (m/s), summed until the next cycle.
+  void AddFeltVelocityChange(double dv_mps) { felt_v_mps_ += dv_mps; }
+
+  struct Measurement {
+    double innovation_mps2 = 0.0;  // on b_ax
+    double variance = 0.0;         // (m/s^2)^2
+  };
+  enum class Outcome { kNone, kMeasured, kLeftOut };
+  // One wheel cycle at t (s): the rim speed r (w_l + w_r) / 2 (m/s), the filter's v_bx (m/s) after
+  // the cycle's updates and its b_ax variance. kMeasured, with *measurement to apply, or kLeftOut
+  // by the gate, when an interval closes.
+  Outcome Cycle(double t_s, double rim_speed_mps, double v_bx_mps, double bias_variance,
+                Measurement* measurement);
+
+ private:
+  SlipPersistenceConfig config_;
+  double felt_v_mps_ = 0.0;  // the integrated accelerometer velocity (its origin is arbitrary)
+  double felt_smoothed_mps_ = 0.0, rim_smoothed_mps_ = 0.0;
+  double last_t_s_ = 0.0;
+  bool smoothing_started_ = false;
+  bool open_ = false;
+  bool after_left_out_ = false;  // the previous interval was left out
+  double open_t_s_ = 0.0, open_felt_mps_ = 0.0, open_rim_mps_ = 0.0;
+  // The slip the interval opened with, from the filter's v_bx and the rim speed as measured then.
+  double open_v_bx_mps_ = 0.0, open_rim_raw_mps_ = 0.0;
+};
+
+}  // namespace slipgraph

@@ -1,0 +1,179 @@
+// The wheels' check on the accelerometer bias (solvers/slip_persistence.h), on synthetic cycles
+// at 100 Hz: what it measures for a bias, for a slip that persists while the wheels speed up, for
+// a stop the accelerometer feels, and where it measures nothing.
+#include "solvers/slip_persistence.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace slipgraph {
+namespace {
+
+constexpr double kDt = 0.01;
+constexpr double kBiasVariance = 0.02 * 0.02;  // the filter's P(b_ax, b_ax), for the gate
+
+SlipPersistenceConfig Config() {
+  SlipPersistenceConfig c;
+  c.interval_s = 0.3;
+  c.sd_mps = 0.005;
+  c.gate_sd = 3.0;
+  c.smoothing_s = 0.1;
+  c.min_rim_speed_mps = 0.03;
+  c.max_rim_acceleration_mps2 = 0.01;
+  return c;
+}
+
+struct Closed {
+  double t;
+  SlipPersistence::Outcome outcome;
+  SlipPersistence::Measurement measurement;
+};
+
+// Runs `seconds` of cycles: at each, the prediction's velocity change felt_dv(t), then the rim
+// speed rim(t) and body velocity v(t) after the cycle. Returns the intervals that closed.
+std::vector<Closed> RunCycles(SlipPersistence* check, double seconds,
+                              const std::function<double(double)>& felt_dv,
+                              const std::function<double(double)>& rim,
+                              const std::function<double(double)>& v) {
+  std::vector<Closed> closed;
+  for (int k = 0; k * kDt <= seconds + 1e-9; ++k) {
+    const double t = k * kDt;
+    if (k > 0) check->AddFeltVelocityChange(felt_dv(t));
+    SlipPersistence::Measurement m;
+    const SlipPersistence::Outcome outcome = check->Cycle(t, rim(t), v(t), kBiasVariance, &m);
+    if (outcome != SlipPersistence::Outcome::kNone) closed.push_back({t, outcome, m});
+  }
+  return closed;
+}
+
+TEST(SlipPersistence, OffMeasuresNothing) {
+  SlipPersistenceConfig c = Config();
+  c.interval_s = 0.0;
+  SlipPersistence check(c);
+  EXPECT_FALSE(check.enabled());
+  const auto closed = RunCycles(
+      &check, 5.0, [](double) { return 0.001; }, [](double) { return 0.5; },
+      [](double) { return 0.5; });
+  EXPECT_TRUE(closed.empty());
+}
+
+// At a steady 0.12 m/s with the bias estimate 0.04 m/s^2 below the true one, the prediction's
+// velocity rises 0.04 m/s a second while the wheels hold theirs: each interval measures the
+// bias's error, 0.04 m/s^2, with variance (sd / T)^2, inside the gate, once the smoothing has
+// settled on the ramp (its lag's transient decays as exp(-t / 0.1 s)).
+TEST(SlipPersistence, ASteadyDriveMeasuresTheBiasError) {
+  SlipPersistence check(Config());
+  const auto closed = RunCycles(
+      &check, 5.0, [](double) { return 0.04 * kDt; }, [](double) { return 0.12; },
+      [](double) { return 0.12; });
+  ASSERT_GE(closed.size(), 15u);
+  for (const Closed& c : closed) {
+    EXPECT_EQ(c.outcome, SlipPersistence::Outcome::kMeasured);
+    EXPECT_NEAR(c.measurement.variance, (0.005 / 0.3) * (0.005 / 0.3), 1e-12);
+    if (c.t > 1.5) {
+      EXPECT_NEAR(c.measurement.innovation_mps2, 0.04, 1e-7) << "t " << c.t;
+    }
+  }
+  EXPECT_NEAR(closed[1].t - closed[0].t, 0.3, 1e-9);  // back to back from the first cycle
+}
+
+// The wheels speed up from 0.2 to 0.6 m/s over 4 s at a slip of 10 %: the body follows at 0.9
+// of the rim speed and the accelerometer feels exactly that, so with the rim acceleration allowed
+// nothing is measured but the smoothing's own transient where the ramp bends (at 1 s and 5 s).
+TEST(SlipPersistence, APersistingSlipMeasuresNothing) {
+  SlipPersistenceConfig c = Config();
+  c.max_rim_acceleration_mps2 = 1.0;
+  SlipPersistence check(c);
+  const auto rim = [](double t) { return t < 1.0 ? 0.2 : t < 5.0 ? 0.2 + 0.1 * (t - 1.0) : 0.6; };
+  const auto closed = RunCycles(
+      &check, 8.0,
+      [](double t) { return t > 1.0 + 1e-9 && t < 5.0 + 1e-9 ? 0.9 * 0.1 * kDt : 0.0; }, rim,
+      [&](double t) { return 0.9 * rim(t); });
+  ASSERT_GE(closed.size(), 20u);
+  for (const Closed& c : closed) {
+    EXPECT_EQ(c.outcome, SlipPersistence::Outcome::kMeasured) << "t " << c.t;
+    // Six smoothing time constants past a bend, a persisting slip reads as no bias at all.
+    const bool settled = c.t < 1.0 || (c.t > 1.9 && c.t < 5.0) || c.t > 5.9;
+    if (settled) {
+      EXPECT_NEAR(c.measurement.innovation_mps2, 0.0, 1e-4) << "t " << c.t;
+    }
+  }
+}
+
+// A hold-back: at 3 s the body stops within 0.1 s (the accelerometer feels -1.2 m/s^2) while the
+// wheels keep their speed. The interval that holds the stop measures about -v / T, far outside
+// the gate, and is left out with the next one (the smoothed tail); after them a slip of 1
+// persists and reads as no bias again.
+TEST(SlipPersistence, AStopTheAccelerometerFeelsIsLeftOut) {
+  SlipPersistence check(Config());
+  const double v0 = 0.12;
+  const auto closed = RunCycles(
+      &check, 6.0, [&](double t) { return t > 3.0 + 1e-9 && t <= 3.1 + 1e-9 ? -v0 / 10.0 : 0.0; },
+      [&](double) { return v0; }, [&](double t) { return t < 3.0   ? v0
+                                                         : t < 3.1 ? 0.05
+                                                                   : 0.0; });
+  double most_negative = 0.0;
+  int left_out = 0;
+  for (const Closed& c : closed) {
+    most_negative = std::min(most_negative, c.measurement.innovation_mps2);
+    if (c.outcome == SlipPersistence::Outcome::kLeftOut) {
+      ++left_out;
+      EXPECT_GT(c.t, 3.0);
+      EXPECT_LT(c.t, 3.7);
+    } else if (c.t > 3.8) {
+      // The smoothed stop's tail: exp(-5) of it one interval on, nothing two on.
+      EXPECT_NEAR(c.measurement.innovation_mps2, 0.0, c.t < 4.0 ? 3e-3 : 1e-4) << "t " << c.t;
+    }
+  }
+  // The stop, smoothed, falls mostly in one interval: there at least half of -v / T, ten times
+  // the measurement's sd (0.005 / 0.3); it and the one after are left out.
+  EXPECT_LT(most_negative, -0.5 * v0 / 0.3);
+  EXPECT_EQ(left_out, 2);
+}
+
+// A wheel stalled with its held body spins up (0.04 to 0.16 m/s over 1.5 s) while the body stays
+// still: its slip rises on its own. No interval over which the wheels sped up is measured; the
+// ones before and after the spin-up are, and read no bias.
+TEST(SlipPersistence, NothingWhileTheWheelsChangeSpeed) {
+  SlipPersistence check(Config());
+  const auto rim = [](double t) {
+    return t < 2.0 ? 0.04 : t < 3.5 ? 0.04 + 0.08 * (t - 2.0) : 0.16;
+  };
+  const auto closed = RunCycles(
+      &check, 6.0, [](double) { return 0.0; }, rim, [](double) { return 0.0; });
+  ASSERT_FALSE(closed.empty());
+  for (const Closed& c : closed) {
+    EXPECT_FALSE(c.t > 2.05 && c.t < 3.8) << "measured while the wheels spun up, at " << c.t;
+    EXPECT_EQ(c.outcome, SlipPersistence::Outcome::kMeasured);
+    EXPECT_NEAR(c.measurement.innovation_mps2, 0.0, 1e-12);
+  }
+}
+
+// Nothing is measured while the wheels are below the rim speed floor, nor across a reversal.
+TEST(SlipPersistence, NothingBelowTheFloorOrAcrossAReversal) {
+  SlipPersistence slow(Config());
+  EXPECT_TRUE(RunCycles(
+                  &slow, 5.0, [](double) { return 0.001; }, [](double) { return 0.02; },
+                  [](double) { return 0.02; })
+                  .empty());
+  SlipPersistenceConfig c = Config();
+  c.smoothing_s = 0.001;  // the rim speed's sign as given
+  c.interval_s = 1.0;
+  SlipPersistence reversing(c);
+  // Forward at 0.2 m/s, then backward from 1.5 s: the interval open at the reversal (opened at
+  // 1 s) closes on the other side at 2 s and measures nothing; the next opens there.
+  const auto closed = RunCycles(
+      &reversing, 4.0, [](double) { return 0.0; }, [](double t) { return t < 1.5 ? 0.2 : -0.2; },
+      [](double t) { return t < 1.5 ? 0.2 : -0.2; });
+  ASSERT_FALSE(closed.empty());
+  for (const Closed& closed_at : closed) {
+    EXPECT_GT(std::abs(closed_at.t - 2.0), 0.005) << "measured across the reversal";
+  }
+}
+
+}  // namespace
+}  // namespace slipgraph
