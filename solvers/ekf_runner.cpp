@@ -205,6 +205,12 @@ std::string DescribeFilterRun(const FilterResult& result) {
         << " of the " << result.stats.gps.used
         << " GNSS fixes used, their innovations having kept one sign (--no-gnss-fading: off)\n";
   }
+  const StreamCounters& check = result.stats.slip_persistence;
+  if (check.used + check.rejected > 0) {
+    out << "  the wheels' check on the accelerometer bias: " << check.used << " intervals applied, "
+        << check.rejected << " left out (a force the accelerometer felt; model file "
+        << "slip_persistence: {interval: 0}: off)\n";
+  }
   out << "  weak constraints applied:";
   for (int i = 0; i < kWeakConstraintCount; ++i) {
     out << " " << WeakConstraintName(static_cast<WeakConstraint>(i)) << "="
