@@ -20,6 +20,26 @@ bool CheckPositive(const char* name, double value, std::string* error) {
 
 }  // namespace
 
+bool SlipPersistenceConfig::IsValid(std::string* error) const {
+  if (!(interval_s >= 0.0 && std::isfinite(interval_s))) {
+    *error = "slip_persistence.interval must be finite and non-negative (0: off)";
+    return false;
+  }
+  if (interval_s == 0.0) return true;
+  const struct {
+    const char* name;
+    double value;
+  } positive[] = {{"slip_persistence.sd", sd_mps},
+                  {"slip_persistence.gate", gate_sd},
+                  {"slip_persistence.smoothing", smoothing_s},
+                  {"slip_persistence.min_rim_speed", min_rim_speed_mps},
+                  {"slip_persistence.max_rim_acceleration", max_rim_acceleration_mps2}};
+  for (const auto& field : positive) {
+    if (!CheckPositive(field.name, field.value, error)) return false;
+  }
+  return true;
+}
+
 bool ModelConfig::IsValid(std::string* error) const {
   const struct {
     const char* name;
@@ -94,21 +114,7 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "process.attitude_error_walk must be finite and non-negative (0: off)";
     return false;
   }
-  const SlipPersistenceConfig& sp = slip_persistence;
-  if (!(sp.interval_s >= 0.0 && std::isfinite(sp.interval_s))) {
-    *error = "slip_persistence.interval must be finite and non-negative (0: off)";
-    return false;
-  }
-  if (sp.interval_s > 0.0) {
-    for (const auto& [name, value] :
-         {std::pair<const char*, double>{"slip_persistence.sd", sp.sd_mps},
-          {"slip_persistence.gate", sp.gate_sd},
-          {"slip_persistence.smoothing", sp.smoothing_s},
-          {"slip_persistence.min_rim_speed", sp.min_rim_speed_mps},
-          {"slip_persistence.max_rim_acceleration", sp.max_rim_acceleration_mps2}}) {
-      if (!CheckPositive(name, value, error)) return false;
-    }
-  }
+  if (!slip_persistence.IsValid(error)) return false;
   if (!(process.a_dist_decay_tau_s >= 0.0)) {
     *error = "process.a_dist_decay_tau must be non-negative (0: a random walk)";
     return false;

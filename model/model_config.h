@@ -93,7 +93,8 @@ struct ImmobilizationConfig {
 // The wheels' check on the front end's accelerometer bias, beyond the paper
 // (solvers/slip_persistence.h): over each interval the body's speed changes as the wheels' rim
 // speed does at the slip the interval started with, unless the accelerometer felt a force; the
-// difference measures b_ax. Chosen on ward21m and ward21 seeds 1-10, reported on 21-40
+// difference measures the error of the b_ax estimate. Chosen on ward21m and ward21 seeds 1-10,
+// reported on 21-40
 // (docs/mismatch.md). The EKF's only: UsePapersAccelBias turns it off.
 struct SlipPersistenceConfig {
   double interval_s = 0.5;          // T; 0: off (the paper's filter)
@@ -105,6 +106,8 @@ struct SlipPersistenceConfig {
   // within this bound (a stalled wheel that spins up, or one that slips as it speeds up, changes
   // its slip on its own).
   double max_rim_acceleration_mps2 = 0.02;
+  // interval_s finite and non-negative; when on, the others positive (the first bad one named).
+  bool IsValid(std::string* error) const;
 };
 
 // How far the tire law (eqs. 8-9) with the nominal coefficients may be from the terrain's, as

@@ -2,12 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace slipgraph {
+namespace {
 
-SlipPersistence::Outcome SlipPersistence::Cycle(double t_s, double rim_speed_mps, double v_bx_mps,
-                                                double bias_variance, Measurement* measurement) {
+// An interval a microsecond short of T closes: stamps summed from a period fall just short of a
+// multiple of it.
+constexpr double kIntervalToleranceS = 1e-6;
+// The speed ratio v0 / w0 within what one less a slip can be: a body faster than its wheels by
+// half, or moving against them by half.
+constexpr double kMinSpeedRatio = -0.5, kMaxSpeedRatio = 1.5;
+
+}  // namespace
+
+SlipPersistence::SlipPersistence(const SlipPersistenceConfig& config) : config_(config) {
+  std::string error;
+  if (!config.IsValid(&error)) throw std::invalid_argument(error);
+}
+
+SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measurement* measurement) {
   if (!enabled()) return Outcome::kNone;
+  const double t_s = in.t_s, rim_speed_mps = in.rim_speed_mps;
   if (!smoothing_started_) {
     felt_smoothed_mps_ = felt_v_mps_;
     rim_smoothed_mps_ = rim_speed_mps;
@@ -19,40 +36,39 @@ SlipPersistence::Outcome SlipPersistence::Cycle(double t_s, double rim_speed_mps
     rim_smoothed_mps_ += weight * (rim_speed_mps - rim_smoothed_mps_);
   }
   last_t_s_ = t_s;
-  const double min_rim = config_.min_rim_speed_mps;
+  const double min_rim_mps = config_.min_rim_speed_mps;
   Outcome outcome = Outcome::kNone;
-  // (A microsecond short counts: stamps summed from a period fall just short of a multiple.)
-  if (open_ && t_s - open_t_s_ >= config_.interval_s - 1e-6) {
+  if (open_ && t_s - open_t_s_ >= config_.interval_s - kIntervalToleranceS) {
     open_ = false;
     const bool after_left_out = after_left_out_;
     after_left_out_ = false;
     const double span_s = t_s - open_t_s_;
-    const double rim_change = rim_smoothed_mps_ - open_rim_mps_;
-    if (std::abs(rim_smoothed_mps_) > min_rim && rim_smoothed_mps_ * open_rim_mps_ > 0.0 &&
-        std::abs(open_rim_raw_mps_) > min_rim &&
-        std::abs(rim_change) <= config_.max_rim_acceleration_mps2 * span_s) {
-      // The slip the interval opened with, 1 - v0 / w0, within what a slip can be (a body
-      // faster than its wheels by half, or moving against them by half).
-      const double keep = std::clamp(open_v_bx_mps_ / open_rim_raw_mps_, -0.5, 1.5);
-      const double felt_change = felt_smoothed_mps_ - open_felt_mps_;
-      measurement->innovation_mps2 = (felt_change - keep * rim_change) / span_s;
+    const double rim_change_mps = rim_smoothed_mps_ - open_rim_smoothed_mps_;
+    if (std::abs(rim_smoothed_mps_) > min_rim_mps &&
+        rim_smoothed_mps_ * open_rim_smoothed_mps_ > 0.0 && std::abs(open_rim_mps_) > min_rim_mps &&
+        std::abs(rim_change_mps) <= config_.max_rim_acceleration_mps2 * span_s) {
+      // One less the slip the interval opened with.
+      const double speed_ratio =
+          std::clamp(open_v_bx_mps_ / open_rim_mps_, kMinSpeedRatio, kMaxSpeedRatio);
+      const double felt_change_mps = felt_smoothed_mps_ - open_felt_smoothed_mps_;
+      measurement->innovation_mps2 = (felt_change_mps - speed_ratio * rim_change_mps) / span_s;
       const double sd_mps2 = config_.sd_mps / span_s;
-      measurement->variance = sd_mps2 * sd_mps2;
+      measurement->variance_mps2_sq = sd_mps2 * sd_mps2;
       const double nu = measurement->innovation_mps2;
-      const double predicted = bias_variance + measurement->variance;
+      const double predicted = in.bias_variance_mps2_sq + measurement->variance_mps2_sq;
       const double gate = config_.gate_sd;
       const bool gated = nu * nu > gate * gate * predicted;
       outcome = gated || after_left_out ? Outcome::kLeftOut : Outcome::kMeasured;
       after_left_out_ = gated;  // the next interval holds the force's smoothed tail
     }
   }
-  if (!open_ && std::abs(rim_smoothed_mps_) > min_rim) {
+  if (!open_ && std::abs(rim_smoothed_mps_) > min_rim_mps) {
     open_ = true;
     open_t_s_ = t_s;
-    open_felt_mps_ = felt_smoothed_mps_;
-    open_rim_mps_ = rim_smoothed_mps_;
-    open_rim_raw_mps_ = rim_speed_mps;
-    open_v_bx_mps_ = v_bx_mps;
+    open_felt_smoothed_mps_ = felt_smoothed_mps_;
+    open_rim_smoothed_mps_ = rim_smoothed_mps_;
+    open_rim_mps_ = rim_speed_mps;
+    open_v_bx_mps_ = in.v_bx_mps;
   }
   return outcome;
 }

@@ -12,17 +12,19 @@
 //   nu = (dv_felt - (v0 / w0) dw) / T    measures    b_ax(true) - b_ax(estimated)
 //
 // where dv_felt is the velocity change the prediction integrated from the accelerometer (with
-// the bias then estimated), w = r (w_l + w_r) / 2 the rim speed, dw its change over the interval,
-// v0 and w0 the filter's velocity and the rim speed (as measured) when it opened. Both changes
-// are taken from the same first-order smoothing (a time constant of smoothing_s) of the integrated
-// velocity and the rim speed, so that one encoder count's step does not read as an acceleration.
-// The slip's
-// own change over an interval is the measurement's noise, sd_mps in velocity (variance
-// (sd_mps / T)^2 on b_ax). A measurement beyond gate_sd of its predicted sd (the bias's variance
-// plus its own) is a force the accelerometer felt, not a bias: it is left out, and so is the next
-// interval's, which holds the smoothed tail of the same force; the slip that force made persists
-// from then on. Intervals open while the rim speed is above min_rim_speed_mps, and close
-// (measuring) when they are T long with the rim speed still above it, on the same side.
+// the bias then estimated), w = r (w_l + w_r) / 2 the rim speed from the filter's wheel-speed
+// states, dw its change over the interval, v0 and w0 the filter's velocity and that rim speed
+// (not smoothed) when it opened: v0 / w0 is one less the slip. Both changes are taken from the
+// same first-order smoothing (a time constant of smoothing_s) of the integrated velocity and the
+// rim speed, so that one encoder count's step does not read as an acceleration. The slip's own
+// change over an interval is the measurement's noise, sd_mps in velocity (variance (sd_mps / T)^2
+// on b_ax). A measurement beyond gate_sd of its predicted sd (the bias's variance plus its own) is
+// a force the accelerometer felt, not a bias: it is left out, and so is the next interval's, which
+// holds the smoothed tail of the same force; the slip that force made persists from then on.
+// An interval opens while the smoothed rim speed is above min_rim_speed_mps, and closes when it is
+// T long; it measures only if the rim speed, smoothed at both ends and as given at its opening,
+// stayed above that floor on the same side, and if the smoothed rim speed changed by no more than
+// max_rim_acceleration_mps2 times T (a stalled wheel that spins up changes its slip on its own).
 #pragma once
 
 #include "model/model_config.h"
@@ -31,22 +33,29 @@ namespace slipgraph {
 
 class SlipPersistence {
  public:
-  explicit SlipPersistence(const SlipPersistenceConfig& config) : config_(config) {}
+  // Throws std::invalid_argument when the config is not valid (SlipPersistenceConfig::IsValid).
+  explicit SlipPersistence(const SlipPersistenceConfig& config);
 
   bool enabled() const { return config_.interval_s > 0.0; }
-  // The prediction's change of v_bx from the accelerometer (m/s), summed until the next cycle.
+  // The prediction's change of v_bx from the accelerometer (m/s), added to the running integral.
   void AddFeltVelocityChange(double dv_mps) { felt_v_mps_ += dv_mps; }
 
   struct Measurement {
-    double innovation_mps2 = 0.0;  // on b_ax
-    double variance = 0.0;         // (m/s^2)^2
+    double innovation_mps2 = 0.0;   // on b_ax: b_ax(true) - b_ax(estimated)
+    double variance_mps2_sq = 0.0;  // (m/s^2)^2
   };
   enum class Outcome { kNone, kMeasured, kLeftOut };
-  // One wheel cycle at t (s): the rim speed r (w_l + w_r) / 2 (m/s), the filter's v_bx (m/s) after
-  // the cycle's updates and its b_ax variance. kMeasured, with *measurement to apply, or kLeftOut
-  // by the gate, when an interval closes.
-  Outcome Cycle(double t_s, double rim_speed_mps, double v_bx_mps, double bias_variance,
-                Measurement* measurement);
+  // One wheel cycle: its time, the rim speed r (w_l + w_r) / 2 of the filter's wheel-speed states,
+  // the filter's v_bx and its b_ax variance, before the check's own update.
+  struct CycleInput {
+    double t_s = 0.0;
+    double rim_speed_mps = 0.0;
+    double v_bx_mps = 0.0;
+    double bias_variance_mps2_sq = 0.0;
+  };
+  // When an interval closes and qualifies: kMeasured, with *measurement to apply, or kLeftOut
+  // (by the gate, or as the tail after one the gate left out; *measurement filled either way).
+  Outcome Cycle(const CycleInput& in, Measurement* measurement);
 
  private:
   SlipPersistenceConfig config_;
@@ -56,9 +65,9 @@ class SlipPersistence {
   bool smoothing_started_ = false;
   bool open_ = false;
   bool after_left_out_ = false;  // the previous interval was left out
-  double open_t_s_ = 0.0, open_felt_mps_ = 0.0, open_rim_mps_ = 0.0;
-  // The slip the interval opened with, from the filter's v_bx and the rim speed as measured then.
-  double open_v_bx_mps_ = 0.0, open_rim_raw_mps_ = 0.0;
+  double open_t_s_ = 0.0, open_felt_smoothed_mps_ = 0.0, open_rim_smoothed_mps_ = 0.0;
+  // The slip the interval opened with, from the filter's v_bx and the rim speed (not smoothed).
+  double open_v_bx_mps_ = 0.0, open_rim_mps_ = 0.0;
 };
 
 }  // namespace slipgraph

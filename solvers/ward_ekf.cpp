@@ -281,14 +281,16 @@ void WardEkf::CheckBiasAgainstWheels() {
       options_.velocity_model != VelocityModel::kAccelerometerDriven || !have_accel_input_) {
     return;
   }
-  const double rim_mps = 0.5 * params_.wheel_radius_m * (x_(kOmegaLeft) + x_(kOmegaRight));
+  SlipPersistence::CycleInput in;
+  in.t_s = t_;
+  in.rim_speed_mps = 0.5 * params_.wheel_radius_m * (x_(kOmegaLeft) + x_(kOmegaRight));
+  in.v_bx_mps = x_(kVbx);
+  in.bias_variance_mps2_sq = P_(kAccelBias, kAccelBias);
   SlipPersistence::Measurement m;
-  const auto outcome =
-      slip_persistence_.Cycle(t_, rim_mps, x_(kVbx), P_(kAccelBias, kAccelBias), &m);
-  switch (outcome) {
+  switch (slip_persistence_.Cycle(in, &m)) {
     case SlipPersistence::Outcome::kMeasured: {
       ekf::MeasurementRows row;
-      row.AddOnState(kAccelBias, m.innovation_mps2, m.variance, "slip_persistence");
+      row.AddOnState(kAccelBias, m.innovation_mps2, m.variance_mps2_sq, "slip_persistence");
       Update(row, nullptr, &stats_.slip_persistence);
       break;
     }
