@@ -31,12 +31,9 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
     smoothing_started_ = true;
   } else {
     const double dt = std::max(0.0, t_s - last_t_s_);
-    if (dt != weight_dt_s_) {  // the cycle's period seldom changes: one exp per change
-      weight_dt_s_ = dt;
-      weight_ = 1.0 - std::exp(-dt / config_.smoothing_s);
-    }
-    felt_smoothed_mps_ += weight_ * (felt_v_mps_ - felt_smoothed_mps_);
-    rim_smoothed_mps_ += weight_ * (rim_speed_mps - rim_smoothed_mps_);
+    const double weight = 1.0 - std::exp(-dt / config_.smoothing_s);
+    felt_smoothed_mps_ += weight * (felt_v_mps_ - felt_smoothed_mps_);
+    rim_smoothed_mps_ += weight * (rim_speed_mps - rim_smoothed_mps_);
   }
   last_t_s_ = t_s;
   const double min_rim_mps = config_.min_rim_speed_mps;

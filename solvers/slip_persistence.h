@@ -62,7 +62,6 @@ class SlipPersistence {
   double felt_v_mps_ = 0.0;  // the integrated accelerometer velocity (its origin is arbitrary)
   double felt_smoothed_mps_ = 0.0, rim_smoothed_mps_ = 0.0;
   double last_t_s_ = 0.0;
-  double weight_dt_s_ = -1.0, weight_ = 0.0;  // the smoothing's weight for a cycle of weight_dt_s_
   bool smoothing_started_ = false;
   bool open_ = false;
   bool after_left_out_ = false;  // the previous interval was left out
