@@ -479,8 +479,11 @@ TEST(WardEkf, TheAttitudesSlowErrorLetsTheBiasFollowAWrongAhrs) {
 // their speed, until the slip reads as an immobilization (seed 8 runs 10 and 13, seed 2 run 03;
 // docs/mismatch.md), with and without GNSS, the attitude's walk in the bias either way; and on two
 // whose wheels stall with the held body and then spin up (seed 8 run 07, seed 5 run 10), where
-// the slip rises on its own and the check must not hold the velocity to the wheels. Measured:
-// false immobilized MEASURED. The control: three matched ward21 runs (the bank).
+// the slip rises on its own and the check must not hold the velocity to the wheels. Measured on
+// the drifting runs: false immobilized 11.5 -> 0.73 % of samples with GNSS, 29.8 -> 4.8 % without;
+// velocity RMSE 0.047 -> 0.021 and 0.067 -> 0.037 m/s; the stalls detected either way. The
+// control: three matched ward21 runs (the bank): the same detections and false alarms, velocity
+// error 0.0164 -> 0.0153 m/s.
 TEST(WardEkf, TheWheelsCheckHoldsTheBiasOfASlowRobot) {
   const auto suite = [](const std::vector<const char*>& names, uint64_t seed, bool gnss,
                         bool check) {
