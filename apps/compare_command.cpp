@@ -3,6 +3,7 @@
 // page with the estimates over time.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -82,7 +83,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     bool no_gps = false, no_plots = false;
     ReadOptions read;  // --skip-bad, --max-bad
     WindowSmootherOptions window;
-    double stiffness_sd = kPostProcessingStiffnessPriorSd;
+    double stiffness_sd = std::nan("");                         // PostProcessingStiffnessPriorSd
     double gnss_fading_fixes = EkfOptions().gnss_fading_fixes;  // the front end's
     JsonOutput json;
   };
@@ -111,6 +112,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::map<std::string, std::vector<Evaluation>> by_estimator;
     std::map<std::string, double> seconds;
     std::map<std::string, int> untrusted;  // logs the trust check failed, per estimator
+    int stiffness_logs = 0;  // logs whose batch estimated the slip stiffness, with this prior
+    double stiffness_prior_sd = 0.0;
     const std::vector<std::string> names = {"EKF", "window", "batch"};
     nlohmann::json logs_json = nlohmann::json::array();
     for (const std::string& log_dir : ListLogs(path)) {
@@ -134,7 +137,12 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                  DescribeWindowRun(windowed)};
       BatchSmootherOptions batch;
       batch.filter = filter;
-      batch.problem.stiffness_prior_sd = options->stiffness_sd;
+      batch.problem.stiffness_prior_sd =
+          PostProcessingStiffnessPriorSd(model, options->stiffness_sd);
+      if (batch.problem.stiffness_prior_sd > 0.0) {
+        ++stiffness_logs;
+        stiffness_prior_sd = batch.problem.stiffness_prior_sd;
+      }
       start = Clock::now();
       const SmootherResult smoothed = SmoothBatch(log, model, ekf, batch);
       runs[2] = {"batch", smoothed.estimates,
@@ -191,14 +199,14 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
                                 {"untrusted_logs", untrusted[estimator]},
                                 {"evaluation", ToJson(total)}});
       }
-      char prior[32];
-      std::snprintf(prior, sizeof(prior), "%g", options->stiffness_sd);
+      char prior[96];
+      std::snprintf(prior, sizeof(prior), " on %d of %zu log(s) (prior sd %g", stiffness_logs,
+                    by_estimator["EKF"].size(), stiffness_prior_sd);
       const std::string batch_law =
-          options->stiffness_sd > 0.0
-              ? std::string("the batch estimates the tire law's slip stiffness (prior sd ") +
-                    prior +
-                    ", kept where GNSS does not favour the law as given; --stiffness-sd "
-                    "0: the law as given)"
+          stiffness_logs > 0
+              ? std::string("the batch estimates the tire law's slip stiffness") + prior +
+                    ", kept where GNSS does not favour the law as given; by default where the "
+                    "model lists its soils; --stiffness-sd 0: the law as given)"
               : "the batch keeps the tire law as given";
       text << name << " (" << by_estimator["EKF"].size()
            << " log(s)) against truth; window and batch times include the EKF run they start "

@@ -199,10 +199,10 @@ void AddStiffnessOption(CLI::App* cmd, double* prior_sd) {
                   "Batch smoother: estimate the tire law's slip stiffness (the terrain is not the "
                   "law's), with a prior of this relative sd around the law's, kept only when "
                   "its velocities fit GNSS about as well as the law's as given (a second smooth; "
-                  "docs/mismatch.md); 0: the law as given. Not with model effects, nor in "
-                  "smooth's --chunk mode")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+                  "docs/mismatch.md); 0: the law as given. Default: 0.15 where the model lists "
+                  "its soils (law_samples), else the law as given. Not with model effects, nor "
+                  "in smooth's --chunk mode")
+      ->check(CLI::NonNegativeNumber);
 }
 
 }  // namespace slipgraph

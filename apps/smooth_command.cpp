@@ -1,3 +1,4 @@
+#include <cmath>
 #include <utility>
 
 #include "apps/commands.h"
@@ -19,7 +20,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     double overlap_s = 60.0;
     bool advance_velocity = false;
     double advance_sd_m = 0.003;
-    double stiffness_sd = kPostProcessingStiffnessPriorSd;
+    double stiffness_sd = std::nan("");  // PostProcessingStiffnessPriorSd
     double function_tolerance = BatchSmootherOptions().function_tolerance;
     double gnss_fading_fixes = EkfOptions().gnss_fading_fixes;  // the front end's
   };
@@ -53,7 +54,6 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
   AddNoGnssFadingFlag(cmd, &options->gnss_fading_fixes);
   cmd->callback([options, status]() {
     BatchSmootherOptions base_options;
-    base_options.problem.stiffness_prior_sd = options->stiffness_sd;
     base_options.filter.use_gps = !options->no_gps;
     base_options.filter.ekf.gnss_fading_fixes = options->gnss_fading_fixes;
     base_options.threads = options->threads;
@@ -61,6 +61,8 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
     *status = RunEstimatorOverLogs(options->run, [&](const DriveLog& log, const ModelConfig& model,
                                                      std::ostream& report) {
       BatchSmootherOptions smoother_options = base_options;
+      smoother_options.problem.stiffness_prior_sd =
+          PostProcessingStiffnessPriorSd(model, options->stiffness_sd);
       ProgressPrinter progress(ShowsProgress(options->run), std::cerr);
       smoother_options.progress = progress.callback();
       if (options->advance_velocity) {
@@ -79,7 +81,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
         WindowSmootherResult result = SmoothWindowed(
             log, model,
             ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
-        if (options->stiffness_sd > 0.0) {
+        if (smoother_options.problem.stiffness_prior_sd > 0.0) {
           report << "note: the chunks keep the law's slip stiffness (--stiffness-sd is for the "
                     "whole-log solve)\n";
         }

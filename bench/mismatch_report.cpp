@@ -15,6 +15,8 @@
 //     (WardProblemOptions::no_pull_back_sd_density; 0: off), for choosing it on other seeds;
 //   --model-disturbance: the window's disturbance walk at the model's w3, not the front end's
 //     adaptive one (WindowSmootherOptions::disturbance_from_front_end = false);
+//   --no-bias-checks: the smoothers without the front end's wheels' checks on its accelerometer
+//     bias (bias_from_front_end = false), for comparing;
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
@@ -27,7 +29,8 @@
 //     order), for choosing them on seeds the figures are not reported on;
 //   --single-law: one filter also where vehicle.yaml lists law samples;
 //   --stiffness-sd SD, --stiffness-margin M: the batch's slip-stiffness prior (0: the law as
-//     given) and its check against GNSS (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
+//     given; default: `smooth`'s, PostProcessingStiffnessPriorSd) and its check against GNSS
+//     (BatchSmootherOptions::stiffness_gnss_margin; inf: none);
 //   --window-stiffness-sd SD: the window's slip-stiffness prior (WindowSmootherOptions::
 //     stiffness_prior_sd; 0: the law as given);
 //   --window-length S: with --window, the window's span in seconds (WindowSmootherOptions::
@@ -89,7 +92,7 @@ std::vector<std::string> g_without;
 FilterRunOptions g_front;
 // --stiffness-sd, --stiffness-margin: the batch's slip stiffness prior and its GNSS check
 // (as `smooth` and `compare` run them by default).
-double g_stiffness_sd = kPostProcessingStiffnessPriorSd;
+double g_stiffness_sd = std::nan("");  // PostProcessingStiffnessPriorSd
 double g_stiffness_gnss_margin = BatchSmootherOptions{}.stiffness_gnss_margin;
 // --window-stiffness-sd: the window's slip stiffness prior.
 double g_window_stiffness_sd = WindowSmootherOptions{}.stiffness_prior_sd;
@@ -101,6 +104,7 @@ double g_reject_distance_sd = WindowSmootherOptions{}.reject_distance_sd;
 // --no-pull-back: NaN keeps each smoother's default (the window's on, the batch's off).
 double g_no_pull_back_sd = std::nan("");
 bool g_disturbance_from_front_end = WindowSmootherOptions{}.disturbance_from_front_end;
+bool g_bias_from_front_end = true;  // --no-bias-checks: false
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -184,6 +188,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
       options.window_s = g_window_s;
       if (!std::isnan(g_no_pull_back_sd)) options.no_pull_back_sd_density = g_no_pull_back_sd;
       options.disturbance_from_front_end = g_disturbance_from_front_end;
+      options.bias_from_front_end = g_bias_from_front_end;
       const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
       out.window_failed_updates += result.failed_updates;
       out.window_rejected_updates += result.rejected_updates;
@@ -205,10 +210,11 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
     if (smoother) {
       BatchSmootherOptions options;
       options.filter = g_front;
-      options.problem.stiffness_prior_sd = g_stiffness_sd;
+      options.problem.stiffness_prior_sd = PostProcessingStiffnessPriorSd(model, g_stiffness_sd);
       if (!std::isnan(g_no_pull_back_sd))
         options.problem.no_pull_back_sd_density = g_no_pull_back_sd;
       options.stiffness_gnss_margin = g_stiffness_gnss_margin;
+      options.bias_from_front_end = g_bias_from_front_end;
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
       score(kBatchGnss, log, result.estimates);
@@ -284,6 +290,8 @@ int main(int argc, char** argv) {
       g_no_pull_back_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--model-disturbance") == 0) {
       g_disturbance_from_front_end = false;
+    } else if (std::strcmp(argv[i], "--no-bias-checks") == 0) {
+      g_bias_from_front_end = false;
     } else if (std::strcmp(argv[i], "--reject-distance") == 0 && has_value) {
       g_reject_distance_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoother") == 0) {

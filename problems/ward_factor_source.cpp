@@ -109,6 +109,8 @@ std::string FactorCounts::Describe() const {
               : std::string())
       << oppose_motion << " oppose-motion, " << act_quickly << " decay, "
       << (no_pull_back > 0 ? std::to_string(no_pull_back) + " no-pull-back, " : std::string())
+      << (wheel_bias_checks > 0 ? std::to_string(wheel_bias_checks) + " wheels' bias check, "
+                                : std::string())
       << at_rest << " at-rest, " << bounds << " bound, " << rate_bounds << " rate-bound priors";
   return out.str();
 }
@@ -174,6 +176,7 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
     gps_begin_.assign(n + 1, 0);
   }
   velocity_begin_ = AttachToStates(options.body_velocity, times_);
+  accel_bias_begin_ = AttachToStates(options.accel_bias, times_);
   if (options.body_velocity_when_available) {  // the order AddLateBodyVelocity reads them in
     velocity_state_.assign(options.body_velocity.size(), n);
     for (size_t k = 0; k < n; ++k) {
@@ -420,6 +423,21 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
     if (options_.body_velocity_when_available && m.available_t > times_[k]) continue;
     Add("body_velocity", GnssVelocityFactor::Create(m.v_mps, m.sd_mps), nullptr, x);
     ++counts->body_velocity;
+  }
+
+  // The front end's wheels' checks: (c_ax + b_ax - measured) / sd.
+  for (size_t i = accel_bias_begin_[k]; i < accel_bias_begin_[k + 1]; ++i) {
+    const AccelBiasMeasurement& m = options_.accel_bias[i];
+    if (!(std::isfinite(m.bias_mps2) && m.sd_mps2 > 0.0)) continue;
+    LinearFactor::Matrix on_state = LinearFactor::Matrix::Zero(1, kStateSize);
+    LinearFactor::Matrix on_offsets = LinearFactor::Matrix::Zero(1, 2);
+    on_state(0, kAccelBias) = 1.0 / m.sd_mps2;
+    on_offsets(0, 0) = 1.0 / m.sd_mps2;
+    Add("wheel_bias_check",
+        new LinearFactor({on_state, on_offsets},
+                         Eigen::VectorXd::Constant(1, m.bias_mps2 / m.sd_mps2)),
+        nullptr, x, offsets);
+    ++counts->wheel_bias_checks;
   }
 
   // Weak constraints as soft priors, their densities scaled by the state's cycle time.

@@ -37,6 +37,16 @@ struct BodyVelocityMeasurement {
   double available_t = -std::numeric_limits<double>::infinity();
 };
 
+// The accelerometer's whole bias c_ax + b_ax over an interval ending at t, as a front end's
+// wheels' check measured it (solvers/slip_persistence.h): where the wheels' rim speed held, the
+// velocity changed as the rim speed did at the slip the interval opened with, and what the
+// accelerometer felt beyond that is its bias (with the gravity an attitude error leaves in it).
+struct AccelBiasMeasurement {
+  double t = 0.0;
+  double bias_mps2 = 0.0;
+  double sd_mps2 = 0.0;
+};
+
 struct WardProblemOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   bool use_gps = true;
@@ -51,6 +61,11 @@ struct WardProblemOptions {
   int gnss_max_consecutive_rejections = 1;
   // Body-x velocity measurements from another estimator, sorted by t (empty: none).
   std::vector<BodyVelocityMeasurement> body_velocity;
+  // The front end's wheels' checks on the accelerometer bias, sorted by t (empty: none), each a
+  // factor on c_ax + b_ax at the state nearest its t (the interval's end: online, it exists
+  // when the state does). The smoother's b_ax walks slowly (the paper's), so the checks hold the
+  // bias a slow robot's velocity would otherwise integrate.
+  std::vector<AccelBiasMeasurement> accel_bias;
   // Online: each body-velocity measurement enters at the first state at or after its
   // available_t, on the state nearest its t if that is still in the window (AddLateBodyVelocity;
   // otherwise it is counted as too late). Off for post-processing: each at its own state.
@@ -168,6 +183,7 @@ inline const std::vector<std::string>& WardFactorKinds() {
                                                  "rate_bound",
                                                  "stiffness_prior",
                                                  "stiffness_walk",
+                                                 "wheel_bias_check",
                                                  "wheel_speed_walk"};
   return kinds;
 }
@@ -189,7 +205,7 @@ struct AddedFactor {
 struct FactorCounts {
   long dynamics = 0, accelerometer = 0, gyro = 0, encoders = 0, gnss = 0, gnss_gated = 0,
        body_velocity = 0, body_velocity_too_late = 0, oppose_motion = 0, act_quickly = 0,
-       no_pull_back = 0, at_rest = 0, bounds = 0, rate_bounds = 0;
+       no_pull_back = 0, at_rest = 0, bounds = 0, rate_bounds = 0, wheel_bias_checks = 0;
   std::string Describe() const;
 };
 
@@ -299,7 +315,7 @@ class WardFactorSource {
   };
   std::vector<GnssFix> gnss_;
   // IMU and GNSS samples attached to state k: [imu_begin_[k], imu_begin_[k + 1]), same for GNSS.
-  std::vector<size_t> imu_begin_, gps_begin_, velocity_begin_;
+  std::vector<size_t> imu_begin_, gps_begin_, velocity_begin_, accel_bias_begin_;
   // With body_velocity_when_available: the measurements attached to a state, by available_t.
   std::vector<size_t> velocity_by_availability_;
   std::vector<size_t> velocity_state_;  // the state measurement i is attached to

@@ -135,7 +135,7 @@ py::dict SmoothRun(const LogPtr& log, const std::string& model, bool use_gps, do
                    int threads) {
   const CalibratedLog run = Calibrate(*log, model);
   BatchSmootherOptions options;
-  options.problem.stiffness_prior_sd = stiffness_sd;
+  options.problem.stiffness_prior_sd = PostProcessingStiffnessPriorSd(run.model, stiffness_sd);
   options.filter.use_gps = use_gps;
   options.threads = threads;
   SmootherResult result;
@@ -314,7 +314,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("single_law") = false, py::arg("gnss_fading") = true,
         py::arg("disturbance_modes") = false);
   m.def("smooth", &SmoothRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
-        py::arg("stiffness_sd") = kPostProcessingStiffnessPriorSd, py::arg("threads") = 1);
+        py::arg("stiffness_sd") = std::nan(""), py::arg("threads") = 1);
   const WindowSmootherOptions window;
   m.def("online", &OnlineRun, py::arg("log"), py::arg("model") = "", py::arg("use_gps") = true,
         py::arg("window_s") = window.window_s, py::arg("update_every") = window.update_every,

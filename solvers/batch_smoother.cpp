@@ -38,6 +38,20 @@ WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRu
   return options;
 }
 
+double PostProcessingStiffnessPriorSd(const ModelConfig& model, double requested) {
+  if (!std::isnan(requested)) return requested;
+  return model.law_samples.size() >= 2 ? kPostProcessingStiffnessPriorSd : 0.0;
+}
+
+std::vector<AccelBiasMeasurement> WheelBiasChecks(const FilterResult& ekf) {
+  std::vector<AccelBiasMeasurement> checks;
+  checks.reserve(ekf.stats.wheel_bias_checks.size());
+  for (const WheelBiasCheck& c : ekf.stats.wheel_bias_checks) {
+    checks.push_back({c.t_s, c.bias_mps2, c.sd_mps2});
+  }
+  return checks;
+}
+
 using namespace ward;  // NOLINT: state indices
 
 namespace {
@@ -200,7 +214,10 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
     result.notes.push_back("fewer than two wheel samples: EKF estimates reported");
     return result;
   }
-  const WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
+  WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
+  if (options.bias_from_front_end && problem_options.accel_bias.empty()) {
+    problem_options.accel_bias = WheelBiasChecks(ekf);
+  }
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, model, ekf.estimates, problem_options);
   for (const std::string& effect : problem->ignored_effects) {

@@ -54,6 +54,7 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
       measurement->innovation_mps2 = (felt_change_mps - speed_ratio * rim_change_mps) / span_s;
       const double sd_mps2 = config_.sd_mps / span_s;
       measurement->variance_mps2_sq = sd_mps2 * sd_mps2;
+      measurement->span_s = span_s;
       const double nu = measurement->innovation_mps2;
       const double predicted = in.bias_variance_mps2_sq + measurement->variance_mps2_sq;
       const double gate = config_.gate_sd;

@@ -31,6 +31,16 @@
 
 namespace slipgraph {
 
+// One check the filter applied, kept for a smoother behind it: the accelerometer's whole bias
+// c_ax + b_ax (the filter's offset and bias state as its prediction took them, plus the check's
+// innovation) over the interval [t_s - span_s, t_s], as the wheels measured it, and its sd.
+struct WheelBiasCheck {
+  double t_s = 0.0;
+  double span_s = 0.0;
+  double bias_mps2 = 0.0;
+  double sd_mps2 = 0.0;
+};
+
 class SlipPersistence {
  public:
   // Throws std::invalid_argument when the config is not valid (SlipPersistenceConfig::IsValid).
@@ -43,6 +53,7 @@ class SlipPersistence {
   struct Measurement {
     double innovation_mps2 = 0.0;   // on b_ax: b_ax(true) - b_ax(estimated)
     double variance_mps2_sq = 0.0;  // (m/s^2)^2
+    double span_s = 0.0;            // the interval's length
   };
   enum class Outcome { kNone, kMeasured, kLeftOut };
   // One wheel cycle: its time, the rim speed r (w_l + w_r) / 2 of the filter's wheel-speed states,

@@ -291,6 +291,9 @@ void WardEkf::CheckBiasAgainstWheels() {
     case SlipPersistence::Outcome::kMeasured: {
       ekf::MeasurementRows row;
       row.AddOnState(kAccelBias, m.innovation_mps2, m.variance_mps2_sq, "slip_persistence");
+      stats_.wheel_bias_checks.push_back(
+          {t_, m.span_s, offsets_.accel_x_mps2() + x_(kAccelBias) + m.innovation_mps2,
+           std::sqrt(m.variance_mps2_sq)});
       Update(row, nullptr, &stats_.slip_persistence);
       break;
     }

@@ -502,6 +502,9 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   if (options.disturbance_from_front_end && result.ekf.disturbance_density.size() == n) {
     problem_options.disturbance_density_per_state = result.ekf.disturbance_density;
   }
+  if (options.bias_from_front_end && problem_options.accel_bias.empty()) {
+    problem_options.accel_bias = WheelBiasChecks(result.ekf);
+  }
   const bool soils = model.law_samples.size() >= 2;
   problem_options.stiffness_prior_sd = soils ? options.stiffness_prior_sd : 0.0;
   problem_options.no_pull_back_sd_density = options.no_pull_back_sd_density;

@@ -62,6 +62,9 @@ struct WindowSmootherOptions {
   // the model the filter lets its disturbance move faster, and the window, held to the model's
   // w3, put the same unexplained force in the velocity. false: the model's w3 everywhere.
   bool disturbance_from_front_end = true;
+  // The front end's wheels' checks on its accelerometer bias as factors, each at the state where
+  // its interval closed (BatchSmootherOptions::bias_from_front_end).
+  bool bias_from_front_end = true;
   // The tire law's slip stiffness as a slowly varying unknown (WardProblemOptions::stiffness_*,
   // the batch's walk) with this prior sd around that law, when the model lists its soils
   // (law_samples: the user says the terrain's law varies, and by how much). Without soils the

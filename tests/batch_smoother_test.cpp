@@ -251,8 +251,8 @@ TEST(BatchSmoother, SlipStiffnessStopsAtItsBoundAndSaysSo) {
 
 // The stiffness checked against GNSS (BatchSmootherOptions::stiffness_gnss_margin). ward21m/13,
 // seed 1 (a peaked law of the slip ratio, soils not the law's, an AHRS with a slow error): the
-// stiffness runs down to about -0.8 and the velocity below GNSS with it (measured: v RMSE 0.062
-// m/s, against 0.021 with the law as given); the check reports the law as given and says why.
+// stiffness runs down to about -0.8 and the velocity below GNSS with it (measured: v RMSE 0.044
+// m/s, against 0.019 with the law as given); the check reports the law as given and says why.
 // On ward21/05 (the law's family, a soil softer than the law) the stiffness is kept (0.010
 // against 0.028 m/s).
 TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
@@ -267,13 +267,16 @@ TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
     EXPECT_TRUE(Noted(checked, "and not kept"));
     // Not kept: GNSS favours the law as given by more than the margin, e^3 to 1.
     EXPECT_LT(NotedOtherProbability(checked), 0.05);
-    EXPECT_LT(Evaluate(log, EstimateTable(checked.estimates)).velocity_rmse, 0.035);
+    const double checked_rmse = Evaluate(log, EstimateTable(checked.estimates)).velocity_rmse;
+    EXPECT_LT(checked_rmse, 0.035);
     BatchSmootherOptions unchecked = options;
     unchecked.stiffness_gnss_margin = std::numeric_limits<double>::infinity();
     const SmootherResult kept = SmoothBatch(log, model, unchecked);
     ASSERT_FALSE(kept.stiffness.empty());
     EXPECT_LT(*std::min_element(kept.stiffness.begin(), kept.stiffness.end()), -0.5);
-    EXPECT_GT(Evaluate(log, EstimateTable(kept.estimates)).velocity_rmse, 0.045);
+    const double kept_rmse = Evaluate(log, EstimateTable(kept.estimates)).velocity_rmse;
+    std::printf("ward21m/13: v RMSE %.4f checked, %.4f kept\n", checked_rmse, kept_rmse);
+    EXPECT_GT(kept_rmse, 2.0 * checked_rmse);
   }
   const DriveLog log = testing::SimulatedScenario("ward21/05");
   const SmootherResult matched = SmoothBatch(log, DefaultModelConfig(log.vehicle), options);
@@ -289,7 +292,7 @@ TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
 
 // The sd count the solution the GNSS check did not keep (BatchSmootherOptions::
 // model_choice_variance). ward21m/05, seed 1: the stiffness is kept (GNSS gives the law as given
-// a probability of 0.69) and its velocity runs below the truth; counted, the error is inside its
+// a probability of 0.61) and its velocity runs below the truth; counted, the error is inside its
 // 95 % bound on far more samples. On ward21/05, where the stiffness is right, the sd grow by a
 // fifth. The estimates are the same either way.
 TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
@@ -317,8 +320,8 @@ TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
     const Evaluation without = Evaluate(log, EstimateTable(alone.estimates));
     std::printf("%s: v NEES inside 95 %%: %.3f without, %.3f with; sd x %.2f on average\n", name,
                 without.nees_within_95_fraction(), with.nees_within_95_fraction(), ratio);
-    if (std::string(name).rfind("ward21m", 0) == 0) {  // measured 0.23 -> 0.82, sd x 1.56
-      EXPECT_NEAR(p_as_given, 0.69, 0.05);  // GNSS favours the law as given (cost 0.8 lower)
+    if (std::string(name).rfind("ward21m", 0) == 0) {  // measured 0.24 -> 0.79, sd x 1.42
+      EXPECT_NEAR(p_as_given, 0.61, 0.05);  // GNSS favours the law as given (cost 0.45 lower)
       EXPECT_LT(without.nees_within_95_fraction(), 0.4);
       EXPECT_GT(with.nees_within_95_fraction(), 0.7);
     } else {  // measured 0.97 -> 1.00, sd x 1.23
@@ -326,6 +329,47 @@ TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
       EXPECT_LT(ratio, 1.4);
     }
   }
+}
+
+// Post-processing's default for the slip stiffness (PostProcessingStiffnessPriorSd): estimated
+// where the model lists its soils, the law as given where it names one law; a value asked for
+// stands.
+TEST(BatchSmoother, PostProcessingEstimatesTheStiffnessWhereTheModelListsItsSoils) {
+  const DriveLog log = testing::SimulatedScenario("ward21/05");
+  ModelConfig soils = DefaultModelConfig(log.vehicle);
+  ASSERT_GE(soils.law_samples.size(), 2u);
+  EXPECT_EQ(PostProcessingStiffnessPriorSd(soils, std::nan("")), kPostProcessingStiffnessPriorSd);
+  ModelConfig one_law = soils;
+  one_law.law_samples.clear();
+  EXPECT_EQ(PostProcessingStiffnessPriorSd(one_law, std::nan("")), 0.0);
+  EXPECT_EQ(PostProcessingStiffnessPriorSd(one_law, 0.3), 0.3);
+  EXPECT_EQ(PostProcessingStiffnessPriorSd(soils, 0.0), 0.0);
+}
+
+// The front end's checks of its accelerometer bias against the wheels (bias_from_front_end) on
+// ward21 seed 2 run 06 (the robot at 0.1 m/s): without them the batch lets its velocity sink
+// below the wheels' after a hold-back and flags 2.6 % of the run immobilized; with them it holds
+// the bias the checks measured.
+TEST(BatchSmoother, HoldsTheBiasTheWheelsChecked) {
+  const DriveLog log = testing::SimulatedScenario("ward21/06", 2);
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  BatchSmootherOptions options;
+  options.problem.stiffness_prior_sd = PostProcessingStiffnessPriorSd(model, std::nan(""));
+  const SmootherResult with = SmoothBatch(log, model, options);
+  options.bias_from_front_end = false;
+  const SmootherResult without = SmoothBatch(log, model, with.ekf, options);
+  ASSERT_FALSE(with.used_fallback || without.used_fallback);
+  EXPECT_TRUE(Noted(with, "wheels' bias check"));
+  EXPECT_FALSE(Noted(without, "wheels' bias check"));
+  const Evaluation checked = Evaluate(log, EstimateTable(with.estimates));
+  const Evaluation unchecked = Evaluate(log, EstimateTable(without.estimates));
+  std::printf("v RMSE %.4f with the checks, %.4f without; false immobilized %ld and %ld samples\n",
+              checked.velocity_rmse, unchecked.velocity_rmse, checked.false_immobilized_samples,
+              unchecked.false_immobilized_samples);
+  EXPECT_GT(unchecked.false_immobilized_samples, 100);
+  EXPECT_LT(checked.false_immobilized_samples, unchecked.false_immobilized_samples / 10);
+  EXPECT_LT(checked.velocity_rmse, 0.8 * unchecked.velocity_rmse);
+  EXPECT_EQ(checked.detected(), unchecked.detected());
 }
 
 TEST(BatchSmoother, FallsBackToTheEkfAndSaysSo) {

@@ -2,7 +2,8 @@
 // GNSS fix and IMU sample goes to one state, the dynamics link consecutive states, every residual
 // is finite at the front end's estimate; an absurd fix is left out and counted; the stiffness
 // walk's nodes cover the log; only the tire law's kinds move with the law, and only the kinds
-// asked for are built; an empty front end is refused.
+// asked for are built; the front end's checks of its bias against the wheels become factors on
+// the bias; an empty front end is refused.
 #include "problems/ward_factor_source.h"
 
 #include <ceres/cost_function.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "problems/ward_batch_problem.h"
+#include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 #include "tests/sim_test_util.h"
 
@@ -183,6 +185,7 @@ TEST(WardFactorSource, WardFactorKindsNameEveryKindBuilt) {
   const FilterResult front = RunEkf(log, model);
   WardProblemOptions with_stiffness;
   with_stiffness.stiffness_prior_sd = 0.15;
+  with_stiffness.accel_bias = WheelBiasChecks(front);
   with_stiffness.no_pull_back_sd_density = 0.002;
   std::set<std::string> kinds;
   const auto add_kinds = [&](const WardProblem& problem) {
@@ -196,7 +199,7 @@ TEST(WardFactorSource, WardFactorKindsNameEveryKindBuilt) {
     EXPECT_NE(std::find(known.begin(), known.end(), kind), known.end()) << kind;
   }
   EXPECT_TRUE(kinds.count("stiffness_walk") && kinds.count("effect_prior") &&
-              kinds.count("no_pull_back"));
+              kinds.count("no_pull_back") && kinds.count("wheel_bias_check"));
   WardProblemOptions misspelt;
   misspelt.only_kinds = {"dynamic"};
   std::string error;
@@ -236,6 +239,45 @@ TEST(WardFactorSource, NoPullBackAndTheDisturbanceDensityPerState) {
   WardProblemOptions wrong;
   wrong.disturbance_density_per_state.assign(3, 5.0);
   EXPECT_THROW(WardFactorSource(log, model, front.estimates, wrong), std::invalid_argument);
+}
+
+// The front end's wheels' checks on its accelerometer bias (WardProblemOptions::accel_bias): one
+// per check the filter applied, in time order, each a factor (c_ax + b_ax - measured) / sd on the
+// state nearest its time; a check without a value or an sd is left out.
+TEST(WardFactorSource, TheWheelsChecksHoldTheWholeAccelerometerBias) {
+  const DriveLog log = testing::SimulatedScenario("fig5");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  const FilterResult front = RunEkf(log, model);
+  const std::vector<AccelBiasMeasurement> checks = WheelBiasChecks(front);
+  EXPECT_GT(checks.size(), 10u);
+  EXPECT_EQ(static_cast<long>(checks.size()), front.stats.slip_persistence.used);
+  for (size_t i = 1; i < checks.size(); ++i) EXPECT_GT(checks[i].t, checks[i - 1].t);
+  WardProblemOptions all;
+  all.accel_bias = checks;
+  ceres::Problem every;
+  Built b;
+  BuildAll(WardFactorSource(log, model, front.estimates, all), &every, &b);
+  EXPECT_EQ(b.counts.wheel_bias_checks, static_cast<long>(checks.size()));
+  EXPECT_NE(b.counts.Describe().find("wheels' bias check"), std::string::npos);
+
+  const size_t k = front.estimates.size() / 2;
+  WardProblemOptions one;
+  one.only_kinds = {"wheel_bias_check"};
+  one.accel_bias = {{front.estimates[k - 50].t, std::nan(""), 0.01},
+                    {front.estimates[k].t + 1e-4, 0.03, 0.01},
+                    {front.estimates[k + 50].t, 0.03, 0.0}};
+  ceres::Problem problem;
+  Built single;
+  BuildAll(WardFactorSource(log, model, front.estimates, one), &problem, &single);
+  ASSERT_EQ(single.counts.wheel_bias_checks, 1);
+  ASSERT_EQ(single.added.size(), 1u);
+  single.states[k][ward::kAccelBias] = 0.01;
+  single.offsets[0] = 0.05;
+  double cost = 0.0;
+  ASSERT_TRUE(
+      problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr));
+  const double r = (0.05 + 0.01 - 0.03) / 0.01;
+  EXPECT_NEAR(cost, 0.5 * r * r, 1e-9);
 }
 
 TEST(WardFactorSource, AnEmptyFrontEndIsRefused) {
