@@ -17,6 +17,8 @@
 //     adaptive one (WindowSmootherOptions::disturbance_from_front_end = false);
 //   --no-bias-checks: the smoothers without the front end's wheels' checks on its accelerometer
 //     bias (bias_from_front_end = false), for comparing;
+//   --law-correlation S: the smoothers' correlation time of the tire law's error
+//     (WardProblemOptions::tire_law_correlation_time_s), for choosing it on other seeds;
 //   --smoother: add the batch smoother (GNSS; a few seconds per run);
 //   --threads: suites run at once (default 2);
 //   --without A,B: mismatch ingredients restored to the matched suite's (soils, attitude,
@@ -105,6 +107,7 @@ double g_reject_distance_sd = WindowSmootherOptions{}.reject_distance_sd;
 double g_no_pull_back_sd = std::nan("");
 bool g_disturbance_from_front_end = WindowSmootherOptions{}.disturbance_from_front_end;
 bool g_bias_from_front_end = true;  // --no-bias-checks: false
+double g_law_correlation_s = WardProblemOptions{}.tire_law_correlation_time_s;
 // --model: the model file's path and text, applied over each log's vehicle (empty: defaults).
 std::string g_model_path, g_model_text;
 
@@ -189,6 +192,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
       if (!std::isnan(g_no_pull_back_sd)) options.no_pull_back_sd_density = g_no_pull_back_sd;
       options.disturbance_from_front_end = g_disturbance_from_front_end;
       options.bias_from_front_end = g_bias_from_front_end;
+      options.problem.tire_law_correlation_time_s = g_law_correlation_s;
       const WindowSmootherResult result = SmoothWindowed(log, model, std::move(with_gnss), options);
       out.window_failed_updates += result.failed_updates;
       out.window_rejected_updates += result.rejected_updates;
@@ -215,6 +219,7 @@ SuiteResult RunSuite(const std::string& suite, uint64_t seed, bool window, bool 
         options.problem.no_pull_back_sd_density = g_no_pull_back_sd;
       options.stiffness_gnss_margin = g_stiffness_gnss_margin;
       options.bias_from_front_end = g_bias_from_front_end;
+      options.problem.tire_law_correlation_time_s = g_law_correlation_s;
       const SmootherResult result = SmoothBatch(log, model, options);
       out.smoother_fallbacks += result.used_fallback ? 1 : 0;
       score(kBatchGnss, log, result.estimates);
@@ -292,6 +297,8 @@ int main(int argc, char** argv) {
       g_disturbance_from_front_end = false;
     } else if (std::strcmp(argv[i], "--no-bias-checks") == 0) {
       g_bias_from_front_end = false;
+    } else if (std::strcmp(argv[i], "--law-correlation") == 0 && has_value) {
+      g_law_correlation_s = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--reject-distance") == 0 && has_value) {
       g_reject_distance_sd = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--smoother") == 0) {
