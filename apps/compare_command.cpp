@@ -112,7 +112,8 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
     std::map<std::string, std::vector<Evaluation>> by_estimator;
     std::map<std::string, double> seconds;
     std::map<std::string, int> untrusted;  // logs the trust check failed, per estimator
-    int stiffness_logs = 0;  // logs whose batch estimated the slip stiffness, with this prior
+    // Logs with truth whose batch estimated the slip stiffness, with this prior.
+    int stiffness_logs = 0;
     double stiffness_prior_sd = 0.0;
     const std::vector<std::string> names = {"EKF", "window", "batch"};
     nlohmann::json logs_json = nlohmann::json::array();
@@ -139,7 +140,7 @@ void RegisterCompareCommand(CLI::App* app, int* status) {
       batch.filter = filter;
       batch.problem.stiffness_prior_sd =
           PostProcessingStiffnessPriorSd(model, options->stiffness_sd);
-      if (batch.problem.stiffness_prior_sd > 0.0) {
+      if (batch.problem.stiffness_prior_sd > 0.0 && !log.truth.empty()) {
         ++stiffness_logs;
         stiffness_prior_sd = batch.problem.stiffness_prior_sd;
       }

@@ -1,5 +1,6 @@
 #include "apps/estimator_runs.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "io/log_reader.h"
 #include "io/log_summary.h"
 #include "io/yaml_config.h"
+#include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 #include "solvers/trust_check.h"
 
@@ -195,13 +197,17 @@ void AddNoGnssFadingFlag(CLI::App* cmd, double* fading_fixes) {
 }
 
 void AddStiffnessOption(CLI::App* cmd, double* prior_sd) {
+  char prior[16];
+  std::snprintf(prior, sizeof(prior), "%g", kPostProcessingStiffnessPriorSd);
   cmd->add_option("--stiffness-sd", *prior_sd,
                   "Batch smoother: estimate the tire law's slip stiffness (the terrain is not the "
                   "law's), with a prior of this relative sd around the law's, kept only when "
                   "its velocities fit GNSS about as well as the law's as given (a second smooth; "
-                  "docs/mismatch.md); 0: the law as given. Default: 0.15 where the model lists "
-                  "its soils (law_samples), else the law as given. Not with model effects, nor "
-                  "in smooth's --chunk mode")
+                  "docs/mismatch.md); 0: the law as given. Default: " +
+                      std::string(prior) +
+                      " where the model lists its soils (law_samples), else the law as given. "
+                      "Not with model effects; in smooth's --chunk mode only where the model "
+                      "lists its soils")
       ->check(CLI::NonNegativeNumber);
 }
 

@@ -81,9 +81,9 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
         WindowSmootherResult result = SmoothWindowed(
             log, model,
             ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
-        if (smoother_options.problem.stiffness_prior_sd > 0.0) {
-          report << "note: the chunks keep the law's slip stiffness (--stiffness-sd is for the "
-                    "whole-log solve)\n";
+        if (smoother_options.problem.stiffness_prior_sd > 0.0 && model.law_samples.size() < 2) {
+          report << "note: the chunks keep the law's slip stiffness where the model lists no "
+                    "soils (--stiffness-sd is for the whole-log solve there)\n";
         }
         report << DescribeWindowRun(result);
         return EstimatorOutput{std::move(result.estimates), {}};

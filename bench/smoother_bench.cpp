@@ -3,8 +3,10 @@
 //
 //   build/bench/smoother_bench batch MINUTES [--no-covariance] [--ceres] [--threads N]
 //                                  [--function-tolerance F] [--step-sd S] [--against F2]
-//                                  [--stiffness-sd SD]     as `smooth` runs it (SD 0: the law
-//                                                          as given, one solve, no border nodes)
+//                                  [--stiffness-sd SD]     the stiffness estimated at 0.15, as
+//                                                          `smooth` runs a model with soils (SD
+//                                                          0: the law as given, as it runs this
+//                                                          one-law log; one solve, no border)
 //                                                                 one length per process (peak
 //                                                                 RSS); the chain solver or Ceres
 //   build/bench/smoother_bench window [--ceres] [--length S] [ITERATIONS...]
@@ -201,7 +203,8 @@ int Window(const std::vector<int>& iterations, bool chain, double window_s) {
 
 int main(int argc, char** argv) {
   if (argc >= 3 && std::strcmp(argv[1], "batch") == 0) {
-    slipgraph::BatchSmootherOptions options;  // as `smooth` runs it
+    // As `smooth` runs a model that lists its soils.
+    slipgraph::BatchSmootherOptions options;
     options.problem.stiffness_prior_sd = slipgraph::kPostProcessingStiffnessPriorSd;
     options.threads = 1;
     double against = 0.0;

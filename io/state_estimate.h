@@ -29,4 +29,15 @@ struct WardEstimate {
   bool offsets_ready = false;
 };
 
+// The accelerometer's whole bias c_ax + b_ax over an interval ending at t, as a front end's
+// wheels' check measured it (solvers/slip_persistence.h): where the wheels' rim speed held, the
+// velocity changed as the rim speed did at the slip the interval opened with, and what the
+// accelerometer felt beyond that is its bias (with the gravity an attitude error leaves in it).
+// The smoothers take it as a factor (problems/ward_factor_source.h).
+struct AccelBiasMeasurement {
+  double t = 0.0;
+  double bias_mps2 = 0.0;
+  double sd_mps2 = 0.0;
+};
+
 }  // namespace slipgraph

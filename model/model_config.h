@@ -94,7 +94,8 @@ struct ImmobilizationConfig {
 // (solvers/slip_persistence.h): over each interval the body's speed changes as the wheels' rim
 // speed does at the slip the interval started with, unless the accelerometer felt a force; the
 // difference measures the error of the b_ax estimate. Chosen on ward21m and ward21 seeds 1-10,
-// reported on 21-40 (docs/mismatch.md). The EKF's only: UsePapersAccelBias turns it off.
+// reported on 21-40 (docs/mismatch.md). The smoothers take the checks the front end applied
+// (WardProblemOptions::accel_bias); UsePapersAccelBias turns it off.
 struct SlipPersistenceConfig {
   double interval_s = 0.5;          // T; 0: off (the paper's filter)
   double sd_mps = 0.005;            // the slip's own change of the velocity over T, as an sd

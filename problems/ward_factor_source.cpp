@@ -176,6 +176,13 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
     gps_begin_.assign(n + 1, 0);
   }
   velocity_begin_ = AttachToStates(options.body_velocity, times_);
+  for (size_t i = 0; i < options.accel_bias.size(); ++i) {
+    const double t = options.accel_bias[i].t;
+    if (!std::isfinite(t) || (i > 0 && t < options.accel_bias[i - 1].t)) {
+      throw std::invalid_argument("accel_bias[" + std::to_string(i) + "].t (" + std::to_string(t) +
+                                  ") is not finite or goes back in time");
+    }
+  }
   accel_bias_begin_ = AttachToStates(options.accel_bias, times_);
   if (options.body_velocity_when_available) {  // the order AddLateBodyVelocity reads them in
     velocity_state_.assign(options.body_velocity.size(), n);
@@ -429,10 +436,11 @@ void WardFactorSource::AddStep(size_t k, double* previous, double* x, const Glob
   for (size_t i = accel_bias_begin_[k]; i < accel_bias_begin_[k + 1]; ++i) {
     const AccelBiasMeasurement& m = options_.accel_bias[i];
     if (!(std::isfinite(m.bias_mps2) && m.sd_mps2 > 0.0)) continue;
+    constexpr int kOffsets = 2, kAccelOffset = 0;  // the offsets block: [c_ax, c_gz]
     LinearFactor::Matrix on_state = LinearFactor::Matrix::Zero(1, kStateSize);
-    LinearFactor::Matrix on_offsets = LinearFactor::Matrix::Zero(1, 2);
+    LinearFactor::Matrix on_offsets = LinearFactor::Matrix::Zero(1, kOffsets);
     on_state(0, kAccelBias) = 1.0 / m.sd_mps2;
-    on_offsets(0, 0) = 1.0 / m.sd_mps2;
+    on_offsets(0, kAccelOffset) = 1.0 / m.sd_mps2;
     Add("wheel_bias_check",
         new LinearFactor({on_state, on_offsets},
                          Eigen::VectorXd::Constant(1, m.bias_mps2 / m.sd_mps2)),

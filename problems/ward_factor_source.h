@@ -37,16 +37,6 @@ struct BodyVelocityMeasurement {
   double available_t = -std::numeric_limits<double>::infinity();
 };
 
-// The accelerometer's whole bias c_ax + b_ax over an interval ending at t, as a front end's
-// wheels' check measured it (solvers/slip_persistence.h): where the wheels' rim speed held, the
-// velocity changed as the rim speed did at the slip the interval opened with, and what the
-// accelerometer felt beyond that is its bias (with the gravity an attitude error leaves in it).
-struct AccelBiasMeasurement {
-  double t = 0.0;
-  double bias_mps2 = 0.0;
-  double sd_mps2 = 0.0;
-};
-
 struct WardProblemOptions {
   VelocityModel velocity_model = VelocityModel::kAccelerometerDriven;
   bool use_gps = true;
@@ -61,10 +51,11 @@ struct WardProblemOptions {
   int gnss_max_consecutive_rejections = 1;
   // Body-x velocity measurements from another estimator, sorted by t (empty: none).
   std::vector<BodyVelocityMeasurement> body_velocity;
-  // The front end's wheels' checks on the accelerometer bias, sorted by t (empty: none), each a
-  // factor on c_ax + b_ax at the state nearest its t (the interval's end: online, it exists
-  // when the state does). The smoother's b_ax walks slowly (the paper's), so the checks hold the
-  // bias a slow robot's velocity would otherwise integrate.
+  // The front end's wheels' checks on the accelerometer bias (EkfStats::wheel_bias_checks), sorted
+  // by t (empty: none; the source throws std::invalid_argument on a t that is not finite or goes
+  // back), each a factor on c_ax + b_ax at the state nearest its t (the interval's end: online,
+  // it exists when the state does). The smoother's b_ax walks slowly (the paper's), so the checks
+  // hold the bias a slow robot's velocity would otherwise integrate.
   std::vector<AccelBiasMeasurement> accel_bias;
   // Online: each body-velocity measurement enters at the first state at or after its
   // available_t, on the state nearest its t if that is still in the window (AddLateBodyVelocity;
@@ -125,7 +116,7 @@ struct WardProblemOptions {
   // v RMSE from 0.0165/0.0157 to 0.0102/0.0121 (seeds 1/2) and cost fig5, where the law is right,
   // 0.0031 -> 0.0048; 0.5 gave 0.0122/0.0148 and fig5 0.0076. The library's default keeps the law
   // as given (the workbench and the window need that); the post-processing commands `smooth` and
-  // `compare` estimate it (kPostProcessingStiffnessPriorSd).
+  // `compare` estimate it where the model lists its soils (PostProcessingStiffnessPriorSd).
   double stiffness_prior_sd = 0.0;
   double stiffness_node_s = 60.0;
   double stiffness_walk_sd = 0.1 / std::sqrt(60.0);

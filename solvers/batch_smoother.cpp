@@ -43,15 +43,6 @@ double PostProcessingStiffnessPriorSd(const ModelConfig& model, double requested
   return model.law_samples.size() >= 2 ? kPostProcessingStiffnessPriorSd : 0.0;
 }
 
-std::vector<AccelBiasMeasurement> WheelBiasChecks(const FilterResult& ekf) {
-  std::vector<AccelBiasMeasurement> checks;
-  checks.reserve(ekf.stats.wheel_bias_checks.size());
-  for (const WheelBiasCheck& c : ekf.stats.wheel_bias_checks) {
-    checks.push_back({c.t_s, c.bias_mps2, c.sd_mps2});
-  }
-  return checks;
-}
-
 using namespace ward;  // NOLINT: state indices
 
 namespace {
@@ -216,7 +207,7 @@ SmootherResult SmoothBatchOnce(const DriveLog& log, const ModelConfig& model,
   }
   WardProblemOptions problem_options = WithFilterSettings(options.problem, options.filter);
   if (options.bias_from_front_end && problem_options.accel_bias.empty()) {
-    problem_options.accel_bias = WheelBiasChecks(ekf);
+    problem_options.accel_bias = ekf.stats.wheel_bias_checks;
   }
   std::unique_ptr<WardProblem> problem =
       BuildWardBatchProblem(log, model, ekf.estimates, problem_options);

@@ -21,22 +21,21 @@ namespace slipgraph {
 // `options` with the choices of the EKF run that initialises the problem (GNSS on or off, the
 // velocity model, the wheel-still threshold), so the smoother's factors and its filter agree.
 WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRunOptions& filter);
-// The front end's wheels' checks on its accelerometer bias (EkfStats::wheel_bias_checks) as a
-// smoother's measurements (WardProblemOptions::accel_bias).
-std::vector<AccelBiasMeasurement> WheelBiasChecks(const FilterResult& ekf);
 
 // The slip-stiffness prior (WardProblemOptions::stiffness_prior_sd) that post-processing front
-// ends (`smooth`, `compare`, the Python module) use unless told otherwise: a user's tire law is
-// a fit that no terrain matches exactly. Chosen on ward21 seeds 1/2; on seeds 3/4, not used to
-// choose it, the batch's velocity error fell 0.0172/0.0166 -> 0.0115/0.0114 m/s with the
-// disturbance unchanged; where the law is exact (fig5) it costs 0.0031 -> 0.0048 m/s.
+// ends (`smooth`, `compare`, the Python module) use where the model lists its soils, unless told
+// otherwise: a user's tire law is a fit that no terrain matches exactly. Chosen on ward21 seeds
+// 1/2; on seeds 3/4, not used to choose it, the batch's velocity error fell 0.0172/0.0166 ->
+// 0.0115/0.0114 m/s with the disturbance unchanged; where the law is exact (fig5) it costs 0.0031
+// -> 0.0048 m/s.
 constexpr double kPostProcessingStiffnessPriorSd = 0.15;
 // The prior post-processing takes for a model when not told one (NaN `requested`): that one where
 // the model lists its soils (ModelConfig::law_samples: the user says the terrain's law varies, and
 // by how much), the law as given where it does not, as the window takes it. With one guessed law
 // the estimated stiffness follows any error the model lacks: on ward21m, whose terrain is of
-// another family than the law, it took the batch's velocity error from 0.016-0.017 to 0.027-0.029
-// m/s, and where the law is exact it is biased low (docs/smoother.md). A given value is returned.
+// another family than the law, the batch's velocity error was 0.027-0.029 m/s with it and
+// 0.016-0.017 without, and where the law is exact it is biased low (docs/smoother.md). A given
+// value is returned.
 double PostProcessingStiffnessPriorSd(const ModelConfig& model, double requested);
 
 // How the batch is solved. The chain (solvers/chain_solver): Levenberg-Marquardt on the

@@ -27,12 +27,14 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
   const double t_s = in.t_s, rim_speed_mps = in.rim_speed_mps;
   if (!smoothing_started_) {
     felt_smoothed_mps_ = felt_v_mps_;
+    removed_smoothed_mps_ = removed_v_mps_;
     rim_smoothed_mps_ = rim_speed_mps;
     smoothing_started_ = true;
   } else {
     const double dt = std::max(0.0, t_s - last_t_s_);
     const double weight = 1.0 - std::exp(-dt / config_.smoothing_s);
     felt_smoothed_mps_ += weight * (felt_v_mps_ - felt_smoothed_mps_);
+    removed_smoothed_mps_ += weight * (removed_v_mps_ - removed_smoothed_mps_);
     rim_smoothed_mps_ += weight * (rim_speed_mps - rim_smoothed_mps_);
   }
   last_t_s_ = t_s;
@@ -54,7 +56,8 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
       measurement->innovation_mps2 = (felt_change_mps - speed_ratio * rim_change_mps) / span_s;
       const double sd_mps2 = config_.sd_mps / span_s;
       measurement->variance_mps2_sq = sd_mps2 * sd_mps2;
-      measurement->span_s = span_s;
+      measurement->removed_bias_mps2 =
+          (removed_smoothed_mps_ - open_removed_smoothed_mps_) / span_s;
       const double nu = measurement->innovation_mps2;
       const double predicted = in.bias_variance_mps2_sq + measurement->variance_mps2_sq;
       const double gate = config_.gate_sd;
@@ -67,6 +70,7 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
     open_ = true;
     open_t_s_ = t_s;
     open_felt_smoothed_mps_ = felt_smoothed_mps_;
+    open_removed_smoothed_mps_ = removed_smoothed_mps_;
     open_rim_smoothed_mps_ = rim_smoothed_mps_;
     open_rim_mps_ = rim_speed_mps;
     open_v_bx_mps_ = in.v_bx_mps;

@@ -31,29 +31,26 @@
 
 namespace slipgraph {
 
-// One check the filter applied, kept for a smoother behind it: the accelerometer's whole bias
-// c_ax + b_ax (the filter's offset and bias state as its prediction took them, plus the check's
-// innovation) over the interval [t_s - span_s, t_s], as the wheels measured it, and its sd.
-struct WheelBiasCheck {
-  double t_s = 0.0;
-  double span_s = 0.0;
-  double bias_mps2 = 0.0;
-  double sd_mps2 = 0.0;
-};
-
 class SlipPersistence {
  public:
   // Throws std::invalid_argument when the config is not valid (SlipPersistenceConfig::IsValid).
   explicit SlipPersistence(const SlipPersistenceConfig& config);
 
   bool enabled() const { return config_.interval_s > 0.0; }
-  // The prediction's change of v_bx from the accelerometer (m/s), added to the running integral.
-  void AddFeltVelocityChange(double dv_mps) { felt_v_mps_ += dv_mps; }
+  // The prediction's change of v_bx from the accelerometer (m/s), added to the running integral,
+  // and the integral over the step of the bias c_ax + b_ax it removed from the accelerometer
+  // (m/s).
+  void AddFeltVelocityChange(double dv_mps, double removed_bias_mps) {
+    felt_v_mps_ += dv_mps;
+    removed_v_mps_ += removed_bias_mps;
+  }
 
   struct Measurement {
     double innovation_mps2 = 0.0;   // on b_ax: b_ax(true) - b_ax(estimated)
     double variance_mps2_sq = 0.0;  // (m/s^2)^2
-    double span_s = 0.0;            // the interval's length
+    // The mean bias c_ax + b_ax the prediction removed over the interval (through the same
+    // smoothing): plus the innovation, the whole bias the wheels measured.
+    double removed_bias_mps2 = 0.0;
   };
   enum class Outcome { kNone, kMeasured, kLeftOut };
   // One wheel cycle: its time, the rim speed r (w_l + w_r) / 2 of the filter's wheel-speed states,
@@ -70,13 +67,15 @@ class SlipPersistence {
 
  private:
   SlipPersistenceConfig config_;
-  double felt_v_mps_ = 0.0;  // the integrated accelerometer velocity (its origin is arbitrary)
-  double felt_smoothed_mps_ = 0.0, rim_smoothed_mps_ = 0.0;
+  double felt_v_mps_ = 0.0;     // the integrated accelerometer velocity (its origin is arbitrary)
+  double removed_v_mps_ = 0.0;  // the integrated bias the prediction removed (the same)
+  double felt_smoothed_mps_ = 0.0, rim_smoothed_mps_ = 0.0, removed_smoothed_mps_ = 0.0;
   double last_t_s_ = 0.0;
   bool smoothing_started_ = false;
   bool open_ = false;
   bool after_left_out_ = false;  // the previous interval was left out
-  double open_t_s_ = 0.0, open_felt_smoothed_mps_ = 0.0, open_rim_smoothed_mps_ = 0.0;
+  double open_t_s_ = 0.0, open_felt_smoothed_mps_ = 0.0, open_rim_smoothed_mps_ = 0.0,
+         open_removed_smoothed_mps_ = 0.0;
   // The slip the interval opened with, from the filter's v_bx and the rim speed (not smoothed).
   double open_v_bx_mps_ = 0.0, open_rim_mps_ = 0.0;
 };

@@ -76,9 +76,12 @@ void WardEkf::PredictTo(double t) {
   input.accel_input_mps2 = accel_input_mps2_ - offsets_.accel_x_mps2();
   input.pitch_sd_rad = pitch_sd_rad_;
   input.imu_period_s = imu_period_s_;
-  const double v_bx_before = x_(kVbx);
+  const double v_bx_before = x_(kVbx), b_ax_before = x_(kAccelBias);
   propagator_.Predict(dt, input, loads_, params_, &x_, &P_);
-  if (input.accelerometer_driven) slip_persistence_.AddFeltVelocityChange(x_(kVbx) - v_bx_before);
+  if (input.accelerometer_driven) {
+    const double removed_bias_mps2 = offsets_.accel_x_mps2() + 0.5 * (b_ax_before + x_(kAccelBias));
+    slip_persistence_.AddFeltVelocityChange(x_(kVbx) - v_bx_before, removed_bias_mps2 * dt);
+  }
   t_ = t;
 }
 
@@ -292,8 +295,7 @@ void WardEkf::CheckBiasAgainstWheels() {
       ekf::MeasurementRows row;
       row.AddOnState(kAccelBias, m.innovation_mps2, m.variance_mps2_sq, "slip_persistence");
       stats_.wheel_bias_checks.push_back(
-          {t_, m.span_s, offsets_.accel_x_mps2() + x_(kAccelBias) + m.innovation_mps2,
-           std::sqrt(m.variance_mps2_sq)});
+          {t_, m.removed_bias_mps2 + m.innovation_mps2, std::sqrt(m.variance_mps2_sq)});
       Update(row, nullptr, &stats_.slip_persistence);
       break;
     }

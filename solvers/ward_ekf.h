@@ -100,8 +100,9 @@ struct EkfStats {
   // The wheels' checks on the accelerometer bias (ModelConfig::slip_persistence): applied, and
   // left out by their gate (a force the accelerometer felt).
   StreamCounters slip_persistence;
-  // Those applied, in time order, for a smoother behind the filter.
-  std::vector<WheelBiasCheck> wheel_bias_checks;
+  // Those applied, in time order, for a smoother behind the filter (about two a second while the
+  // robot drives; a bank's and the disturbance modes' stats are their first filter's).
+  std::vector<AccelBiasMeasurement> wheel_bias_checks;
   std::array<long, kWeakConstraintCount> weak_constraints{};  // applications per constraint
   long late_measurements = 0;  // stamped before the filter's time: applied at the filter time
   long offset_init_samples = 0;

@@ -503,7 +503,7 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
     problem_options.disturbance_density_per_state = result.ekf.disturbance_density;
   }
   if (options.bias_from_front_end && problem_options.accel_bias.empty()) {
-    problem_options.accel_bias = WheelBiasChecks(result.ekf);
+    problem_options.accel_bias = result.ekf.stats.wheel_bias_checks;
   }
   const bool soils = model.law_samples.size() >= 2;
   problem_options.stiffness_prior_sd = soils ? options.stiffness_prior_sd : 0.0;
@@ -565,6 +565,9 @@ WindowSmootherOptions ChunkedOptions(double chunk_min, double overlap_s, double 
   // The batch's own problem: its weak constraint 3 and its disturbance walk, not the window's.
   options.no_pull_back_sd_density = batch.problem.no_pull_back_sd_density;
   options.disturbance_from_front_end = false;
+  options.bias_from_front_end = batch.bias_from_front_end;
+  // The batch's slip stiffness, where the window estimates one (the model lists its soils).
+  options.stiffness_prior_sd = batch.problem.stiffness_prior_sd;
   return options;
 }
 

@@ -276,7 +276,7 @@ TEST(BatchSmoother, ASlipStiffnessThatGnssContradictsIsNotKept) {
     EXPECT_LT(*std::min_element(kept.stiffness.begin(), kept.stiffness.end()), -0.5);
     const double kept_rmse = Evaluate(log, EstimateTable(kept.estimates)).velocity_rmse;
     std::printf("ward21m/13: v RMSE %.4f checked, %.4f kept\n", checked_rmse, kept_rmse);
-    EXPECT_GT(kept_rmse, 2.0 * checked_rmse);
+    EXPECT_GT(kept_rmse, 2.0 * checked_rmse);  // measured 2.3: the check halves the error
   }
   const DriveLog log = testing::SimulatedScenario("ward21/05");
   const SmootherResult matched = SmoothBatch(log, DefaultModelConfig(log.vehicle), options);
@@ -320,7 +320,7 @@ TEST(BatchSmoother, TheSdCountTheSolutionNotKept) {
     const Evaluation without = Evaluate(log, EstimateTable(alone.estimates));
     std::printf("%s: v NEES inside 95 %%: %.3f without, %.3f with; sd x %.2f on average\n", name,
                 without.nees_within_95_fraction(), with.nees_within_95_fraction(), ratio);
-    if (std::string(name).rfind("ward21m", 0) == 0) {  // measured 0.24 -> 0.79, sd x 1.42
+    if (std::string(name).rfind("ward21m", 0) == 0) {  // measured 0.23 -> 0.79, sd x 1.43
       EXPECT_NEAR(p_as_given, 0.61, 0.05);  // GNSS favours the law as given (cost 0.45 lower)
       EXPECT_LT(without.nees_within_95_fraction(), 0.4);
       EXPECT_GT(with.nees_within_95_fraction(), 0.7);

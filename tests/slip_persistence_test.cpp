@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kDt_s = 0.01;
 constexpr double kBiasVarianceMps2Sq = 0.02 * 0.02;  // the filter's P(b_ax, b_ax), for the gate
+constexpr double kRemovedBiasMps2 = 0.03;            // the c_ax + b_ax the prediction removes
 
 SlipPersistenceConfig Config() {
   SlipPersistenceConfig c;
@@ -35,8 +36,9 @@ struct Closed {
   SlipPersistence::Measurement measurement;
 };
 
-// Runs `seconds` of cycles: at each, the prediction's velocity change felt_dv(t), then the rim
-// speed rim(t) and body velocity v(t) after the cycle. Returns the intervals that closed.
+// Runs `seconds` of cycles: at each, the prediction's velocity change felt_dv(t) (with
+// kRemovedBiasMps2 removed), then the rim speed rim(t) and body velocity v(t) after the cycle.
+// Returns the intervals that closed.
 std::vector<Closed> RunCycles(SlipPersistence* check, double seconds,
                               const std::function<double(double)>& felt_dv,
                               const std::function<double(double)>& rim,
@@ -44,7 +46,7 @@ std::vector<Closed> RunCycles(SlipPersistence* check, double seconds,
   std::vector<Closed> closed;
   for (int k = 0; k * kDt_s <= seconds + 1e-9; ++k) {
     const double t = k * kDt_s;
-    if (k > 0) check->AddFeltVelocityChange(felt_dv(t));
+    if (k > 0) check->AddFeltVelocityChange(felt_dv(t), kRemovedBiasMps2 * kDt_s);
     SlipPersistence::Measurement m;
     const SlipPersistence::Outcome outcome =
         check->Cycle({t, rim(t), v(t), kBiasVarianceMps2Sq}, &m);
@@ -67,7 +69,8 @@ TEST(SlipPersistence, OffMeasuresNothing) {
 // At a steady 0.12 m/s with the bias estimate 0.04 m/s^2 below the true one, the prediction's
 // velocity rises 0.04 m/s a second while the wheels hold theirs: each interval measures the
 // bias's error, 0.04 m/s^2, with variance (sd / T)^2, inside the gate, once the smoothing has
-// settled on the ramp (its lag's transient decays as exp(-t / 0.1 s)).
+// settled on the ramp (its lag's transient decays as exp(-t / 0.1 s)); the bias the prediction
+// removed comes back through the same smoothing.
 TEST(SlipPersistence, ASteadyDriveMeasuresTheBiasError) {
   SlipPersistence check(Config());
   const auto closed = RunCycles(
@@ -79,6 +82,7 @@ TEST(SlipPersistence, ASteadyDriveMeasuresTheBiasError) {
     EXPECT_NEAR(c.measurement.variance_mps2_sq, (0.005 / 0.3) * (0.005 / 0.3), 1e-12);
     if (c.t_s > 1.5) {
       EXPECT_NEAR(c.measurement.innovation_mps2, 0.04, 1e-7) << "t " << c.t_s;
+      EXPECT_NEAR(c.measurement.removed_bias_mps2, kRemovedBiasMps2, 1e-7) << "t " << c.t_s;
     }
   }
   EXPECT_NEAR(closed[1].t_s - closed[0].t_s, 0.3, 1e-9);  // back to back from the first cycle

@@ -521,5 +521,45 @@ TEST(WardEkf, TheWheelsCheckHoldsTheBiasOfASlowRobot) {
   ExpectMatchedControlUnchanged(a, b, 1.05);
 }
 
+// The checks the filter applied are kept for the smoothers (EkfStats::wheel_bias_checks) as the
+// whole bias c_ax + b_ax: an accelerometer that reads 0.05 m/s^2 more from the middle of a
+// hidden/none drive on is read 0.05 m/s^2 higher by the checks from some seconds later on, and the
+// same before it. One per check applied, in time order.
+TEST(WardEkf, TheChecksKeptForTheSmoothersReadTheWholeBias) {
+  const DriveLog log = testing::SimulatedScenario("hidden/none");
+  const ModelConfig model = DefaultModelConfig(log.vehicle);
+  DriveLog shifted = log;
+  const double t_shift = 0.5 * (log.imu.front().t + log.imu.back().t);
+  for (ImuSample& imu : shifted.imu) {
+    if (imu.t >= t_shift) imu.ax += 0.05;
+  }
+  const FilterResult plain = RunEkf(log, model), moved = RunEkf(shifted, model);
+  const auto mean_bias = [](const FilterResult& run, double from, double to, int* count) {
+    double sum = 0.0;
+    *count = 0;
+    for (const AccelBiasMeasurement& m : run.stats.wheel_bias_checks) {
+      if (m.t < from || m.t > to) continue;
+      sum += m.bias_mps2;
+      ++*count;
+    }
+    return *count > 0 ? sum / *count : std::nan("");
+  };
+  for (const FilterResult* run : {&plain, &moved}) {
+    const auto& checks = run->stats.wheel_bias_checks;
+    EXPECT_EQ(static_cast<long>(checks.size()), run->stats.slip_persistence.used);
+    for (size_t i = 1; i < checks.size(); ++i) EXPECT_GT(checks[i].t, checks[i - 1].t);
+  }
+  int n_before = 0, n_plain = 0, n_moved = 0, n_unused = 0;
+  const double before =
+      mean_bias(moved, 0.0, t_shift, &n_before) - mean_bias(plain, 0.0, t_shift, &n_unused);
+  const double after = mean_bias(moved, t_shift + 5.0, log.imu.back().t, &n_moved) -
+                       mean_bias(plain, t_shift + 5.0, log.imu.back().t, &n_plain);
+  std::printf("checks' bias, shifted less plain: %.4f before (%d), %.4f after (%d) m/s^2\n", before,
+              n_before, after, n_moved);
+  ASSERT_GE(n_moved, 10);
+  EXPECT_NEAR(before, 0.0, 1e-9);
+  EXPECT_NEAR(after, 0.05, 0.01);
+}
+
 }  // namespace
 }  // namespace slipgraph

@@ -19,7 +19,6 @@
 #include <vector>
 
 #include "problems/ward_batch_problem.h"
-#include "solvers/batch_smoother.h"
 #include "solvers/ekf_runner.h"
 #include "tests/sim_test_util.h"
 
@@ -185,7 +184,7 @@ TEST(WardFactorSource, WardFactorKindsNameEveryKindBuilt) {
   const FilterResult front = RunEkf(log, model);
   WardProblemOptions with_stiffness;
   with_stiffness.stiffness_prior_sd = 0.15;
-  with_stiffness.accel_bias = WheelBiasChecks(front);
+  with_stiffness.accel_bias = front.stats.wheel_bias_checks;
   with_stiffness.no_pull_back_sd_density = 0.002;
   std::set<std::string> kinds;
   const auto add_kinds = [&](const WardProblem& problem) {
@@ -248,7 +247,7 @@ TEST(WardFactorSource, TheWheelsChecksHoldTheWholeAccelerometerBias) {
   const DriveLog log = testing::SimulatedScenario("fig5");
   const ModelConfig model = DefaultModelConfig(log.vehicle);
   const FilterResult front = RunEkf(log, model);
-  const std::vector<AccelBiasMeasurement> checks = WheelBiasChecks(front);
+  const std::vector<AccelBiasMeasurement>& checks = front.stats.wheel_bias_checks;
   EXPECT_GT(checks.size(), 10u);
   EXPECT_EQ(static_cast<long>(checks.size()), front.stats.slip_persistence.used);
   for (size_t i = 1; i < checks.size(); ++i) EXPECT_GT(checks[i].t, checks[i - 1].t);
