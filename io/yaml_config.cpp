@@ -224,6 +224,7 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
   WeakConstraintConfig& wc = m.weak_constraints;
   ImmobilizationConfig& im = m.immobilization;
   double init_samples = m.offset_init_samples;
+  double lasting_intervals = m.slip_persistence.lasting_intervals;
   const std::vector<std::pair<std::string, std::vector<NumberField>>> sections = {
       {"tire", TireFields(&m.tire, false)},
       {"rolling", RollingFields(&m.rolling, false)},
@@ -278,7 +279,9 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"gate", &m.slip_persistence.gate_sd, false},
         {"smoothing", &m.slip_persistence.smoothing_s, false},
         {"min_rim_speed", &m.slip_persistence.min_rim_speed_mps, false},
-        {"max_rim_acceleration", &m.slip_persistence.max_rim_acceleration_mps2, false}}},
+        {"max_rim_acceleration", &m.slip_persistence.max_rim_acceleration_mps2, false},
+        {"lasting_intervals", &lasting_intervals, false},
+        {"max_lasting_error", &m.slip_persistence.max_lasting_error_mps2, false}}},
       {"offsets",
        {{"init_samples", &init_samples, false},
         {"ema_samples", &m.offset_ema_samples, false},
@@ -353,6 +356,7 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
     if (!known) Fail(path, entry.first, key, "", "unknown key");
   }
   m.offset_init_samples = static_cast<int>(init_samples);
+  m.slip_persistence.lasting_intervals = static_cast<int>(lasting_intervals);
   std::string error;
   if (!m.IsValid(&error)) throw InputError(path, 0, "", "", "invalid model: " + error);
   // The effects that act on windows of the drive need them, and only they take them.
@@ -525,7 +529,9 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                                {"gate", sp.gate_sd},
                                {"smoothing", sp.smoothing_s},
                                {"min_rim_speed", sp.min_rim_speed_mps},
-                               {"max_rim_acceleration", sp.max_rim_acceleration_mps2}});
+                               {"max_rim_acceleration", sp.max_rim_acceleration_mps2},
+                               {"lasting_intervals", static_cast<double>(sp.lasting_intervals)},
+                               {"max_lasting_error", sp.max_lasting_error_mps2}});
   section("offsets", {{"init_samples", static_cast<double>(m.offset_init_samples)},
                       {"ema_samples", m.offset_ema_samples},
                       {"rest_guard", m.offset_rest_guard_s}});

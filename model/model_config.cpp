@@ -33,9 +33,14 @@ bool SlipPersistenceConfig::IsValid(std::string* error) const {
                   {"slip_persistence.gate", gate_sd},
                   {"slip_persistence.smoothing", smoothing_s},
                   {"slip_persistence.min_rim_speed", min_rim_speed_mps},
-                  {"slip_persistence.max_rim_acceleration", max_rim_acceleration_mps2}};
+                  {"slip_persistence.max_rim_acceleration", max_rim_acceleration_mps2},
+                  {"slip_persistence.max_lasting_error", max_lasting_error_mps2}};
   for (const auto& field : positive) {
     if (!CheckPositive(field.name, field.value, error)) return false;
+  }
+  if (lasting_intervals < 0) {
+    *error = "slip_persistence.lasting_intervals must be non-negative (0: off)";
+    return false;
   }
   return true;
 }

@@ -22,6 +22,26 @@ SlipPersistence::SlipPersistence(const SlipPersistenceConfig& config) : config_(
   if (!config.IsValid(&error)) throw std::invalid_argument(error);
 }
 
+bool SlipPersistence::CountGated(double innovation_mps2, double span_s) {
+  const double sign = innovation_mps2 > 0.0 ? 1.0 : -1.0;
+  const bool continues = gated_run_ > 0 && sign == gated_sign_;
+  if (std::abs(innovation_mps2) > config_.max_lasting_error_mps2) {
+    gated_run_ = 0;
+    return false;
+  }
+  if (!continues) {
+    gated_run_ = 0;
+    run_velocity_error_mps_ = 0.0;
+    run_unapplied_ = 0;
+  }
+  ++gated_run_;
+  gated_sign_ = sign;
+  // Over this interval the prediction's velocity ran nu T past the check's.
+  run_velocity_error_mps_ += innovation_mps2 * span_s;
+  ++run_unapplied_;
+  return config_.lasting_intervals > 0 && gated_run_ >= config_.lasting_intervals;
+}
+
 SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measurement* measurement) {
   if (!enabled()) return Outcome::kNone;
   const double t_s = in.t_s, rim_speed_mps = in.rim_speed_mps;
@@ -62,8 +82,18 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
       const double predicted = in.bias_variance_mps2_sq + measurement->variance_mps2_sq;
       const double gate = config_.gate_sd;
       const bool gated = nu * nu > gate * gate * predicted;
-      outcome = gated || after_left_out ? Outcome::kLeftOut : Outcome::kMeasured;
-      after_left_out_ = gated;  // the next interval holds the force's smoothed tail
+      if (!gated) gated_run_ = 0;
+      const bool lasting = gated && CountGated(nu, span_s);
+      outcome = (gated || after_left_out) && !lasting ? Outcome::kLeftOut : Outcome::kMeasured;
+      after_left_out_ = gated && !lasting;  // the next interval holds the force's smoothed tail
+      if (lasting) {
+        measurement->velocity_innovation_mps = -run_velocity_error_mps_;
+        measurement->velocity_variance_mps_sq = run_unapplied_ * config_.sd_mps * config_.sd_mps;
+        run_velocity_error_mps_ = 0.0;
+        run_unapplied_ = 0;
+      }
+    } else {
+      gated_run_ = 0;
     }
   }
   if (!open_ && std::abs(rim_smoothed_mps_) > min_rim_mps) {

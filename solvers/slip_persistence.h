@@ -21,6 +21,11 @@
 // on b_ax). A measurement beyond gate_sd of its predicted sd (the bias's variance plus its own) is
 // a force the accelerometer felt, not a bias: it is left out, and so is the next interval's, which
 // holds the smoothed tail of the same force; the slip that force made persists from then on.
+// Such a force is a pulse. Gated intervals that go on (lasting_intervals in a row, of one sign,
+// each within max_lasting_error_mps2) are the bias estimate's error grown past the gate: from the
+// last of them on each is applied, with the velocity the prediction lost to the error over the
+// run's intervals not yet applied, sum(nu T), as a measurement of v_bx's error (variance sd_mps^2
+// per interval). Without it the slip the velocity ran off to would persist in the check too.
 // An interval opens while the smoothed rim speed is above min_rim_speed_mps, and closes when it is
 // T long; it measures only if the rim speed, smoothed at both ends and as given at its opening,
 // stayed above that floor on the same side, and if the smoothed rim speed changed by no more than
@@ -51,6 +56,10 @@ class SlipPersistence {
     // The mean bias c_ax + b_ax the prediction removed over the interval (through the same
     // smoothing): plus the innovation, the whole bias the wheels measured.
     double removed_bias_mps2 = 0.0;
+    // Where a lasting error is applied: v_bx(true) - v_bx(estimated) the prediction's error
+    // integrated over the run (m/s) and its variance; 0 and 0 otherwise.
+    double velocity_innovation_mps = 0.0;
+    double velocity_variance_mps_sq = 0.0;
   };
   enum class Outcome { kNone, kMeasured, kLeftOut };
   // One wheel cycle: its time, the rim speed r (w_l + w_r) / 2 of the filter's wheel-speed states,
@@ -66,6 +75,9 @@ class SlipPersistence {
   Outcome Cycle(const CycleInput& in, Measurement* measurement);
 
  private:
+  // Adds a gated interval's innovation to the run; true when the run is a lasting error.
+  bool CountGated(double innovation_mps2, double span_s);
+
   SlipPersistenceConfig config_;
   double felt_v_mps_ = 0.0;     // the integrated accelerometer velocity (its origin is arbitrary)
   double removed_v_mps_ = 0.0;  // the integrated bias the prediction removed (the same)
@@ -74,6 +86,12 @@ class SlipPersistence {
   bool smoothing_started_ = false;
   bool open_ = false;
   bool after_left_out_ = false;  // the previous interval was left out
+  // The gated intervals in a row, their innovations' sign, and the velocity error over those of
+  // them not yet applied, sum(nu T), with their count.
+  int gated_run_ = 0;
+  double gated_sign_ = 0.0;
+  double run_velocity_error_mps_ = 0.0;
+  int run_unapplied_ = 0;
   double open_t_s_ = 0.0, open_felt_smoothed_mps_ = 0.0, open_rim_smoothed_mps_ = 0.0,
          open_removed_smoothed_mps_ = 0.0;
   // The slip the interval opened with, from the filter's v_bx and the rim speed (not smoothed).

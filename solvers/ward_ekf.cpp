@@ -297,6 +297,12 @@ void WardEkf::CheckBiasAgainstWheels() {
       stats_.wheel_bias_checks.push_back(
           {t_, m.removed_bias_mps2 + m.innovation_mps2, std::sqrt(m.variance_mps2_sq)});
       Update(row, nullptr, &stats_.slip_persistence);
+      if (m.velocity_variance_mps_sq > 0.0) {
+        ekf::MeasurementRows velocity;
+        velocity.AddOnState(kVbx, m.velocity_innovation_mps, m.velocity_variance_mps_sq,
+                            "slip_persistence");
+        Update(velocity, nullptr, &stats_.slip_persistence);
+      }
       break;
     }
     case SlipPersistence::Outcome::kLeftOut:

@@ -157,6 +157,8 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.slip_persistence.smoothing_s = 0.15;
   m.slip_persistence.min_rim_speed_mps = 0.05;
   m.slip_persistence.max_rim_acceleration_mps2 = 0.02;
+  m.slip_persistence.lasting_intervals = 4;
+  m.slip_persistence.max_lasting_error_mps2 = 0.12;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -176,6 +178,8 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.slip_persistence.smoothing_s, 0.15);
   EXPECT_DOUBLE_EQ(back.slip_persistence.min_rim_speed_mps, 0.05);
   EXPECT_DOUBLE_EQ(back.slip_persistence.max_rim_acceleration_mps2, 0.02);
+  EXPECT_EQ(back.slip_persistence.lasting_intervals, 4);
+  EXPECT_DOUBLE_EQ(back.slip_persistence.max_lasting_error_mps2, 0.12);
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
