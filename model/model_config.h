@@ -107,7 +107,7 @@ struct SlipPersistenceConfig {
   // its slip on its own).
   double max_rim_acceleration_mps2 = 0.02;
   // A force the accelerometer feels at a hold-back is a pulse: the gate leaves out its interval
-  // and the next (its smoothed tail). Gated intervals that go on, this many in a row with
+  // and the next (its smoothed tail). Intervals left out that go on, this many in a row with
   // innovations of one sign each within max_lasting_error_mps2, are the bias estimate's own
   // error instead: from the last of them on they are applied, and so is the velocity the
   // prediction lost to that error over them (a robot whose velocity has run off its wheels is

@@ -207,8 +207,10 @@ std::string DescribeFilterRun(const FilterResult& result) {
   }
   const StreamCounters& check = result.stats.slip_persistence;
   if (check.used + check.rejected > 0) {
-    out << "  the wheels' check on the accelerometer bias: " << check.used << " intervals applied, "
-        << check.rejected << " left out (a force the accelerometer felt; model file "
+    out << "  the wheels' check on the accelerometer bias: " << check.used << " intervals applied ("
+        << result.stats.slip_persistence_lasting
+        << " of them a lasting error, with the velocity it moved), " << check.rejected
+        << " left out (a force the accelerometer felt; model file "
         << "slip_persistence: {interval: 0}: off)\n";
   }
   out << "  weak constraints applied:";

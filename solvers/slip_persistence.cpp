@@ -22,7 +22,7 @@ SlipPersistence::SlipPersistence(const SlipPersistenceConfig& config) : config_(
   if (!config.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-bool SlipPersistence::CountGated(double innovation_mps2, double span_s) {
+bool SlipPersistence::CountLeftOut(double innovation_mps2, double span_s) {
   const double sign = innovation_mps2 > 0.0 ? 1.0 : -1.0;
   const bool continues = gated_run_ > 0 && sign == gated_sign_;
   if (std::abs(innovation_mps2) > config_.max_lasting_error_mps2) {
@@ -82,9 +82,10 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
       const double predicted = in.bias_variance_mps2_sq + measurement->variance_mps2_sq;
       const double gate = config_.gate_sd;
       const bool gated = nu * nu > gate * gate * predicted;
-      if (!gated) gated_run_ = 0;
-      const bool lasting = gated && CountGated(nu, span_s);
-      outcome = (gated || after_left_out) && !lasting ? Outcome::kLeftOut : Outcome::kMeasured;
+      const bool left_out = gated || after_left_out;
+      if (!left_out) gated_run_ = 0;
+      const bool lasting = left_out && CountLeftOut(nu, span_s);
+      outcome = left_out && !lasting ? Outcome::kLeftOut : Outcome::kMeasured;
       after_left_out_ = gated && !lasting;  // the next interval holds the force's smoothed tail
       if (lasting) {
         measurement->velocity_innovation_mps = -run_velocity_error_mps_;

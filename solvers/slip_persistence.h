@@ -21,9 +21,10 @@
 // on b_ax). A measurement beyond gate_sd of its predicted sd (the bias's variance plus its own) is
 // a force the accelerometer felt, not a bias: it is left out, and so is the next interval's, which
 // holds the smoothed tail of the same force; the slip that force made persists from then on.
-// Such a force is a pulse. Gated intervals that go on (lasting_intervals in a row, of one sign,
-// each within max_lasting_error_mps2) are the bias estimate's error grown past the gate: from the
-// last of them on each is applied, with the velocity the prediction lost to the error over the
+// Such a force is a pulse. Intervals left out that go on (lasting_intervals in a row, the gated
+// and their tails, of one sign, each within max_lasting_error_mps2) are the bias estimate's error
+// grown past the gate (a growing bias variance may let a tail back inside it): from the last of
+// them on each is applied, with the velocity the prediction lost to the error over the
 // run's intervals not yet applied, sum(nu T), as a measurement of v_bx's error (variance sd_mps^2
 // per interval). Without it the slip the velocity ran off to would persist in the check too.
 // An interval opens while the smoothed rim speed is above min_rim_speed_mps, and closes when it is
@@ -75,8 +76,8 @@ class SlipPersistence {
   Outcome Cycle(const CycleInput& in, Measurement* measurement);
 
  private:
-  // Adds a gated interval's innovation to the run; true when the run is a lasting error.
-  bool CountGated(double innovation_mps2, double span_s);
+  // Adds a left-out interval's innovation to the run; true when the run is a lasting error.
+  bool CountLeftOut(double innovation_mps2, double span_s);
 
   SlipPersistenceConfig config_;
   double felt_v_mps_ = 0.0;     // the integrated accelerometer velocity (its origin is arbitrary)

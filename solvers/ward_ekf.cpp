@@ -301,7 +301,9 @@ void WardEkf::CheckBiasAgainstWheels() {
         ekf::MeasurementRows velocity;
         velocity.AddOnState(kVbx, m.velocity_innovation_mps, m.velocity_variance_mps_sq,
                             "slip_persistence");
-        Update(velocity, nullptr, &stats_.slip_persistence);
+        StreamCounters part_of_the_check;
+        Update(velocity, nullptr, &part_of_the_check);
+        ++stats_.slip_persistence_lasting;
       }
       break;
     }

@@ -100,6 +100,7 @@ struct EkfStats {
   // The wheels' checks on the accelerometer bias (ModelConfig::slip_persistence): applied, and
   // left out by their gate (a force the accelerometer felt).
   StreamCounters slip_persistence;
+  long slip_persistence_lasting = 0;  // of those applied, lasting errors (with the velocity moved)
   // Those applied, in time order, for a smoother behind the filter (about two a second while the
   // robot drives; a bank's and the disturbance modes' stats are their first filter's).
   std::vector<AccelBiasMeasurement> wheel_bias_checks;

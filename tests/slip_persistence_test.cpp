@@ -229,7 +229,9 @@ TEST(SlipPersistence, ALastingBiasErrorIsAppliedWithTheVelocityItMoved) {
     EXPECT_NEAR(closed[i].measurement.velocity_variance_mps_sq, 0.005 * 0.005, 1e-12);
   }
   for (const Closed& c : run(0)) {
-    if (c.t_s > 1.0) EXPECT_EQ(c.outcome, SlipPersistence::Outcome::kLeftOut) << "t " << c.t_s;
+    if (c.t_s > 1.0) {
+      EXPECT_EQ(c.outcome, SlipPersistence::Outcome::kLeftOut) << "t " << c.t_s;
+    }
     EXPECT_EQ(c.measurement.velocity_variance_mps_sq, 0.0);
   }
 }

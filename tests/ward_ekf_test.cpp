@@ -480,8 +480,8 @@ TEST(WardEkf, TheAttitudesSlowErrorLetsTheBiasFollowAWrongAhrs) {
 // docs/mismatch.md), with and without GNSS, the attitude's walk in the bias either way; and on two
 // whose wheels stall with the held body and then spin up (seed 8 run 07, seed 5 run 10), where
 // the slip rises on its own and the check must not hold the velocity to the wheels. Measured on
-// the drifting runs: false immobilized 11.5 -> 0.73 % of samples with GNSS, 29.8 -> 4.8 % without;
-// velocity RMSE 0.047 -> 0.021 and 0.067 -> 0.037 m/s; the stalls detected either way. The
+// the drifting runs: false immobilized 11.5 -> 0.11 % of samples with GNSS, 29.8 -> 0.22 % without;
+// velocity RMSE 0.047 -> 0.019 and 0.067 -> 0.024 m/s; the stalls detected either way. The
 // control: three matched ward21 runs (the bank): the same detections and false alarms, velocity
 // error 0.0164 -> 0.0153 m/s.
 TEST(WardEkf, TheWheelsCheckHoldsTheBiasOfASlowRobot) {
@@ -519,6 +519,57 @@ TEST(WardEkf, TheWheelsCheckHoldsTheBiasOfASlowRobot) {
   const std::vector<const char*> matched = {"ward21/01", "ward21/02", "ward21/03"};
   const Evaluation a = suite(matched, 1, true, false), b = suite(matched, 1, true, true);
   ExpectMatchedControlUnchanged(a, b, 1.05);
+}
+
+// The wheels' check applies a bias error that lasts past its gate, with the velocity it moved
+// (SlipPersistenceConfig::lasting_intervals), on slow ward21m robots whose bias estimate a
+// hold-back's release left wrong by 0.06-0.09 m/s^2: the velocity then sinks off the wheels for
+// seconds, every interval beyond the gate, and without GNSS the slip it reaches is held as an
+// immobilization for the rest of the run (seed 14 run 02, seed 2 run 03). Measured without GNSS:
+// false immobilized 32 % of samples -> 0, velocity RMSE 0.083 -> 0.033 m/s (with GNSS 8.1 % -> 0,
+// 0.051 -> 0.026 m/s). A robot that speeds up after its hold-back (seed 14 run 15: 0.3-0.5 m/s^2
+// for seconds) is a force, not a bias: left out as before. The stalls stay detected; the matched
+// control does not move.
+TEST(WardEkf, TheWheelsCheckAppliesABiasErrorThatLasts) {
+  const auto suite = [](const std::vector<const char*>& names, uint64_t seed, bool gnss,
+                        bool lasting) {
+    FilterRunOptions options;
+    options.use_gps = gnss;
+    return testing::EvaluateFrontEnd(names, seed, options, [lasting](ModelConfig* model) {
+      if (!lasting) model->slip_persistence.lasting_intervals = 0;
+    });
+  };
+  for (const bool gnss : {true, false}) {
+    const Evaluation a = Combine({suite({"ward21m/02"}, 14, gnss, false),
+                                  suite({"ward21m/03"}, 2, gnss, false)},
+                                 "without"),
+                     b = Combine({suite({"ward21m/02"}, 14, gnss, true),
+                                  suite({"ward21m/03"}, 2, gnss, true)},
+                                 "with");
+    const Evaluation speeding_a = suite({"ward21m/15"}, 14, gnss, false),
+                     speeding_b = suite({"ward21m/15"}, 14, gnss, true);
+    std::printf(
+        "%s: false %.4f -> %.4f, v RMSE %.4f -> %.4f, detected %d -> %d; speeding up after its "
+        "hold-back: v RMSE %.4f -> %.4f\n",
+        gnss ? "GNSS" : "no GNSS", a.false_immobilized_fraction(), b.false_immobilized_fraction(),
+        a.velocity_rmse, b.velocity_rmse, a.detected(), b.detected(), speeding_a.velocity_rmse,
+        speeding_b.velocity_rmse);
+    EXPECT_LT(b.velocity_rmse, a.velocity_rmse);
+    EXPECT_NEAR(speeding_b.velocity_rmse, speeding_a.velocity_rmse,
+                0.05 * speeding_a.velocity_rmse);
+    if (!gnss) {
+      EXPECT_GT(a.false_immobilized_fraction(), 0.2);
+      EXPECT_LT(b.false_immobilized_fraction(), 0.1 * a.false_immobilized_fraction());
+      EXPECT_LT(b.velocity_rmse, 0.5 * a.velocity_rmse);
+    }
+    const Evaluation stall8 = suite({"ward21m/07"}, 8, gnss, true);
+    const Evaluation stall5 = suite({"ward21m/10"}, 5, gnss, true);
+    EXPECT_EQ(stall8.detected(), 1) << "seed 8 run 07, " << (gnss ? "GNSS" : "no GNSS");
+    EXPECT_EQ(stall5.detected(), 1) << "seed 5 run 10, " << (gnss ? "GNSS" : "no GNSS");
+  }
+  const std::vector<const char*> matched = {"ward21/01", "ward21/02", "ward21/03"};
+  const Evaluation a = suite(matched, 1, true, false), b = suite(matched, 1, true, true);
+  ExpectMatchedControlUnchanged(a, b, 1.0001);
 }
 
 // The checks the filter applied are kept for the smoothers (EkfStats::wheel_bias_checks) as the
