@@ -22,24 +22,26 @@ SlipPersistence::SlipPersistence(const SlipPersistenceConfig& config) : config_(
   if (!config.IsValid(&error)) throw std::invalid_argument(error);
 }
 
-bool SlipPersistence::CountLeftOut(double innovation_mps2, double span_s) {
-  const double sign = innovation_mps2 > 0.0 ? 1.0 : -1.0;
-  const bool continues = gated_run_ > 0 && sign == gated_sign_;
-  if (std::abs(innovation_mps2) > config_.max_lasting_error_mps2) {
-    gated_run_ = 0;
-    return false;
-  }
-  if (!continues) {
-    gated_run_ = 0;
-    run_velocity_error_mps_ = 0.0;
-    run_unapplied_ = 0;
-  }
-  ++gated_run_;
-  gated_sign_ = sign;
-  // Over this interval the prediction's velocity ran nu T past the check's.
+void SlipPersistence::ResetRun() {
+  left_out_run_ = 0;
+  left_out_sign_ = 0.0;
+  run_velocity_error_mps_ = 0.0;
+  run_unapplied_ = 0;
+}
+
+bool SlipPersistence::CountLeftOut(double innovation_mps2, double span_s, bool may_start) {
+  const double sign = innovation_mps2 > 0.0 ? 1.0 : (innovation_mps2 < 0.0 ? -1.0 : 0.0);
+  const bool continues = left_out_run_ > 0 && sign != 0.0 && sign == left_out_sign_;
+  const bool counts = sign != 0.0 && std::abs(innovation_mps2) <= config_.max_lasting_error_mps2 &&
+                      (continues || may_start);
+  if (!counts || !continues) ResetRun();
+  if (!counts) return false;
+  ++left_out_run_;
+  left_out_sign_ = sign;
+  // Over this interval the error moved the prediction's velocity by nu T from the check's.
   run_velocity_error_mps_ += innovation_mps2 * span_s;
   ++run_unapplied_;
-  return config_.lasting_intervals > 0 && gated_run_ >= config_.lasting_intervals;
+  return config_.lasting_intervals > 0 && left_out_run_ >= config_.lasting_intervals;
 }
 
 SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measurement* measurement) {
@@ -62,8 +64,8 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
   Outcome outcome = Outcome::kNone;
   if (open_ && t_s - open_t_s_ >= config_.interval_s - kIntervalToleranceS) {
     open_ = false;
-    const bool after_left_out = after_left_out_;
-    after_left_out_ = false;
+    const bool after_left_out = after_left_out_, after_force = after_force_;
+    after_left_out_ = after_force_ = false;
     const double span_s = t_s - open_t_s_;
     const double rim_change_mps = rim_smoothed_mps_ - open_rim_smoothed_mps_;
     if (std::abs(rim_smoothed_mps_) > min_rim_mps &&
@@ -83,10 +85,15 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
       const double gate = config_.gate_sd;
       const bool gated = nu * nu > gate * gate * predicted;
       const bool left_out = gated || after_left_out;
-      if (!left_out) gated_run_ = 0;
-      const bool lasting = left_out && CountLeftOut(nu, span_s);
+      // A tail continues a run only while it reads an error beyond the measurement's own sd (a
+      // growing bias variance may have let it back inside the gate); the tail of a force beyond
+      // a bias error continues none and starts none.
+      const bool reads_error = gated || nu * nu > gate * gate * measurement->variance_mps2_sq;
+      if (!left_out || !reads_error) ResetRun();
+      const bool lasting = left_out && reads_error && CountLeftOut(nu, span_s, !after_force);
       outcome = left_out && !lasting ? Outcome::kLeftOut : Outcome::kMeasured;
       after_left_out_ = gated && !lasting;  // the next interval holds the force's smoothed tail
+      after_force_ = gated && std::abs(nu) > config_.max_lasting_error_mps2;
       if (lasting) {
         measurement->velocity_innovation_mps = -run_velocity_error_mps_;
         measurement->velocity_variance_mps_sq = run_unapplied_ * config_.sd_mps * config_.sd_mps;
@@ -94,7 +101,7 @@ SlipPersistence::Outcome SlipPersistence::Cycle(const CycleInput& in, Measuremen
         run_unapplied_ = 0;
       }
     } else {
-      gated_run_ = 0;
+      ResetRun();
     }
   }
   if (!open_ && std::abs(rim_smoothed_mps_) > min_rim_mps) {

@@ -22,11 +22,13 @@
 // a force the accelerometer felt, not a bias: it is left out, and so is the next interval's, which
 // holds the smoothed tail of the same force; the slip that force made persists from then on.
 // Such a force is a pulse. Intervals left out that go on (lasting_intervals in a row, the gated
-// and their tails, of one sign, each within max_lasting_error_mps2) are the bias estimate's error
-// grown past the gate (a growing bias variance may let a tail back inside it): from the last of
-// them on each is applied, with the velocity the prediction lost to the error over the
-// run's intervals not yet applied, sum(nu T), as a measurement of v_bx's error (variance sd_mps^2
-// per interval). Without it the slip the velocity ran off to would persist in the check too.
+// and their tails, of one sign, each within max_lasting_error_mps2, a tail beyond gate_sd of its
+// own sd) are the bias estimate's error grown past the gate (a growing bias variance may let a
+// tail back inside it): from the last of them on each is applied, with the velocity the error
+// moved the prediction by over the run's intervals not yet applied, sum(nu T), as a measurement
+// of v_bx's error -sum(nu T) (variance sd_mps^2 per interval). Without it the slip the velocity
+// ran off to would persist in the check too. The tail of a gated force beyond that bound neither
+// continues a run nor starts one.
 // An interval opens while the smoothed rim speed is above min_rim_speed_mps, and closes when it is
 // T long; it measures only if the rim speed, smoothed at both ends and as given at its opening,
 // stayed above that floor on the same side, and if the smoothed rim speed changed by no more than
@@ -71,13 +73,16 @@ class SlipPersistence {
     double v_bx_mps = 0.0;
     double bias_variance_mps2_sq = 0.0;
   };
-  // When an interval closes and qualifies: kMeasured, with *measurement to apply, or kLeftOut
-  // (by the gate, or as the tail after one the gate left out; *measurement filled either way).
+  // When an interval closes and qualifies: kMeasured, with *measurement to apply (and, for a
+  // lasting error, its velocity_* to apply with it), or kLeftOut (by the gate, or as the tail
+  // after one the gate left out; *measurement filled either way).
   Outcome Cycle(const CycleInput& in, Measurement* measurement);
 
  private:
-  // Adds a left-out interval's innovation to the run; true when the run is a lasting error.
-  bool CountLeftOut(double innovation_mps2, double span_s);
+  // Adds a left-out interval's innovation to the run (one that does not continue it starts a
+  // new one where may_start); true when the run is a lasting error.
+  bool CountLeftOut(double innovation_mps2, double span_s, bool may_start);
+  void ResetRun();
 
   SlipPersistenceConfig config_;
   double felt_v_mps_ = 0.0;     // the integrated accelerometer velocity (its origin is arbitrary)
@@ -87,10 +92,11 @@ class SlipPersistence {
   bool smoothing_started_ = false;
   bool open_ = false;
   bool after_left_out_ = false;  // the previous interval was left out
-  // The gated intervals in a row, their innovations' sign, and the velocity error over those of
-  // them not yet applied, sum(nu T), with their count.
-  int gated_run_ = 0;
-  double gated_sign_ = 0.0;
+  bool after_force_ = false;     // ... by the gate, beyond a bias error
+  // The intervals left out in a row (gated, or a gated one's tail), their innovations' sign, and
+  // the velocity the error moved over those of them not yet applied, sum(nu T), with their count.
+  int left_out_run_ = 0;
+  double left_out_sign_ = 0.0;
   double run_velocity_error_mps_ = 0.0;
   int run_unapplied_ = 0;
   double open_t_s_ = 0.0, open_felt_smoothed_mps_ = 0.0, open_rim_smoothed_mps_ = 0.0,

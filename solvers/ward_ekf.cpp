@@ -296,11 +296,14 @@ void WardEkf::CheckBiasAgainstWheels() {
       row.AddOnState(kAccelBias, m.innovation_mps2, m.variance_mps2_sq, "slip_persistence");
       stats_.wheel_bias_checks.push_back(
           {t_, m.removed_bias_mps2 + m.innovation_mps2, std::sqrt(m.variance_mps2_sq)});
+      const double v_bx_before_mps = x_(kVbx);
       Update(row, nullptr, &stats_.slip_persistence);
       if (m.velocity_variance_mps_sq > 0.0) {
+        // Against the state the bias row left: through their correlation it moved v_bx too.
+        // (The run's last interval is in both rows; the noise they share is not modelled.)
         ekf::MeasurementRows velocity;
-        velocity.AddOnState(kVbx, m.velocity_innovation_mps, m.velocity_variance_mps_sq,
-                            "slip_persistence");
+        velocity.AddOnState(kVbx, m.velocity_innovation_mps - (x_(kVbx) - v_bx_before_mps),
+                            m.velocity_variance_mps_sq, "slip_persistence_velocity");
         StreamCounters part_of_the_check;
         Update(velocity, nullptr, &part_of_the_check);
         ++stats_.slip_persistence_lasting;

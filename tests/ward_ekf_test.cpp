@@ -499,8 +499,8 @@ void ExpectMatchedControlUnchanged(const Suite& suite, double rmse_ratio) {
 // docs/mismatch.md), with and without GNSS, the attitude's walk in the bias either way; and on two
 // whose wheels stall with the held body and then spin up (seed 8 run 07, seed 5 run 10), where
 // the slip rises on its own and the check must not hold the velocity to the wheels. Measured on
-// the drifting runs: false immobilized 11.5 -> 0.11 % of samples with GNSS, 29.8 -> 0.22 % without;
-// velocity RMSE 0.047 -> 0.019 and 0.067 -> 0.024 m/s; the stalls detected either way. The
+// the drifting runs: false immobilized 11.5 -> 0.73 % of samples with GNSS, 29.8 -> 0.85 % without;
+// velocity RMSE 0.047 -> 0.021 and 0.067 -> 0.025 m/s; the stalls detected either way. The
 // control: three matched ward21 runs (the bank): the same detections and false alarms, velocity
 // error 0.0164 -> 0.0153 m/s.
 TEST(WardEkf, TheWheelsCheckHoldsTheBiasOfASlowRobot) {
@@ -540,8 +540,8 @@ TEST(WardEkf, TheWheelsCheckHoldsTheBiasOfASlowRobot) {
 // hold-back's release left wrong by 0.06-0.09 m/s^2: the velocity then sinks off the wheels for
 // seconds, every interval beyond the gate, and without GNSS the slip it reaches is held as an
 // immobilization for the rest of the run (seed 14 run 02, seed 2 run 03). Measured without GNSS:
-// false immobilized 32 % of samples -> 0, velocity RMSE 0.083 -> 0.033 m/s (with GNSS 8.1 % -> 0,
-// 0.051 -> 0.026 m/s). A robot that speeds up after its hold-back (seed 14 run 15: 0.3-0.5 m/s^2
+// false immobilized 32 -> 0.17 % of samples, velocity RMSE 0.083 -> 0.033 m/s (with GNSS 8.1 % ->
+// 0, 0.051 -> 0.026 m/s). A robot that speeds up after its hold-back (seed 14 run 15: 0.3-0.5 m/s^2
 // for seconds) is a force, not a bias: left out as before. The stalls stay detected; the matched
 // control does not move.
 TEST(WardEkf, TheWheelsCheckAppliesABiasErrorThatLasts) {
@@ -568,12 +568,13 @@ TEST(WardEkf, TheWheelsCheckAppliesABiasErrorThatLasts) {
         gnss ? "GNSS" : "no GNSS", a.false_immobilized_fraction(), b.false_immobilized_fraction(),
         a.velocity_rmse, b.velocity_rmse, a.detected(), b.detected(), speeding_a.velocity_rmse,
         speeding_b.velocity_rmse);
-    EXPECT_LT(b.velocity_rmse, a.velocity_rmse);
+    EXPECT_GT(a.false_immobilized_fraction(), 0.05);
+    EXPECT_LT(b.false_immobilized_fraction(), 0.1 * a.false_immobilized_fraction());
+    EXPECT_LT(b.velocity_rmse, 0.7 * a.velocity_rmse);
     EXPECT_NEAR(speeding_b.velocity_rmse, speeding_a.velocity_rmse,
                 0.05 * speeding_a.velocity_rmse);
     if (!gnss) {
       EXPECT_GT(a.false_immobilized_fraction(), 0.2);
-      EXPECT_LT(b.false_immobilized_fraction(), 0.1 * a.false_immobilized_fraction());
       EXPECT_LT(b.velocity_rmse, 0.5 * a.velocity_rmse);
     }
     ExpectTheStallsDetected(suite, gnss);
