@@ -81,7 +81,7 @@ void RegisterSmoothCommand(CLI::App* app, int* status) {
         WindowSmootherResult result = SmoothWindowed(
             log, model,
             ChunkedOptions(options->chunk_min, options->overlap_s, rate_hz, smoother_options));
-        if (smoother_options.problem.stiffness_prior_sd > 0.0 && model.law_samples.size() < 2) {
+        if (smoother_options.problem.stiffness_prior_sd > 0.0 && !model.ListsSoils()) {
           report << "note: the chunks keep the law's slip stiffness where the model lists no "
                     "soils (--stiffness-sd is for the whole-log solve there)\n";
         }

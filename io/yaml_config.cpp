@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "factors/catalogue_terms.h"
@@ -14,9 +16,14 @@
 namespace slipgraph {
 namespace {
 
+// A numeric key and where it goes: a real number, or a whole one (a count).
 struct NumberField {
+  NumberField(const char* key, double* target, bool needed)
+      : key(key), target(target), needed(needed) {}
+  NumberField(const char* key, int* whole, bool needed) : key(key), whole(whole), needed(needed) {}
   const char* key;
-  double* target;
+  double* target = nullptr;
+  int* whole = nullptr;
   bool needed;
 };
 
@@ -68,7 +75,15 @@ void ReadNumbers(const std::string& path, const YAML::Node& map, const std::stri
       if (field.needed) Fail(path, map, prefix + field.key, "", "missing key");
       continue;
     }
-    *field.target = ReadNumber(path, value, prefix + field.key);
+    const double number = ReadNumber(path, value, prefix + field.key);
+    if (field.whole == nullptr) {
+      *field.target = number;
+      continue;
+    }
+    if (number != std::floor(number) || std::fabs(number) > std::numeric_limits<int>::max()) {
+      Fail(path, value, prefix + field.key, value.Scalar(), "expected a whole number");
+    }
+    *field.whole = static_cast<int>(number);
   }
   for (const auto& entry : map) {
     const std::string key = entry.first.as<std::string>();
@@ -223,8 +238,6 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
   ProcessNoiseConfig& q = m.process;
   WeakConstraintConfig& wc = m.weak_constraints;
   ImmobilizationConfig& im = m.immobilization;
-  double init_samples = m.offset_init_samples;
-  double lasting_intervals = m.slip_persistence.lasting_intervals;
   const std::vector<std::pair<std::string, std::vector<NumberField>>> sections = {
       {"tire", TireFields(&m.tire, false)},
       {"rolling", RollingFields(&m.rolling, false)},
@@ -280,10 +293,10 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"smoothing", &m.slip_persistence.smoothing_s, false},
         {"min_rim_speed", &m.slip_persistence.min_rim_speed_mps, false},
         {"max_rim_acceleration", &m.slip_persistence.max_rim_acceleration_mps2, false},
-        {"lasting_intervals", &lasting_intervals, false},
+        {"lasting_intervals", &m.slip_persistence.lasting_intervals, false},
         {"max_lasting_error", &m.slip_persistence.max_lasting_error_mps2, false}}},
       {"offsets",
-       {{"init_samples", &init_samples, false},
+       {{"init_samples", &m.offset_init_samples, false},
         {"ema_samples", &m.offset_ema_samples, false},
         {"rest_guard", &m.offset_rest_guard_s, false}}},
       {"calibration",
@@ -355,8 +368,6 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
     }
     if (!known) Fail(path, entry.first, key, "", "unknown key");
   }
-  m.offset_init_samples = static_cast<int>(init_samples);
-  m.slip_persistence.lasting_intervals = static_cast<int>(lasting_intervals);
   std::string error;
   if (!m.IsValid(&error)) throw InputError(path, 0, "", "", "invalid model: " + error);
   // The effects that act on windows of the drive need them, and only they take them.

@@ -109,9 +109,9 @@ struct SlipPersistenceConfig {
   // A force the accelerometer feels at a hold-back is a pulse: the gate leaves out its interval
   // and the next (its smoothed tail). Intervals left out that go on, this many in a row with
   // innovations of one sign each within max_lasting_error_mps2, are the bias estimate's own
-  // error instead: from the last of them on they are applied, and so is the velocity the
-  // prediction lost to that error over them (a robot whose velocity has run off its wheels is
-  // otherwise held there by the slip the check then sees persist). 0: every gated interval left
+  // error instead: from the last of them on they are applied, and so is the velocity that error
+  // moved the prediction by over them, either way (a robot whose velocity has run off its wheels
+  // is otherwise held there by the slip the check then sees persist). 0: every gated interval left
   // out. Chosen on ward21m and ward21 seeds 1-20, reported on 21-40 (docs/mismatch.md).
   int lasting_intervals = 3;
   double max_lasting_error_mps2 = 0.1;  // a larger one is a force: a robot that speeds up
@@ -191,6 +191,8 @@ struct ModelConfig {
   // more, their spread around the law (correlations included) replaces the three above in the
   // batch's consider covariance, and the front end is a bank whose spread counts the law.
   std::vector<LawSample> law_samples;
+  // Whether the model lists its soils: two or more law_samples (one is no spread).
+  bool ListsSoils() const { return law_samples.size() >= 2; }
   ProcessNoiseConfig process;
   SensorNoise measurement;  // from vehicle.yaml sensors unless the model file overrides it
   WeakConstraintConfig weak_constraints;

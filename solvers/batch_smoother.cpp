@@ -40,7 +40,7 @@ WardProblemOptions WithFilterSettings(WardProblemOptions options, const FilterRu
 
 double PostProcessingStiffnessPriorSd(const ModelConfig& model, double requested) {
   if (!std::isnan(requested)) return requested;
-  return model.law_samples.size() >= 2 ? kPostProcessingStiffnessPriorSd : 0.0;
+  return model.ListsSoils() ? kPostProcessingStiffnessPriorSd : 0.0;
 }
 
 using namespace ward;  // NOLINT: state indices

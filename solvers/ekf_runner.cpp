@@ -63,7 +63,7 @@ void Feed(const DriveLog& log, const StreamSelection& selection, Filter* filter,
 // disturbance modes or the paper's single filter) fed the selected streams.
 void RunChosenFilter(const DriveLog& log, const ModelConfig& model, const FilterRunOptions& options,
                      const StreamSelection& selection, FilterResult* result) {
-  if (options.multiple_model && model.law_samples.size() >= 2) {
+  if (options.multiple_model && model.ListsSoils()) {
     MultipleModelEkf filters(log.vehicle, model, options.ekf, options.multiple_model_options);
     Feed(log, selection, &filters, result);
     result->notes.push_back(
@@ -171,7 +171,7 @@ FilterResult RunEkf(const DriveLog& log, const ModelConfig& given,
     selection.Set(s, false);
   }
   RunChosenFilter(log, model, options, selection, &result);
-  const bool bank = options.multiple_model && model.law_samples.size() >= 2;
+  const bool bank = options.multiple_model && model.ListsSoils();
   if (slope_sd > 0.0) {
     if (bank) {
       result.notes.push_back(

@@ -21,7 +21,7 @@ MultipleModelEkf::MultipleModelEkf(const Vehicle& vehicle, const ModelConfig& mo
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   filters_.push_back(std::make_unique<WardEkf>(vehicle, model, ekf));
   laws_.push_back({model.tire, model.rolling});
-  if (model.law_samples.size() >= 2) {
+  if (model.ListsSoils()) {
     for (const LawSample& sample : model.law_samples) {
       ModelConfig soil = model;
       soil.tire = sample.tire;

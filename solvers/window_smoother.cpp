@@ -505,7 +505,7 @@ WindowSmootherResult SmoothWindowed(const DriveLog& log, const ModelConfig& mode
   if (options.bias_from_front_end && problem_options.accel_bias.empty()) {
     problem_options.accel_bias = result.ekf.stats.wheel_bias_checks;
   }
-  const bool soils = model.law_samples.size() >= 2;
+  const bool soils = model.ListsSoils();
   problem_options.stiffness_prior_sd = soils ? options.stiffness_prior_sd : 0.0;
   problem_options.no_pull_back_sd_density = options.no_pull_back_sd_density;
 

@@ -115,6 +115,26 @@ TEST(YamlConfig, UnknownEffectNameIsAnErrorNamingItsLine) {
   EXPECT_FALSE(change.InEffectWindow("terrain_change", 20.0));
 }
 
+// A count (the samples the offsets are averaged over, the intervals of a lasting run) is a whole
+// number: 2.5 is an error naming its key and line, not 2.
+TEST(YamlConfig, ACountThatIsNotAWholeNumberIsAnErrorNamingIt) {
+  try {
+    ReadModelYaml(WriteModel("tire: {C1: 0.6}\nslip_persistence:\n  lasting_intervals: 2.5\n"),
+                  LagrVehicle());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.column(), "slip_persistence.lasting_intervals");
+    EXPECT_EQ(e.line(), 3);
+  }
+  EXPECT_THROW(ReadModelYaml(WriteModel("offsets: {init_samples: 1e12}\n"), LagrVehicle()),
+               InputError);
+  const ModelConfig m = ReadModelYaml(WriteModel("offsets: {init_samples: 250}\nslip_persistence: "
+                                                 "{lasting_intervals: 4.0}\n"),
+                                      LagrVehicle());
+  EXPECT_EQ(m.offset_init_samples, 250);
+  EXPECT_EQ(m.slip_persistence.lasting_intervals, 4);
+}
+
 TEST(YamlConfig, InvalidModelValueIsRejected) {
   EXPECT_THROW(ReadModelYaml(WriteModel("weak_constraints: {decay_alpha: 1.5}\n"), LagrVehicle()),
                InputError);
