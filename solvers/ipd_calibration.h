@@ -63,7 +63,8 @@ struct IpdOptions {
   // change). 0: never.
   int readmit_after = 1;
   // The reported prediction covariance matched to the recent errors
-  // (solvers/ipd_covariance_matching.h), with a memory of this many predictions; 0: off.
+  // (solvers/ipd_covariance_matching.h), with a memory of this many predictions, by the EKF, the
+  // window and the batch; 0: off.
   double match_covariance_segments = 20.0;
   IpdTerrainMemoryOptions terrain_memory;
   IpdJumpOptions jump;

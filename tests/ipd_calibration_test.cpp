@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
@@ -188,6 +189,15 @@ TEST(IpdCalibration, FindsATerrainChangeTheGateMisses) {
   EXPECT_TRUE(noted);
 }
 
+// The predictions that start after the first minute, while alpha still has its prior sd before.
+std::vector<PredictionError> AfterTheFirstMinute(const std::vector<PredictionError>& all) {
+  std::vector<PredictionError> late;
+  for (const PredictionError& e : all) {
+    if (e.t_start >= all.front().t_start + 60.0) late.push_back(e);
+  }
+  return late;
+}
+
 TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   const DriveLog log = SimulateIpd(35.0, "");
   const IpdCalibrationResult result = CalibrateIpdEkf(log);
@@ -206,11 +216,7 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   EXPECT_LT(calibrated.sd_cross_m, 0.4 * no_slip.sd_cross_m);                           // 60 %
   EXPECT_LT(calibrated.mean_heading_error_rad, 0.17 * no_slip.mean_heading_error_rad);  // 83 %
   EXPECT_LT(calibrated.sd_along_m, 0.55 * no_slip.sd_along_m);  // the paper's 60 % is not reached
-  std::vector<PredictionError> after_first_minute;
-  for (const PredictionError& e : result.calibrated) {
-    if (e.t_start >= result.calibrated.front().t_start + 60.0) after_first_minute.push_back(e);
-  }
-  const PredictionStats late = Summarize(after_first_minute);
+  const PredictionStats late = Summarize(AfterTheFirstMinute(result.calibrated));
   std::printf("predicted / sample variance after the first minute: %.2f %.2f %.2f\n",
               late.predicted_over_sample[0], late.predicted_over_sample[1],
               late.predicted_over_sample[2]);
@@ -235,11 +241,8 @@ TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   // 0.0709 / 0.0698 / 0.0695 m; docs/ipd.md).
   EXPECT_LE(window.mean_position_error_m, calibrated.mean_position_error_m);
   EXPECT_LE(window.mean_heading_error_rad, 1.02 * calibrated.mean_heading_error_rad);
-  std::vector<PredictionError> window_late;
-  for (const PredictionError& e : window_result.calibrated) {
-    if (e.t_start >= window_result.calibrated.front().t_start + 60.0) window_late.push_back(e);
-  }
-  const Eigen::Vector3d window_ratio = Summarize(window_late).predicted_over_sample;
+  const Eigen::Vector3d window_ratio =
+      Summarize(AfterTheFirstMinute(window_result.calibrated)).predicted_over_sample;
   std::printf("window: %.2f %.2f %.2f\n", window_ratio[0], window_ratio[1], window_ratio[2]);
   for (int i = 0; i < 3; ++i) {
     EXPECT_GT(window_ratio[i], 0.8);
@@ -258,7 +261,8 @@ TEST(IpdCalibration, Ipd35mBeatsTheNoSlipModelWithoutTheSlipModelInItsTruth) {
   const IpdCalibrationResult ekf = CalibrateIpdEkf(log);
   const PredictionStats no_slip = Summarize(ekf.no_slip);
   const PredictionStats filtered = Summarize(ekf.calibrated);
-  const PredictionStats batch = Summarize(CalibrateIpdBatch(log).calibrated);
+  const IpdCalibrationResult batch_result = CalibrateIpdBatch(log);
+  const PredictionStats batch = Summarize(batch_result.calibrated);
   std::printf(
       "ipd35m seed 1: position %.4f -> ekf %.4f, batch %.4f m; sd heading %.4f -> %.4f, "
       "%.4f rad\n",
@@ -267,6 +271,19 @@ TEST(IpdCalibration, Ipd35mBeatsTheNoSlipModelWithoutTheSlipModelInItsTruth) {
   EXPECT_LT(filtered.mean_position_error_m, 0.4 * no_slip.mean_position_error_m);
   EXPECT_LT(batch.mean_position_error_m, 0.4 * no_slip.mean_position_error_m);
   EXPECT_LT(batch.sd_heading_rad, 0.29 * no_slip.sd_heading_rad);
+  // The batch's heading errors outgrow its predicted variance in tight turns at low speed, where
+  // the 13-parameter model's yaw slip is biased; its covariance matching takes back part of it
+  // (after the first minute 0.32 -> 0.59 on this seed; over 20 seeds in docs/mismatch.md) and
+  // leaves along and cross conservative within 30 %.
+  const Eigen::Vector3d ratio =
+      Summarize(AfterTheFirstMinute(batch_result.calibrated)).predicted_over_sample;
+  std::printf("batch, predicted / sample variance after the first minute: %.2f %.2f %.2f\n",
+              ratio[0], ratio[1], ratio[2]);
+  EXPECT_GT(ratio[2], 0.5);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GT(ratio[i], 0.9);
+    EXPECT_LT(ratio[i], 1.3);
+  }
 }
 
 }  // namespace
