@@ -1,10 +1,12 @@
 // IPD calibration figures on simulated tracked-vehicle logs (docs/ipd.md records them):
 //
 //   build/bench/ipd_report [--scenario ipd35|ipd35m] [--seed N] [--methods ekf,window,batch]
-//                          [--errors PREFIX]
+//                          [--errors PREFIX] [--no-matching]
 //                                          the three methods (or those listed), recovery after
 //                                          terrain changes; each prediction's errors and
-//                                          predicted variances to PREFIX<method>.csv
+//                                          predicted variances to PREFIX<method>.csv;
+//                                          --no-matching: the predicted covariance as calibrated
+//                                          (IpdOptions::match_covariance_segments = 0)
 //   build/bench/ipd_report --holdout       the paper's Fig. 3: holdout error against calibration
 //   time
 //
@@ -252,9 +254,10 @@ void Report(const char* name, const IpdCalibrationResult& r, const std::vector<d
 // `scenario`: ipd35 (its floor: the simulator's own slip model) or ipd35m (the best fixed
 // 13-parameter model per patch in hindsight).
 // `methods_wanted`: the methods to run, by name (ekf, window, batch); `errors_prefix`: when
-// not empty, each method's predictions are written to PREFIX<method>.csv.
+// not empty, each method's predictions are written to PREFIX<method>.csv; `options`: the
+// calibrations' options.
 int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods_wanted,
-          const std::string& errors_prefix) {
+          const std::string& errors_prefix, const IpdOptions& options) {
   const sim::ScenarioRun run = sim::ExpandScenario(scenario, seed).at(0);
   const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
   const std::vector<double> boundaries = BoundaryTimes(run.scenario, log);
@@ -269,9 +272,9 @@ int Ipd35(const std::string& scenario, uint64_t seed, const std::string& methods
       "|---|---|---|---|---|---|---|---|---|---|---|\n");
   const IpdCalibrationResult* no_slip = nullptr;
   const std::vector<std::pair<const char*, std::function<IpdCalibrationResult()>>> methods = {
-      {"ekf", [&] { return CalibrateIpdEkf(log); }},
-      {"window", [&] { return CalibrateIpdWindow(log); }},
-      {"batch", [&] { return CalibrateIpdBatch(log); }}};
+      {"ekf", [&] { return CalibrateIpdEkf(log, options); }},
+      {"window", [&] { return CalibrateIpdWindow(log, options); }},
+      {"batch", [&] { return CalibrateIpdBatch(log, options); }}};
   for (const auto& [name, calibrate] : methods) {
     if (("," + methods_wanted + ",").find("," + std::string(name) + ",") == std::string::npos) {
       continue;
@@ -338,6 +341,7 @@ int Holdout() {
 int main(int argc, char** argv) {
   std::string scenario = "ipd35", methods = "ekf,window,batch", errors_prefix;
   uint64_t seed = 1;
+  slipgraph::IpdOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--holdout") return slipgraph::Holdout();
@@ -345,6 +349,8 @@ int main(int argc, char** argv) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (arg == "--errors" && i + 1 < argc) {
       errors_prefix = argv[++i];
+    } else if (arg == "--no-matching") {
+      options.match_covariance_segments = 0.0;
     } else if (arg == "--methods" && i + 1 < argc) {
       methods = argv[++i];
     } else if (arg == "--scenario" && i + 1 < argc) {
@@ -357,9 +363,9 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: ipd_report [--scenario ipd35|ipd35m] [--seed N] [--methods "
-                   "ekf,window,batch] [--errors PREFIX] | --holdout\n");
+                   "ekf,window,batch] [--errors PREFIX] [--no-matching] | --holdout\n");
       return 2;
     }
   }
-  return slipgraph::Ipd35(scenario, seed, methods, errors_prefix);
+  return slipgraph::Ipd35(scenario, seed, methods, errors_prefix, options);
 }

@@ -80,8 +80,11 @@ void ReadNumbers(const std::string& path, const YAML::Node& map, const std::stri
       *field.target = number;
       continue;
     }
-    if (number != std::floor(number) || std::fabs(number) > std::numeric_limits<int>::max()) {
+    if (number != std::floor(number)) {
       Fail(path, value, prefix + field.key, value.Scalar(), "expected a whole number");
+    }
+    if (std::fabs(number) > std::numeric_limits<int>::max()) {
+      Fail(path, value, prefix + field.key, value.Scalar(), "out of range for a count");
     }
     *field.whole = static_cast<int>(number);
   }

@@ -27,7 +27,7 @@ bool IpdOptions::IsValid(std::string* error) const {
       .NonNegative("q_walk_sd", q_walk_sd)
       .Positive("min_pose_sd_m", min_pose_sd_m)
       .NonNegative("readmit_after", readmit_after)
-      .Positive("match_covariance_segments", match_covariance_segments)
+      .NonNegative("match_covariance_segments", match_covariance_segments)
       .NonNegative("terrain_memory.capacity", terrain_memory.capacity)
       .Positive("terrain_memory.settle_s", terrain_memory.settle_s)
       .Positive("terrain_memory.search_s", terrain_memory.search_s)

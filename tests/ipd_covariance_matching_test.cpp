@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
 namespace slipgraph {
 namespace {
@@ -76,6 +77,13 @@ TEST(IpdCovarianceMatching, OffWithNoMemory) {
     matching.Apply(0.5 * i + 2.0, &e);
     EXPECT_DOUBLE_EQ(e.predicted_covariance(1, 1), 0.05 * 0.05);
   }
+  // ... which the calibrations' options take as off, not as an error; a negative memory is one.
+  IpdOptions options;
+  options.match_covariance_segments = 0.0;
+  std::string error;
+  EXPECT_TRUE(options.IsValid(&error)) << error;
+  options.match_covariance_segments = -1.0;
+  EXPECT_FALSE(options.IsValid(&error));
 }
 
 }  // namespace
