@@ -186,6 +186,7 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
   const double sd_r2 = o.range_sd_m * o.range_sd_m + sd_h2;
   const double sd_a2 = o.articulation_sd_m * o.articulation_sd_m + sd_h2;
   SlipSlopeLaw law(o.prior_slip, o.prior_slip_per_slope, o.learn);
+  double last_advance_var = 0.0;
   for (size_t c = 1; c < scans.size(); ++c) {
     const WilcoxScan& z = scans[c];
     WilcoxCycle cycle;
@@ -194,41 +195,56 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
     cycle.slope = WilcoxCycleSlope({&scans[c - 1], &z});
     cycle.prior_slip = law.Slip(cycle.slope);
     const double mean = WilcoxPriorAdvance(cycle.rim_m, cycle.prior_slip);
-    const double sd_x = std::max(1e-5, o.prior_fraction * std::abs(cycle.rim_m));
-    // MAP over whole bins of advance: the ranged points except the farthest, and the middle
-    // wheel, against the histograms with the rear wheel at bin i.
-    // The rear wheel's ride height at the candidate: from the histograms where the terrain there
-    // has been ranged, else the offset that best aligns the ranged points (the start, before the
-    // rear wheel reaches ground the sensor has seen).
-    const auto ride_at = [&](double a) {
-      if (y.KnownAt(a)) return wheel_y(y, a) - s.At(a);
-      double sum = 0.0;
-      int n = 0;
+    // The prior on this cycle's advance: the rim motion's share, and the last cycle's error,
+    // which the histograms carry (they were moved by that estimate): the rover's place on its
+    // own map is a random walk, not known afresh each cycle.
+    const double sd_rim = std::max(1e-5, o.prior_fraction * std::abs(cycle.rim_m));
+    const double sd_x = std::sqrt(sd_rim * sd_rim + last_advance_var);
+    // The data's chi-square with the rear wheel at advance a: the ranged points except the
+    // farthest, and the middle wheel, against the histograms. All of them are measured from the
+    // rear wheel, so its ride height is an error they share: from the histograms where the
+    // terrain under it has been ranged (good to histogram_sd_m), free where it has not (the
+    // start, before the rear wheel reaches ground the sensor has seen); the shared part is
+    // fitted and taken out, its fit returned in *ride. Deciding per candidate between the
+    // histograms' ride height and a free one would favour the candidates that leave the rear
+    // wheel on unranged ground, and a rover whose estimate stops there stays stopped. A
+    // residual a candidate cannot form (ground beyond the map or not yet ranged) counts its
+    // expected chi-square, 1, so that no candidate gains by seeing less.
+    const auto fit = [&](double a, double* ride) {
+      const bool ranged = y.KnownAt(a);
+      const double map_ride = ranged ? wheel_y(y, a) - s.At(a) : 0.0;
+      double chi2 = 0.0, sum_w = 0.0, sum_we = 0.0;
+      int missing = 0;
+      const auto add = [&](double e, double sd2) {
+        chi2 += e * e / sd2, sum_w += 1.0 / sd2, sum_we += e / sd2;
+      };
       for (size_t j = 0; j + 1 < z.range.size(); ++j) {
         const double x = a + z.range[j].first;
-        if (x > y.end() || !y.KnownAt(x)) continue;
-        sum += y.At(x) - z.range[j].second;
-        ++n;
+        if (x > y.end() || !y.KnownAt(x)) {
+          ++missing;
+          continue;
+        }
+        add(z.range[j].second - (y.At(x) - map_ride), sd_r2);
       }
-      return n > 0 ? sum / n : 0.0;
+      if (y.KnownAt(a + A)) {
+        add(z.dz_mid - (wheel_y(y, a + A) - s.At(a + A) - map_ride), sd_a2);
+      } else {
+        ++missing;
+      }
+      const double ride_info = ranged ? 1.0 / sd_h2 : 0.0;
+      const double shared = sum_we / (sum_w + ride_info);  // the residuals' common part
+      if (ride) *ride = map_ride - shared;
+      return chi2 - sum_we * shared + missing;
+    };
+    const auto ride_at = [&](double a) {
+      double ride = 0.0;
+      fit(a, &ride);
+      return ride;
     };
     const auto cost = [&](int i) {
       const double a = i * b;
-      const double ride = ride_at(a);
-      double sum = 0.0;
-      for (size_t j = 0; j + 1 < z.range.size(); ++j) {
-        const double x = a + z.range[j].first;
-        if (x > y.end()) break;  // beyond the mapped terrain
-        if (!y.KnownAt(x)) continue;
-        const double e = z.range[j].second - (y.At(x) - ride);
-        sum += e * e / sd_r2;
-      }
-      if (y.KnownAt(a + A) && y.KnownAt(a)) {  // the middle wheel, on ranged ground only
-        const double e_mid = z.dz_mid - (wheel_y(y, a + A) - s.At(a + A) - ride);
-        sum += e_mid * e_mid / sd_a2;
-      }
       const double e_prior = a - mean;
-      return sum + e_prior * e_prior / (sd_x * sd_x);
+      return fit(a, nullptr) + e_prior * e_prior / (sd_x * sd_x);
     };
     const int max_bins =
         std::max(3, static_cast<int>(std::ceil((std::abs(mean) + 5.0 * sd_x + 2.0 * b) / b)));
@@ -250,6 +266,9 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
       }
     }
     cycle.advance_m = advance;
+    // The MAP's variance from the cost's curvature (chi-square: 2 / curvature); none at the
+    // search's edge, where the estimate is as uncertain as its prior.
+    last_advance_var = cycle.cost_curvature > 0.0 ? 2.0 / cycle.cost_curvature : sd_x * sd_x;
     if (o.learn_slip) {
       law.AddCycle(cycle.slope, cycle.rim_m, mean, sd_x, advance, cycle.cost_curvature);
     }

@@ -16,9 +16,14 @@
 //  4. "split the difference": the bins at the ranged points move halfway to the measurements,
 //     and s at the middle wheel halfway to what z(1) implies.
 //
-// One addition to the paper: a wheel's elevation is predicted as the terrain averaged over its
-// contact patch (a third of the radius), where the paper compares point values; the ranged
-// points stay points. The left/right check compares the two sides' advances and sinkages.
+// Additions to the paper: a wheel's elevation is predicted as the terrain averaged over its
+// contact patch (a third of the radius), where the paper compares point values (the ranged
+// points stay points); the rear wheel's ride height, which every measurement shares, is fitted
+// within the histograms' error rather than taken from them, the same way for every candidate
+// advance, and a residual a candidate cannot form counts its expected chi-square; the prior's sd
+// carries the last cycle's error as well as the rim motion's. Without these the MAP can settle
+// at zero advance once the rear wheel reaches ranged ground and stay there (docs/wilcox.md).
+// The left/right check compares the two sides' advances and sinkages.
 #pragma once
 
 #include <limits>
