@@ -179,13 +179,8 @@ void WriteErrors(const std::string& path, const IpdCalibrationResult& r) {
 void Report(const char* name, const IpdCalibrationResult& r, const std::vector<double>& boundaries,
             double seconds, bool covariance = true) {
   const PredictionStats a = Summarize(r.no_slip), b = Summarize(r.calibrated);
-  // The same ratio without the first minute, when alpha's prior (sd 0.5) makes a few predictions
-  // metres uncertain and their variance dominates the mean.
-  std::vector<PredictionError> after_first_minute;
-  for (const PredictionError& e : r.calibrated) {
-    if (e.t_start >= r.calibrated.front().t_start + 60.0) after_first_minute.push_back(e);
-  }
-  const Eigen::Vector3d late = Summarize(after_first_minute).predicted_over_sample;
+  // The same ratio without the first minute (AfterTheFirstMinute says why).
+  const Eigen::Vector3d late = Summarize(AfterTheFirstMinute(r.calibrated)).predicted_over_sample;
   std::vector<double> error;
   for (const PredictionError& e : r.calibrated) error.push_back(std::hypot(e.along_m, e.cross_m));
   // Recovery after each boundary, against two references: the settled error (the mean from

@@ -185,6 +185,14 @@ Eigen::Matrix3d ParameterCovariance(const IpdSegment& seg, const double* alpha,
   return frame * l.H * P * l.H.transpose() * frame.transpose();
 }
 
+std::vector<PredictionError> AfterTheFirstMinute(const std::vector<PredictionError>& all) {
+  std::vector<PredictionError> late;
+  for (const PredictionError& e : all) {
+    if (e.t_start >= all.front().t_start + 60.0) late.push_back(e);
+  }
+  return late;
+}
+
 PredictionStats Summarize(const std::vector<PredictionError>& errors) {
   PredictionStats s;
   s.segments = errors.size();

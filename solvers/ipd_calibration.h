@@ -128,6 +128,9 @@ struct PredictionStats {
   Eigen::Vector3d predicted_over_sample = Eigen::Vector3d::Constant(std::nan(""));
 };
 PredictionStats Summarize(const std::vector<PredictionError>& errors);
+// The predictions that start a minute or more after the first: while alpha still has its prior
+// sd (0.5), a few predictions are metres uncertain and their variance dominates the mean.
+std::vector<PredictionError> AfterTheFirstMinute(const std::vector<PredictionError>& all);
 
 struct IpdCalibrationResult {
   std::vector<IpdSegment> segments;

@@ -189,15 +189,6 @@ TEST(IpdCalibration, FindsATerrainChangeTheGateMisses) {
   EXPECT_TRUE(noted);
 }
 
-// The predictions that start after the first minute, while alpha still has its prior sd before.
-std::vector<PredictionError> AfterTheFirstMinute(const std::vector<PredictionError>& all) {
-  std::vector<PredictionError> late;
-  for (const PredictionError& e : all) {
-    if (e.t_start >= all.front().t_start + 60.0) late.push_back(e);
-  }
-  return late;
-}
-
 TEST(IpdCalibration, Ipd35BeatsTheNoSlipModel) {
   const DriveLog log = SimulateIpd(35.0, "");
   const IpdCalibrationResult result = CalibrateIpdEkf(log);
