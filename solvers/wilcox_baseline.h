@@ -52,7 +52,9 @@ struct WilcoxOptions {
   double articulation_sd_m = 0.00004;
   // The histograms' own error (ranging noise carried over, interpolation between ranged points),
   // added in quadrature to each measurement's: without it the 0.04 mm articulation term trusts
-  // a histogram that is only good to about a millimetre.
+  // a histogram that is only good to about a millimetre. It is also the sd of the rear wheel's
+  // ride height read from them, an error every measurement of a cycle shares (docs/wilcox.md
+  // says why not less).
   double histogram_sd_m = 0.001;
   // Contact patch as a fraction of the wheel radius: wheels ride on the terrain averaged over
   // it (0: point contact, as the paper's histograms assume).
