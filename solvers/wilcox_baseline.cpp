@@ -232,7 +232,8 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
         ++missing;
       }
       const double ride_info = ranged ? 1.0 / sd_h2 : 0.0;
-      const double shared = sum_we / (sum_w + ride_info);  // the residuals' common part
+      const double info = sum_w + ride_info;
+      const double shared = info > 0.0 ? sum_we / info : 0.0;  // the residuals' common part
       if (ride) *ride = map_ride - shared;
       return chi2 - sum_we * shared + missing;
     };
@@ -267,8 +268,12 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
     }
     cycle.advance_m = advance;
     // The MAP's variance from the cost's curvature (chi-square: 2 / curvature); none at the
-    // search's edge, where the estimate is as uncertain as its prior.
-    last_advance_var = cycle.cost_curvature > 0.0 ? 2.0 / cycle.cost_curvature : sd_x * sd_x;
+    // search's edge, where the estimate is as uncertain as its prior. An error beyond the whole
+    // rim motion is no estimate at all: the bound keeps a nearly flat cost from opening the next
+    // search over metres.
+    const double var_bound = std::max(sd_rim * sd_rim, cycle.rim_m * cycle.rim_m);
+    last_advance_var = std::min(
+        var_bound, cycle.cost_curvature > 0.0 ? 2.0 / cycle.cost_curvature : sd_x * sd_x);
     if (o.learn_slip) {
       law.AddCycle(cycle.slope, cycle.rim_m, mean, sd_x, advance, cycle.cost_curvature);
     }
