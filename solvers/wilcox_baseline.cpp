@@ -272,8 +272,8 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
     // rim motion is no estimate at all: the bound keeps a nearly flat cost from opening the next
     // search over metres.
     const double var_bound = std::max(sd_rim * sd_rim, cycle.rim_m * cycle.rim_m);
-    last_advance_var = std::min(
-        var_bound, cycle.cost_curvature > 0.0 ? 2.0 / cycle.cost_curvature : sd_x * sd_x);
+    last_advance_var =
+        std::min(var_bound, cycle.cost_curvature > 0.0 ? 2.0 / cycle.cost_curvature : sd_x * sd_x);
     if (o.learn_slip) {
       law.AddCycle(cycle.slope, cycle.rim_m, mean, sd_x, advance, cycle.cost_curvature);
     }
