@@ -167,9 +167,11 @@ TEST(WilcoxBaseline, AnEstimateThatStopsOnRangedGroundMovesOn) {
   WilcoxOptions options;
   options.learn_slip = true;
   const std::pair<uint64_t, const char*> runs[] = {{8, "r1cm_run05"}, {5, "r1cm_run02"}};
+  int found = 0;
   for (const auto& [seed, name] : runs) {
     for (const sim::ScenarioRun& run : sim::ExpandScenario("wilcoxm", seed)) {
       if (run.relative_directory != name) continue;
+      ++found;
       const DriveLog log = sim::Simulate(run.scenario, run.seed).log;
       const WilcoxResult result = EstimateWilcoxBaseline(log, options);
       EXPECT_LT(ScoreWilcox(log, result).odometry_error_fraction, 0.02) << seed << " " << name;
@@ -184,6 +186,7 @@ TEST(WilcoxBaseline, AnEstimateThatStopsOnRangedGroundMovesOn) {
       }
     }
   }
+  EXPECT_EQ(found, 2);  // both runs are still in the suite
 }
 
 }  // namespace
