@@ -3,17 +3,16 @@
 // does not hold. The EKF applies each row as a scalar measurement z = x[state] with variance
 // sd^2; the smoother turns the same rules into smooth soft priors.
 //
-//   WC1 the disturbance only opposes motion: sign(a_dist) = VelDir != 0        -> a_dist := 0
-//   WC2 the disturbance acts quickly: 0 < d(i_EMA)/dt < min and i_EMA < thresh -> a_dist := alpha
-//   a_dist WC3 it may stop the robot but not pull it backwards: sign(v) = -VelDir
-//       a) sign(f_tire - g sin(phi)) = -VelDir                                 -> a_dist := 0
-//       b) otherwise                               -> a_dist := max(VelDir (g sin(phi) - f_tire),
-//       a_dist)
+//   WC1 the disturbance only opposes motion: sign(a_dist) = VelDir != 0  -> a_dist := 0
+//   WC2 the disturbance acts quickly: 0 < d(i_EMA)/dt < min, i_EMA < thresh
+//                                                                      -> a_dist := alpha a_dist
+//   WC3 it may stop the robot but not pull it backwards: sign(v) = -VelDir
+//       a) sign(f_tire - g sin(phi)) = -VelDir                         -> a_dist := 0
+//       b) otherwise                -> a_dist := max(VelDir (g sin(phi) - f_tire), a_dist)
 //          (for VelDir = -1 the mirror image: min(...))
-//   WC4 wheels stopped for t_stop: biases and disturbance to zero              -> b_ax, a_dist,
-//   b_gz := 0 WC5 magnitude bounds on v, b_ax, a_dist, b_gz                              -> x_i :=
-//   sign(x_i) max_i WC6 rate bounds on v, b_ax                            -> x_i := x_i,prev +
-//   sign(dx) max_rate dt
+//   WC4 wheels stopped for t_stop: biases and disturbance to zero      -> b_ax, a_dist, b_gz := 0
+//   WC5 magnitude bounds on v, b_ax, a_dist, b_gz                      -> x_i := sign(x_i) max_i
+//   WC6 rate bounds on v, b_ax                   -> x_i := x_i,prev + sign(dx) max_rate dt
 #pragma once
 
 #include <vector>

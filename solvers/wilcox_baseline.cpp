@@ -96,7 +96,8 @@ std::vector<WilcoxScan> WilcoxScans(const DriveLog& log, Side side) {
     if (r.side != side) continue;
     const auto it = by_time.find(r.t);
     if (it == by_time.end()) continue;  // ranging without articulation at that time
-    it->second.range.emplace_back(r.d, r.dz);
+    // A point without a finite distance or elevation is no measurement.
+    if (std::isfinite(r.d) && std::isfinite(r.dz)) it->second.range.emplace_back(r.d, r.dz);
   }
   std::vector<WilcoxScan> out;
   for (auto& [t, s] : by_time) {
@@ -237,11 +238,6 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
       if (ride) *ride = map_ride - shared;
       return chi2 - sum_we * shared + missing;
     };
-    const auto ride_at = [&](double a) {
-      double ride = 0.0;
-      fit(a, &ride);
-      return ride;
-    };
     const auto cost = [&](int i) {
       const double a = i * b;
       const double e_prior = a - mean;
@@ -277,8 +273,10 @@ WilcoxSide EstimateSide(const DriveLog& log, Side side, const WilcoxOptions& o) 
     if (o.learn_slip) {
       law.AddCycle(cycle.slope, cycle.rim_m, mean, sd_x, advance, cycle.cost_curvature);
     }
-    // Translate and re-reference to the new rear contact.
-    const double ride = ride_at(advance);
+    // Translate and re-reference to the new rear contact, at the ride height fitted there: the
+    // shared offset is the rear wheel's, so the whole map moves with it.
+    double ride = 0.0;
+    fit(advance, &ride);
     Histogram y_new = y.Translated(advance, ride);
     Histogram s_new = s.Translated(advance, 0.0);
     const double d_far = z.range.back().first;

@@ -19,8 +19,9 @@
 // Additions to the paper: a wheel's elevation is predicted as the terrain averaged over its
 // contact patch (a third of the radius), where the paper compares point values (the ranged
 // points stay points); the rear wheel's ride height, which every measurement shares, is fitted
-// within the histograms' error rather than taken from them, the same way for every candidate
-// advance, and a residual a candidate cannot form counts its expected chi-square; the prior's sd
+// within the histograms' error where they hold ranged ground under it and freely where they do
+// not, by one rule for every candidate advance, and a residual a candidate cannot form counts its
+// expected chi-square; the prior's sd
 // carries the last cycle's error as well as the rim motion's. Without these the MAP can settle
 // at zero advance once the rear wheel reaches ranged ground and stay there (docs/wilcox.md).
 // The left/right check compares the two sides' advances and sinkages.
@@ -101,7 +102,7 @@ struct WilcoxResult {
 };
 
 // One side's measurements of one cycle: middle and front wheel elevations relative to the rear
-// (articulation) and the ranged points (d, dz), sorted by d.
+// (articulation) and the ranged points (d, dz) whose values are finite, sorted by d.
 struct WilcoxScan {
   double t = 0.0;
   double dz_mid = 0.0, dz_front = 0.0;

@@ -129,9 +129,9 @@ TEST(WilcoxBaseline, LearnsTheSlipSlopeLawAsItDrives) {
 
 // wilcoxm (docs/mismatch.md): slip correlated over distance around another mean, deeper ruts
 // under the following wheels, a tilted ranging sensor. At 1 cm of roughness the learned prior
-// (`sinkage`'s default) keeps the odometry error under the 1 % (measured on the suite's
-// 8 runs: 0.54 % mean, 0.84 % max); on smooth ground (0.25 cm) the learned law runs away
-// (37.6 % mean), and the left/right check flags those runs: a run it passes is good.
+// (`sinkage`'s default) keeps the odometry error under the 1 % (seed 1, the first four
+// runs: 0.32-0.54 %); on smooth ground (0.25 cm) the matching holds less (1.6-2.8 %), and the
+// left/right check flags three of those four runs; one it passes is within 5 %.
 TEST(WilcoxBaseline, OnWilcoxmTheLearnedPriorHoldsAtOneCentimetreAndSaysWhenItCannot) {
   WilcoxOptions options;
   options.learn_slip = true;
@@ -160,9 +160,14 @@ TEST(WilcoxBaseline, OnWilcoxmTheLearnedPriorHoldsAtOneCentimetreAndSaysWhenItCa
   EXPECT_EQ(smooth, 4);
 }
 
-// Two wilcoxm runs (1 cm, learned prior) on which the MAP used to settle at zero advance once the
-// rear wheel reached ranged ground (cycle 17 or so) and stay there: odometry errors of 87 % and
-// 44 %, the learned slip at 0.9. The shared ride height keeps the rover moving on its map.
+// Two wilcoxm runs (1 cm, learned prior) whose rear wheel reaches ranged ground near cycle 17. A
+// search that takes the map's ride height as exact there, but fits a free one for a candidate that
+// leaves the rear wheel on the unranged start, favours "no advance" at that cycle and stays at it
+// (odometry errors of 87 % and 44 %, the learned slip at 0.9). With one rule for every candidate
+// the rover keeps moving on its map: measured 0.57 % and 0.71 %, bounded at 2 %, twice the issue's
+// target for the suite's mean; no stop longer than two cycles while the rims turn (a stuck MAP
+// stops for the rest of the run); the learned slip well below the 0.9 of a stuck run (the suite's
+// slip means are 0.15-0.30, docs/mismatch.md).
 TEST(WilcoxBaseline, AnEstimateThatStopsOnRangedGroundMovesOn) {
   WilcoxOptions options;
   options.learn_slip = true;
