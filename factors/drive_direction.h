@@ -3,6 +3,8 @@
 // constraints and the smoother's soft priors share.
 #pragma once
 
+#include <cmath>
+
 namespace slipgraph {
 
 // |w| below this reads as a stopped wheel: 3 sd of the LAGR encoder noise at 100 Hz (0.05 rad/s),
@@ -16,6 +18,38 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
   if (sum > -2.0 * wheel_still_radps && sum < 2.0 * wheel_still_radps) return 0.0;
   return sum > 0.0 ? 1.0 : -1.0;
 }
+
+// Whether both driven wheels have settled: each wheel's speed, smoothed over a time constant (an
+// exponential moving average), below the still threshold. An encoder that sits on the edge of a
+// count reads one count now and then while its wheel stands: at 100 Hz and 4096 counts a turn
+// that is 0.15 rad/s, as large as the threshold. The smoothed speed of a standing wheel stays
+// near zero, so such a count does not end the stop; a wheel that starts to turn passes the
+// threshold within a fraction of the time constant (the callers also read each reading, so that
+// nothing at rest is applied to a cycle whose wheels read as turning). A time constant of 0 takes
+// each reading as it is (the paper's test).
+class WheelStillness {
+ public:
+  explicit WheelStillness(double time_constant_s = 0.0) : time_constant_s_(time_constant_s) {}
+  // Feeds one encoder cycle, in time order.
+  void Update(double t, double omega_left_radps, double omega_right_radps) {
+    double gain = 1.0;
+    if (started_ && time_constant_s_ > 0.0) {
+      gain = t > t_ ? 1.0 - std::exp(-(t - t_) / time_constant_s_) : 0.0;
+    }
+    left_ += gain * (omega_left_radps - left_);
+    right_ += gain * (omega_right_radps - right_);
+    t_ = t;
+    started_ = true;
+  }
+  bool Still(double wheel_still_radps) const {
+    return std::abs(left_) < wheel_still_radps && std::abs(right_) < wheel_still_radps;
+  }
+
+ private:
+  double time_constant_s_ = 0.0;
+  double left_ = 0.0, right_ = 0.0, t_ = 0.0;
+  bool started_ = false;
+};
 
 // How long both driven wheels have read still (weak constraint 4's at-rest timer, Table I's
 // t_stop): fed each encoder cycle in time order.

@@ -158,6 +158,10 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "weak_constraints.oppose_motion_cauchy_scale must be non-negative (0: the paper's)";
     return false;
   }
+  if (!(weak_constraints.still_smoothing_s >= 0.0)) {
+    *error = "weak_constraints.still_smoothing must be non-negative (0: the paper's test)";
+    return false;
+  }
   if (!(weak_constraints.decay_alpha > 0.0 && weak_constraints.decay_alpha < 1.0)) {
     *error = "weak_constraints.decay_alpha must lie in (0, 1)";
     return false;

@@ -60,10 +60,14 @@ struct WeakConstraintConfig {
   double sd_no_pull_back = 0.1;  // WC3, m/s^2 sqrt(s)
   double sd_at_rest = 0.02;      // WC4, on a_dist and b_ax (m/s^2 sqrt(s)); b_gz uses sd/10 rad/s
   double sd_bound = 0.05;        // WC5 and WC6, in the bounded state's unit x sqrt(s)
-  double min_slip_rate_per_s = 0.05;      // WC2 min_delta_i: slow slip growth, per second
-  double slip_threshold = 0.3;            // WC2 thresh_i: WC2 applies only below this EMA slip
-  double decay_alpha = 0.995;             // WC2 alpha, 0 < alpha < 1, applied per filter cycle
-  double stop_time_s = 1.0;               // WC4 t_stop: wheels at rest this long
+  double min_slip_rate_per_s = 0.05;  // WC2 min_delta_i: slow slip growth, per second
+  double slip_threshold = 0.3;        // WC2 thresh_i: WC2 applies only below this EMA slip
+  double decay_alpha = 0.995;         // WC2 alpha, 0 < alpha < 1, applied per filter cycle
+  double stop_time_s = 1.0;           // WC4 t_stop: wheels at rest this long
+  // The wheels read still when their speeds smoothed over this time constant are (WheelStillness
+  // in factors/drive_direction.h), so that a standing encoder's odd count does not restart t_stop;
+  // 0: each reading as it is, the paper's test; 0.1 s was chosen on ward21m (docs/mismatch.md).
+  double still_smoothing_s = 0.0;
   double max_v_bx_mps = 3.0;              // WC5 bound on |v_bx|
   double max_accel_bias_mps2 = 0.5;       // WC5 bound on |b_ax|
   double max_a_dist_mps2 = 10.0;          // WC5 bound on |a_dist|

@@ -162,12 +162,17 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
     const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
     wheel_speeds_[k] = {s.left_radps, s.right_radps};
   }
+  // At rest at state k (weak constraint 4): settled for t_stop, an odd count not ending the stop
+  // (WheelStillness), and still at that reading; as the EKF reads it.
+  WheelStillness stillness(model.weak_constraints.still_smoothing_s);
   WheelStopTimer stop_timer;
   for (size_t k = 0; k < n; ++k) {
     const auto& w = wheel_speeds_[k];
     const double still = options.wheel_still_radps;
-    stop_timer.Update(times_[k], std::abs(w[0]) < still && std::abs(w[1]) < still);
+    stillness.Update(times_[k], w[0], w[1]);
+    stop_timer.Update(times_[k], stillness.Still(still));
     stop_timers_[k] = stop_timer;
+    if (!(std::abs(w[0]) < still && std::abs(w[1]) < still)) stop_timers_[k] = WheelStopTimer();
   }
   imu_begin_ = AttachToStates(log.imu, times_);
   if (options.use_gps) {

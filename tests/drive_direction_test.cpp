@@ -1,8 +1,10 @@
 // Table I's drive direction: the sign of the wheels' sum, zero within twice the still threshold;
-// the at-rest timer of both wheels.
+// the wheels' stillness on smoothed speeds and the at-rest timer of both wheels.
 #include "factors/drive_direction.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace slipgraph {
 namespace {
@@ -33,6 +35,31 @@ TEST(WheelStopTimer, CountsFromTheFirstStillCycleAndRestartsOnMotion) {
   EXPECT_FALSE(timer.AtRestFor(9.0, 0.5));
   timer.Update(5.0, true);
   EXPECT_DOUBLE_EQ(timer.StoppedFor(5.25), 0.25);
+}
+
+// A standing wheel whose encoder reads one count (0.153 rad/s at 100 Hz, 4096 counts a turn) on
+// every fifth sample: each such reading passes the threshold, the smoothed speed (0.1 s) stays
+// far below it. A wheel that starts turning at 2 rad/s reads as moving within 0.02 s.
+TEST(WheelStillness, AnOddCountDoesNotEndAStopAndAStartIsSeenAtOnce) {
+  const double count = 2.0 * M_PI / 4096.0 / 0.01;
+  WheelStillness smoothed(0.1), each(0.0);
+  WheelStopTimer smoothed_timer, each_timer;
+  for (int k = 0; k <= 300; ++k) {
+    const double t = 0.01 * k, omega = k % 5 == 4 ? count : 0.0;
+    smoothed.Update(t, omega, 0.0);
+    each.Update(t, omega, 0.0);
+    smoothed_timer.Update(t, smoothed.Still(kDefaultWheelStillRadps));
+    each_timer.Update(t, each.Still(kDefaultWheelStillRadps));
+  }
+  EXPECT_TRUE(smoothed_timer.AtRestFor(3.0, 2.9));  // at rest since the first sample
+  EXPECT_FALSE(each_timer.AtRestFor(3.0, 0.05));    // restarted by every count
+  double moving_after = -1.0;
+  for (int k = 1; k <= 20 && moving_after < 0.0; ++k) {
+    smoothed.Update(3.0 + 0.01 * k, 2.0, 2.0);
+    if (!smoothed.Still(kDefaultWheelStillRadps)) moving_after = 0.01 * k;
+  }
+  EXPECT_GT(moving_after, 0.0);
+  EXPECT_LE(moving_after, 0.02 + 1e-9);
 }
 
 }  // namespace
