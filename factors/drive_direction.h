@@ -22,7 +22,7 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
 // Whether both driven wheels have settled: each wheel's speed, smoothed over a time constant (an
 // exponential moving average), below the still threshold. An encoder that sits on the edge of a
 // count reads one count now and then while its wheel stands: at 100 Hz and 4096 counts a turn
-// that is 0.15 rad/s, as large as the threshold. The smoothed speed of a standing wheel stays
+// that is 0.153 rad/s, just above the threshold. The smoothed speed of a standing wheel stays
 // near zero, so such a count does not end the stop; a wheel that starts to turn passes the
 // threshold within a fraction of the time constant (the callers also read each reading, so that
 // nothing at rest is applied to a cycle whose wheels read as turning). A time constant of 0 takes
@@ -30,16 +30,20 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
 class WheelStillness {
  public:
   explicit WheelStillness(double time_constant_s = 0.0) : time_constant_s_(time_constant_s) {}
-  // Feeds one encoder cycle, in time order.
+  // Feeds one encoder cycle, in time order. With a time constant of 0 each reading is taken as
+  // it is (a reading that is not finite reads as not still); otherwise a reading that is not
+  // finite, or not later than the last one, leaves the smoothed speeds as they are.
   void Update(double t, double omega_left_radps, double omega_right_radps) {
-    double gain = 1.0;
-    if (started_ && time_constant_s_ > 0.0) {
-      gain = t > t_ ? 1.0 - std::exp(-(t - t_) / time_constant_s_) : 0.0;
+    if (!(time_constant_s_ > 0.0) || !started_) {
+      left_ = omega_left_radps, right_ = omega_right_radps, t_ = t;
+      started_ = std::isfinite(left_) && std::isfinite(right_);
+      return;
     }
+    if (!std::isfinite(omega_left_radps) || !std::isfinite(omega_right_radps) || !(t > t_)) return;
+    const double gain = 1.0 - std::exp(-(t - t_) / time_constant_s_);
     left_ += gain * (omega_left_radps - left_);
     right_ += gain * (omega_right_radps - right_);
     t_ = t;
-    started_ = true;
   }
   bool Still(double wheel_still_radps) const {
     return std::abs(left_) < wheel_still_radps && std::abs(right_) < wheel_still_radps;

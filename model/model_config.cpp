@@ -158,8 +158,10 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "weak_constraints.oppose_motion_cauchy_scale must be non-negative (0: the paper's)";
     return false;
   }
-  if (!(weak_constraints.still_smoothing_s >= 0.0)) {
-    *error = "weak_constraints.still_smoothing must be non-negative (0: the paper's test)";
+  if (!(weak_constraints.still_smoothing_s >= 0.0 &&
+        std::isfinite(weak_constraints.still_smoothing_s))) {
+    *error =
+        "weak_constraints.still_smoothing must be finite and non-negative (0: the paper's test)";
     return false;
   }
   if (!(weak_constraints.decay_alpha > 0.0 && weak_constraints.decay_alpha < 1.0)) {

@@ -66,7 +66,7 @@ struct WeakConstraintConfig {
   double stop_time_s = 1.0;           // WC4 t_stop: wheels at rest this long
   // The wheels read still when their speeds smoothed over this time constant are (WheelStillness
   // in factors/drive_direction.h), so that a standing encoder's odd count does not restart t_stop;
-  // 0: each reading as it is, the paper's test; 0.1 s was chosen on ward21m (docs/mismatch.md).
+  // 0: each reading as it is, the paper's test; 0.1 s: docs/mismatch.md.
   double still_smoothing_s = 0.0;
   double max_v_bx_mps = 3.0;              // WC5 bound on |v_bx|
   double max_accel_bias_mps2 = 0.5;       // WC5 bound on |b_ax|

@@ -40,7 +40,7 @@ struct WeakConstraintInputs {
   double vel_dir = 0.0;               // sign(w_l + w_r): +1, 0 or -1
   double slip_ema = 0.0;              // i_EMA
   double slip_ema_rate_per_s = 0.0;   // d(i_EMA)/dt
-  double wheels_stopped_s = 0.0;      // how long both wheels have read zero
+  double wheels_stopped_s = 0.0;      // how long both wheels have been still (0 unless still now)
   double f_tire_mps2 = 0.0;           // f_tire at the a priori wheel speeds, body held still
                                       // (v_bx = 0); read when MovingAgainstTheWheels
   double gravity_along_x_mps2 = 0.0;  // g sin(phi), phi uphill positive

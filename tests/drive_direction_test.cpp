@@ -62,5 +62,21 @@ TEST(WheelStillness, AnOddCountDoesNotEndAStopAndAStartIsSeenAtOnce) {
   EXPECT_LE(moving_after, 0.02 + 1e-9);
 }
 
+// A reading that is not finite: with a time constant of 0, not still for that reading only; with
+// smoothing, skipped. Neither stays stuck.
+TEST(WheelStillness, AReadingThatIsNotFiniteIsNotKept) {
+  WheelStillness each(0.0), smoothed(0.1);
+  for (WheelStillness* s : {&each, &smoothed}) {
+    s->Update(0.0, 0.0, 0.0);
+    s->Update(0.01, std::nan(""), 0.0);
+  }
+  EXPECT_FALSE(each.Still(kDefaultWheelStillRadps));
+  EXPECT_TRUE(smoothed.Still(kDefaultWheelStillRadps));
+  each.Update(0.02, 0.0, 0.0);
+  smoothed.Update(0.02, 0.0, 0.0);
+  EXPECT_TRUE(each.Still(kDefaultWheelStillRadps));
+  EXPECT_TRUE(smoothed.Still(kDefaultWheelStillRadps));
+}
+
 }  // namespace
 }  // namespace slipgraph

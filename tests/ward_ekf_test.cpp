@@ -407,10 +407,11 @@ TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlon
 
 // Weak constraint 4 on the wheels' speeds smoothed over 0.1 s (weak_constraints.still_smoothing) on
 // a ward21m run of seed 20 without GNSS whose robot stalls for 4 s, wheels and body held: its
-// encoders read one count now and then while the wheels stand, each such reading restarted the
-// at-rest timer, the constraint never held the disturbance and the bias at zero, and the velocity
-// sank to -0.19 m/s against the held disturbance through the tire law's braking branch; after the
-// stall the filter stayed behind the robot, flagged immobilized (docs/mismatch.md). Measured:
+// encoders read one count now and then while the wheels stand. Taken reading by reading, each
+// such count restarts the at-rest timer, the constraint never holds the disturbance and the bias
+// at zero, and the velocity sinks to -0.19 m/s against the held disturbance through the tire
+// law's braking branch; after the stall the filter stays behind the robot, flagged immobilized
+// (docs/mismatch.md). Measured:
 // false immobilized 6.8 -> 0.8 % of samples, velocity RMSE 0.101 -> 0.023 m/s. The control: three
 // matched ward21 runs, the single filter on the mean law: the detections and the false alarms
 // unchanged, the velocity error within 5 %.

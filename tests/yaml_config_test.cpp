@@ -152,6 +152,9 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
                              LagrVehicle()),
                InputError);
   EXPECT_THROW(
+      ReadModelYaml(WriteModel("weak_constraints: {still_smoothing: -0.1}\n"), LagrVehicle()),
+      InputError);
+  EXPECT_THROW(
       ReadModelYaml(WriteModel("calibration: {wheel_radius_scale_left: 0}\n"), LagrVehicle()),
       InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("calibration: {imu_time_offset: 1.5}\n"), LagrVehicle()),
@@ -165,6 +168,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.tire.C2 = -0.02;
   m.weak_constraints.decay_alpha = 0.7;
   m.weak_constraints.oppose_motion_cauchy_scale_mps2 = 0.0;
+  m.weak_constraints.still_smoothing_s = 0.25;
   m.effects = {"quadratic_drag", "imu_mounting_pitch"};
   m.calibration.wheel_radius_scale_right = 0.97;
   m.calibration.track_width_m = 0.81;
@@ -184,6 +188,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
   EXPECT_DOUBLE_EQ(back.tire.C2, -0.02);
   EXPECT_DOUBLE_EQ(back.weak_constraints.decay_alpha, 0.7);
+  EXPECT_DOUBLE_EQ(back.weak_constraints.still_smoothing_s, 0.25);
   EXPECT_EQ(back.effects, m.effects);
   EXPECT_EQ(back.offset_init_samples, m.offset_init_samples);
   EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_left, 1.0);
