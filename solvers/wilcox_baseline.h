@@ -21,9 +21,9 @@
 // points stay points); the rear wheel's ride height, which every measurement shares, is fitted
 // within the histograms' error where they hold ranged ground under it and freely where they do
 // not, by one rule for every candidate advance, and a residual a candidate cannot form counts its
-// expected chi-square; the prior's sd
-// carries the last cycle's error as well as the rim motion's. Without these the MAP can settle
-// at zero advance once the rear wheel reaches ranged ground and stay there (docs/wilcox.md).
+// expected chi-square; the prior's sd carries the last cycle's error as well as the rim motion's.
+// Without these the MAP can settle at zero advance once the rear wheel reaches ranged ground and
+// stay there (docs/wilcox.md).
 // The left/right check compares the two sides' advances and sinkages.
 #pragma once
 

@@ -411,10 +411,9 @@ TEST(WardEkf, GnssFadingPullsADriftingVelocityBackAndLeavesAConsistentFilterAlon
 // such count restarts the at-rest timer, the constraint never holds the disturbance and the bias
 // at zero, and the velocity sinks to -0.19 m/s against the held disturbance through the tire
 // law's braking branch; after the stall the filter stays behind the robot, flagged immobilized
-// (docs/mismatch.md). Measured:
-// false immobilized 6.8 -> 0.8 % of samples, velocity RMSE 0.101 -> 0.023 m/s. The control: three
-// matched ward21 runs, the single filter on the mean law: the detections and the false alarms
-// unchanged, the velocity error within 5 %.
+// (docs/mismatch.md). Measured: false immobilized 6.8 -> 0.8 % of samples, velocity RMSE 0.101 ->
+// 0.023 m/s. The control: three matched ward21 runs, the single filter on the mean law: the
+// detections and the false alarms unchanged, the velocity error within 5 %.
 TEST(WardEkf, AStandingEncodersOddCountDoesNotKeepTheFilterFromRest) {
   const auto suite = [](const std::vector<const char*>& names, uint64_t seed, bool smoothed,
                         bool use_gps) {
