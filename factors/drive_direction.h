@@ -77,4 +77,31 @@ class WheelStopTimer {
   double since_ = 0.0;
 };
 
+// Weak constraint 4's at-rest rule: both driven wheels settled (WheelStillness over the model's
+// still_smoothing) for the timer's duration, AND this cycle's own reading still, so that nothing
+// at rest is applied to a cycle whose wheels read as turning. Fed each encoder cycle in time
+// order.
+class WheelRestTimer {
+ public:
+  WheelRestTimer(double smoothing_s, double wheel_still_radps)
+      : stillness_(smoothing_s), still_radps_(wheel_still_radps) {}
+  void Update(double t, double omega_left_radps, double omega_right_radps) {
+    reading_still_ =
+        std::abs(omega_left_radps) < still_radps_ && std::abs(omega_right_radps) < still_radps_;
+    stillness_.Update(t, omega_left_radps, omega_right_radps);
+    settled_.Update(t, stillness_.Still(still_radps_));
+  }
+  // The rule as a plain timer: the settled one while the latest reading is still, else one that
+  // is not running (a smoother keeps this per state).
+  WheelStopTimer Timer() const { return reading_still_ ? settled_ : WheelStopTimer(); }
+  double StoppedFor(double t) const { return Timer().StoppedFor(t); }
+  bool AtRestFor(double t, double duration) const { return Timer().AtRestFor(t, duration); }
+
+ private:
+  WheelStillness stillness_;
+  WheelStopTimer settled_;
+  double still_radps_;
+  bool reading_still_ = false;
+};
+
 }  // namespace slipgraph

@@ -156,23 +156,17 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   }
   times_.resize(n);
   wheel_speeds_.assign(n, {0.0, 0.0});
-  stop_timers_.assign(n, WheelStopTimer());
+  stop_timers_.resize(n);
   for (size_t k = 0; k < n; ++k) times_[k] = initial[k].t;
   for (size_t k = 0; k < n && k < log.wheels.size(); ++k) {
     const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
     wheel_speeds_[k] = {s.left_radps, s.right_radps};
   }
-  // At rest at state k (weak constraint 4): settled for t_stop, an odd count not ending the stop
-  // (WheelStillness), and still at that reading; as the EKF reads it.
-  WheelStillness stillness(model.weak_constraints.still_smoothing_s);
-  WheelStopTimer stop_timer;
+  // Weak constraint 4's at-rest rule as it stood at each state, as the EKF reads it.
+  WheelRestTimer rest(model.weak_constraints.still_smoothing_s, options.wheel_still_radps);
   for (size_t k = 0; k < n; ++k) {
-    const auto& w = wheel_speeds_[k];
-    const double still = options.wheel_still_radps;
-    stillness.Update(times_[k], w[0], w[1]);
-    stop_timer.Update(times_[k], stillness.Still(still));
-    stop_timers_[k] = stop_timer;
-    if (!(std::abs(w[0]) < still && std::abs(w[1]) < still)) stop_timers_[k] = WheelStopTimer();
+    rest.Update(times_[k], wheel_speeds_[k][0], wheel_speeds_[k][1]);
+    stop_timers_[k] = rest.Timer();
   }
   imu_begin_ = AttachToStates(log.imu, times_);
   if (options.use_gps) {

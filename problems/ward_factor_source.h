@@ -297,7 +297,7 @@ class WardFactorSource {
   std::vector<std::string> effects_without_term_;
   std::vector<double> times_;
   std::vector<std::array<double, 2>> wheel_speeds_;
-  std::vector<WheelStopTimer> stop_timers_;  // the at-rest timer as it stood at state k
+  std::vector<WheelStopTimer> stop_timers_;  // weak constraint 4's rule (WheelRestTimer) at state k
   // Per GNSS fix, once: its speed along body x at its state and sd (GnssAlong), and whether the
   // gross-outlier gate (WardProblemOptions::gnss_gate_chi2) took it.
   struct GnssFix {

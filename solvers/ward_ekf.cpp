@@ -45,7 +45,7 @@ WardEkf::WardEkf(const Vehicle& vehicle, const ModelConfig& model, const EkfOpti
       offsets_(model.offset_init_samples, model.offset_ema_samples, model.offset_rest_guard_s,
                vehicle.type == VehicleType::kSkidSteer ? 1.0 : 0.2),
       detector_(model.immobilization, vehicle.wheel_radius_m, vehicle.track_width_m),
-      stillness_(model.weak_constraints.still_smoothing_s) {
+      rest_timer_(model.weak_constraints.still_smoothing_s, options.wheel_still_radps) {
   std::string error;
   if (!options.IsValid(&error)) throw std::invalid_argument(error);
   for (int i = 0; i < kStateSize; ++i) P_(i, i) = options.initial_sd[i] * options.initial_sd[i];
@@ -234,8 +234,7 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
     last_wheels_t_ = t_;
     const bool still = std::abs(omega_left) < options_.wheel_still_radps &&
                        std::abs(omega_right) < options_.wheel_still_radps;
-    stillness_.Update(t_, omega_left, omega_right);
-    settled_stop_timer_.Update(t_, stillness_.Still(options_.wheel_still_radps));
+    rest_timer_.Update(t_, omega_left, omega_right);
     last_wheel_motion_ = {
         0.5 * params_.wheel_radius_m * (omega_left + omega_right),
         params_.wheel_radius_m * (omega_right - omega_left) / params_.track_width_m, still};
@@ -260,8 +259,7 @@ void WardEkf::ApplyWeakConstraints(double dt_cycle) {
   in.slip_ema = detector_.latest().slip_ema;
   in.slip_ema_rate_per_s =
       dt_cycle > 0.0 ? (detector_.latest().slip_ema - previous_slip_ema_) / dt_cycle : 0.0;
-  // At rest: settled for t_stop (an odd count does not end the stop) and still at this reading.
-  in.wheels_stopped_s = last_wheel_motion_.still ? settled_stop_timer_.StoppedFor(t_) : 0.0;
+  in.wheels_stopped_s = rest_timer_.StoppedFor(t_);
   if (MovingAgainstTheWheels(x_.data(), in.vel_dir)) {  // WC3 alone reads it
     // Read at the a priori v_bx, the rolling law would make the "holding" disturbance 0.35 m/s^2
     // too strong (fig5).

@@ -237,11 +237,10 @@ class WardEkf {
   double previous_slip_ema_ = 0.0;
   double last_wheels_t_ = -1e300;
   // Two at-rest timers: on each reading, for the IMU offsets (which must not take the first
-  // samples of a start for rest), and on the smoothed speeds, for weak constraint 4 (which an
-  // encoder's odd count while the wheels stand must not restart).
+  // samples of a start for rest), and weak constraint 4's (which an encoder's odd count while the
+  // wheels stand must not restart).
   WheelStopTimer stop_timer_;
-  WheelStillness stillness_;
-  WheelStopTimer settled_stop_timer_;
+  WheelRestTimer rest_timer_;
   WheelMotion last_wheel_motion_;  // the latest encoder reading, for the offsets' start
   EkfStats stats_;
   StreamGate imu_gate_, wheels_gate_, gps_gate_;

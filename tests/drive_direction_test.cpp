@@ -1,5 +1,6 @@
 // Table I's drive direction: the sign of the wheels' sum, zero within twice the still threshold;
-// the wheels' stillness on smoothed speeds and the at-rest timer of both wheels.
+// the wheels' stillness on smoothed speeds, the at-rest timer of both wheels and weak constraint
+// 4's rule from the two.
 #include "factors/drive_direction.h"
 
 #include <gtest/gtest.h>
@@ -79,4 +80,28 @@ TEST(WheelStillness, AReadingThatIsNotFiniteIsNotKept) {
 }
 
 }  // namespace
+// Weak constraint 4's rule on the same standing wheel: with smoothing, at rest from the first
+// sample except on the odd count's own cycles, which do not restart it; with none (the paper's
+// test), each count restarts it.
+TEST(WheelRestTimer, AnOddCountsOwnCycleIsNotAtRestAndDoesNotRestartTheStop) {
+  const double count = 2.0 * M_PI / 4096.0 / 0.01;
+  WheelRestTimer smoothed(0.1, kDefaultWheelStillRadps), each(0.0, kDefaultWheelStillRadps);
+  for (int k = 0; k <= 300; ++k) {
+    const double t = 0.01 * k, omega = k % 5 == 4 ? count : 0.0;
+    smoothed.Update(t, omega, 0.0);
+    each.Update(t, omega, 0.0);
+    if (k % 5 == 4) {
+      EXPECT_FALSE(smoothed.AtRestFor(t, 0.0)) << t;
+      EXPECT_EQ(smoothed.StoppedFor(t), 0.0) << t;
+      EXPECT_FALSE(smoothed.Timer().AtRestFor(t, 0.0)) << t;
+    } else {
+      EXPECT_NEAR(smoothed.StoppedFor(t), t, 1e-9);
+      EXPECT_TRUE(smoothed.Timer().AtRestFor(t, t - 1e-9)) << t;
+      EXPECT_LE(each.StoppedFor(t), 0.04 + 1e-9) << t;
+    }
+  }
+  smoothed.Update(3.01, 2.0, 2.0);  // a start ends it at once
+  EXPECT_EQ(smoothed.StoppedFor(3.01), 0.0);
+}
+
 }  // namespace slipgraph

@@ -3,7 +3,8 @@
 // is finite at the front end's estimate; an absurd fix is left out and counted; the stiffness
 // walk's nodes cover the log; only the tire law's kinds move with the law, and only the kinds
 // asked for are built; the front end's checks of its bias against the wheels become factors on
-// the bias; an empty front end is refused.
+// the bias; weak constraint 4 reads an odd count at rest as the EKF does; an empty front end is
+// refused.
 #include "problems/ward_factor_source.h"
 
 #include <ceres/cost_function.h>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -277,6 +279,54 @@ TEST(WardFactorSource, TheWheelsChecksHoldTheWholeAccelerometerBias) {
       problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr));
   const double r = (0.05 + 0.01 - 0.03) / 0.01;
   EXPECT_NEAR(cost, 0.5 * r * r, 1e-9);
+}
+
+// Weak constraint 4 in the smoother reads the wheels as the EKF does (WheelRestTimer): on a 4 s
+// start at rest whose encoders read one count (0.153 rad/s) on every fifth sample, with the
+// wheels' speeds smoothed over 0.1 s the at-rest prior holds the states from t_stop on (232 of
+// 232 here), never on a count's own state; with each reading taken as it is (the paper's test)
+// the counts keep restarting its timer and it holds none before the drive.
+TEST(WardFactorSource, AnOddCountAtRestIsReadAsTheEkfReadsIt) {
+  sim::Scenario sc = testing::FlatLagrScenario("asphalt", 1.0, 4.0);
+  sc.rest_start_s = 4.0;
+  DriveLog log = sim::Simulate(sc, 3).log;
+  const double count = 2.0 * M_PI / 4096.0 / 0.01, kCountsEnd = 3.9;
+  std::vector<bool> odd(log.wheels.size(), false);
+  for (size_t k = 0; k < log.wheels.size() && log.wheels[k].t < kCountsEnd; ++k) {
+    if (k % 5 != 4) continue;
+    for (double& omega : log.wheels[k].omega_radps) omega = count;
+    odd[k] = true;
+  }
+  long still_after_t_stop = 0;  // the states from t_stop = 1 s on whose own reading is still
+  for (size_t k = 0; k < log.wheels.size(); ++k) {
+    still_after_t_stop += log.wheels[k].t > 1.0 && log.wheels[k].t < kCountsEnd && !odd[k];
+  }
+  const auto at_rest_states = [&log, &odd, kCountsEnd](double smoothing_s) {
+    ModelConfig model = DefaultModelConfig(log.vehicle);
+    model.weak_constraints.still_smoothing_s = smoothing_s;
+    const FilterResult front = RunEkf(log, model);  // the source keeps a reference to it
+    const WardFactorSource source(log, model, front.estimates, WardProblemOptions{});
+    ceres::Problem all;
+    Built b;
+    BuildAll(source, &all, &b);  // the states and offsets at the front end's estimate
+    long on_counts = 0, before_drive = 0;
+    for (size_t k = 0; k < source.size(); ++k) {  // one state's factors at a time
+      ceres::Problem problem;
+      Built one;
+      source.AddStep(k, k > 0 ? b.states[k - 1].data() : nullptr, b.states[k].data(),
+                     {b.offsets.data(), nullptr, nullptr}, &problem, &one.added, &one.counts);
+      if (one.counts.at_rest == 0) continue;
+      on_counts += odd[k];
+      before_drive += log.wheels[k].t < kCountsEnd;
+    }
+    EXPECT_EQ(on_counts, 0) << smoothing_s;
+    return before_drive;
+  };
+  const long smoothed = at_rest_states(0.1), each = at_rest_states(0.0);
+  std::printf("at rest before the drive: %ld (smoothed), %ld (each reading) of %ld still states\n",
+              smoothed, each, still_after_t_stop);
+  EXPECT_GE(smoothed, 0.95 * still_after_t_stop);
+  EXPECT_EQ(each, 0);
 }
 
 TEST(WardFactorSource, AnEmptyFrontEndIsRefused) {
