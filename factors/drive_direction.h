@@ -24,9 +24,9 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
 // count reads one count now and then while its wheel stands: at 100 Hz and 4096 counts a turn
 // that is 0.153 rad/s, just above the threshold. The smoothed speed of a standing wheel stays
 // near zero, so such a count does not end the stop; a wheel that starts to turn passes the
-// threshold within a fraction of the time constant (the callers also read each reading, so that
-// nothing at rest is applied to a cycle whose wheels read as turning). A time constant of 0 takes
-// each reading as it is (the paper's test).
+// threshold within a fraction of the time constant (WheelRestTimer also reads each reading, so
+// that nothing at rest is applied to a cycle whose wheels read as turning). A time constant of 0
+// takes each reading as it is (the paper's test).
 class WheelStillness {
  public:
   explicit WheelStillness(double time_constant_s = 0.0) : time_constant_s_(time_constant_s) {}
@@ -80,17 +80,20 @@ class WheelStopTimer {
 // Weak constraint 4's at-rest rule: both driven wheels settled (WheelStillness over the model's
 // still_smoothing) for the timer's duration, AND this cycle's own reading still, so that nothing
 // at rest is applied to a cycle whose wheels read as turning. Fed each encoder cycle in time
-// order.
+// order; a cycle whose reading is not finite is skipped (the rule stands as it was).
 class WheelRestTimer {
  public:
   WheelRestTimer(double smoothing_s, double wheel_still_radps)
       : stillness_(smoothing_s), still_radps_(wheel_still_radps) {}
   void Update(double t, double omega_left_radps, double omega_right_radps) {
+    if (!std::isfinite(omega_left_radps) || !std::isfinite(omega_right_radps)) return;
     reading_still_ =
         std::abs(omega_left_radps) < still_radps_ && std::abs(omega_right_radps) < still_radps_;
     stillness_.Update(t, omega_left_radps, omega_right_radps);
     settled_.Update(t, stillness_.Still(still_radps_));
   }
+  // Both wheels below the still threshold at the latest finite reading.
+  bool reading_still() const { return reading_still_; }
   // The rule as a plain timer: the settled one while the latest reading is still, else one that
   // is not running (a smoother keeps this per state).
   WheelStopTimer Timer() const { return reading_still_ ? settled_ : WheelStopTimer(); }

@@ -232,9 +232,8 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
 
   if (left_ok && right_ok) {
     last_wheels_t_ = t_;
-    const bool still = std::abs(omega_left) < options_.wheel_still_radps &&
-                       std::abs(omega_right) < options_.wheel_still_radps;
     rest_timer_.Update(t_, omega_left, omega_right);
+    const bool still = rest_timer_.reading_still();
     last_wheel_motion_ = {
         0.5 * params_.wheel_radius_m * (omega_left + omega_right),
         params_.wheel_radius_m * (omega_right - omega_left) / params_.track_width_m, still};

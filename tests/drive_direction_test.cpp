@@ -79,10 +79,9 @@ TEST(WheelStillness, AReadingThatIsNotFiniteIsNotKept) {
   EXPECT_TRUE(smoothed.Still(kDefaultWheelStillRadps));
 }
 
-}  // namespace
 // Weak constraint 4's rule on the same standing wheel: with smoothing, at rest from the first
 // sample except on the odd count's own cycles, which do not restart it; with none (the paper's
-// test), each count restarts it.
+// test), each count restarts it. A reading that is not finite is skipped, as the EKF skips it.
 TEST(WheelRestTimer, AnOddCountsOwnCycleIsNotAtRestAndDoesNotRestartTheStop) {
   const double count = 2.0 * M_PI / 4096.0 / 0.01;
   WheelRestTimer smoothed(0.1, kDefaultWheelStillRadps), each(0.0, kDefaultWheelStillRadps);
@@ -100,8 +99,13 @@ TEST(WheelRestTimer, AnOddCountsOwnCycleIsNotAtRestAndDoesNotRestartTheStop) {
       EXPECT_LE(each.StoppedFor(t), 0.04 + 1e-9) << t;
     }
   }
-  smoothed.Update(3.01, 2.0, 2.0);  // a start ends it at once
-  EXPECT_EQ(smoothed.StoppedFor(3.01), 0.0);
+  smoothed.Update(3.01, std::nan(""), 0.0);  // a lost reading: skipped, the stop goes on
+  EXPECT_TRUE(smoothed.reading_still());
+  EXPECT_NEAR(smoothed.StoppedFor(3.01), 3.01, 1e-9);
+  smoothed.Update(3.02, 2.0, 2.0);  // a start ends it at once
+  EXPECT_FALSE(smoothed.reading_still());
+  EXPECT_EQ(smoothed.StoppedFor(3.02), 0.0);
 }
 
+}  // namespace
 }  // namespace slipgraph

@@ -22,6 +22,7 @@
 
 #include "problems/ward_batch_problem.h"
 #include "solvers/ekf_runner.h"
+#include "solvers/weak_constraints.h"
 #include "tests/sim_test_util.h"
 
 namespace slipgraph {
@@ -282,10 +283,11 @@ TEST(WardFactorSource, TheWheelsChecksHoldTheWholeAccelerometerBias) {
 }
 
 // Weak constraint 4 in the smoother reads the wheels as the EKF does (WheelRestTimer): on a 4 s
-// start at rest whose encoders read one count (0.153 rad/s) on every fifth sample, with the
-// wheels' speeds smoothed over 0.1 s the at-rest prior holds the states from t_stop on (232 of
-// 232 here), never on a count's own state; with each reading taken as it is (the paper's test)
-// the counts keep restarting its timer and it holds none before the drive.
+// start at rest whose encoders read one count (0.153 rad/s) on every fifth sample and lose one
+// reading, with the wheels' speeds smoothed over 0.1 s the at-rest prior holds the states from
+// t_stop on (232 here: the 230 still ones after 1 s, the one at 1 s and the lost reading's),
+// never a count's own state; with each reading taken as it is (the paper's test) the counts keep
+// restarting its timer and it holds none before the drive. The EKF applies it on as many cycles.
 TEST(WardFactorSource, AnOddCountAtRestIsReadAsTheEkfReadsIt) {
   sim::Scenario sc = testing::FlatLagrScenario("asphalt", 1.0, 4.0);
   sc.rest_start_s = 4.0;
@@ -297,9 +299,11 @@ TEST(WardFactorSource, AnOddCountAtRestIsReadAsTheEkfReadsIt) {
     for (double& omega : log.wheels[k].omega_radps) omega = count;
     odd[k] = true;
   }
-  long still_after_t_stop = 0;  // the states from t_stop = 1 s on whose own reading is still
+  log.wheels[252].omega_radps[0] = std::nan("");  // a lost reading at rest: skipped by both
+  long still_after_t_stop = 0;  // the states after t_stop = 1 s whose own reading is still
   for (size_t k = 0; k < log.wheels.size(); ++k) {
-    still_after_t_stop += log.wheels[k].t > 1.0 && log.wheels[k].t < kCountsEnd && !odd[k];
+    still_after_t_stop +=
+        log.wheels[k].t > 1.0 && log.wheels[k].t < kCountsEnd && !odd[k] && k != 252;
   }
   const auto at_rest_states = [&log, &odd, kCountsEnd](double smoothing_s) {
     ModelConfig model = DefaultModelConfig(log.vehicle);
@@ -320,6 +324,13 @@ TEST(WardFactorSource, AnOddCountAtRestIsReadAsTheEkfReadsIt) {
       before_drive += log.wheels[k].t < kCountsEnd;
     }
     EXPECT_EQ(on_counts, 0) << smoothing_s;
+    // The EKF applies the constraint on the same cycles, once on each of a_dist, b_ax and b_gz.
+    FilterRunOptions single;
+    single.multiple_model = false;
+    const FilterResult ekf = RunEkf(log, model, single);
+    EXPECT_EQ(ekf.stats.weak_constraints[static_cast<int>(WeakConstraint::kAtRest)],
+              3 * b.counts.at_rest)
+        << smoothing_s;
     return before_drive;
   };
   const long smoothed = at_rest_states(0.1), each = at_rest_states(0.0);
