@@ -19,6 +19,13 @@ inline double DriveDirection(double omega_left_radps, double omega_right_radps,
   return sum > 0.0 ? 1.0 : -1.0;
 }
 
+// Both driven wheels' speeds below the still threshold (NaN reads as not still).
+inline bool BothWheelsStill(double omega_left_radps, double omega_right_radps,
+                            double wheel_still_radps) {
+  return std::abs(omega_left_radps) < wheel_still_radps &&
+         std::abs(omega_right_radps) < wheel_still_radps;
+}
+
 // Whether both driven wheels have settled: each wheel's speed, smoothed over a time constant (an
 // exponential moving average), below the still threshold. An encoder that sits on the edge of a
 // count reads one count now and then while its wheel stands: at 100 Hz and 4096 counts a turn
@@ -46,7 +53,7 @@ class WheelStillness {
     t_ = t;
   }
   bool Still(double wheel_still_radps) const {
-    return std::abs(left_) < wheel_still_radps && std::abs(right_) < wheel_still_radps;
+    return BothWheelsStill(left_, right_, wheel_still_radps);
   }
 
  private:
@@ -87,8 +94,7 @@ class WheelRestTimer {
       : stillness_(smoothing_s), still_radps_(wheel_still_radps) {}
   void Update(double t, double omega_left_radps, double omega_right_radps) {
     if (!std::isfinite(omega_left_radps) || !std::isfinite(omega_right_radps)) return;
-    reading_still_ =
-        std::abs(omega_left_radps) < still_radps_ && std::abs(omega_right_radps) < still_radps_;
+    reading_still_ = BothWheelsStill(omega_left_radps, omega_right_radps, still_radps_);
     stillness_.Update(t, omega_left_radps, omega_right_radps);
     settled_.Update(t, stillness_.Still(still_radps_));
   }

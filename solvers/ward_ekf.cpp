@@ -214,8 +214,7 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
     x_(kOmegaLeft) = omega_left;
     x_(kOmegaRight) = omega_right;
     wheels_initialised_ = true;
-    if (std::abs(omega_left) >= options_.wheel_still_radps ||
-        std::abs(omega_right) >= options_.wheel_still_radps) {
+    if (!BothWheelsStill(omega_left, omega_right, options_.wheel_still_radps)) {
       // A log that starts in motion: the body moves as its wheels roll, give or take a slip of
       // up to a fifth (not the rest the initial state assumes).
       const double r = params_.wheel_radius_m;

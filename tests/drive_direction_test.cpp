@@ -1,6 +1,6 @@
 // Table I's drive direction: the sign of the wheels' sum, zero within twice the still threshold;
-// the wheels' stillness on smoothed speeds, the at-rest timer of both wheels and weak constraint
-// 4's rule from the two.
+// both wheels below that threshold; the wheels' stillness on smoothed speeds, the at-rest timer
+// of both wheels and weak constraint 4's rule from the two.
 #include "factors/drive_direction.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +17,14 @@ TEST(DriveDirection, SignOfTheSumWithADeadBand) {
   EXPECT_EQ(DriveDirection(0.14, 0.14, kDefaultWheelStillRadps), 0.0);
   EXPECT_EQ(DriveDirection(0.16, 0.16, kDefaultWheelStillRadps), 1.0);
   EXPECT_EQ(DriveDirection(0.3, 0.0, 0.15), 1.0);  // the band is open: exactly 2 x still moves
+}
+
+TEST(BothWheelsStill, EachWheelBelowTheThresholdEitherWayAndNaNIsNotStill) {
+  EXPECT_TRUE(BothWheelsStill(0.14, -0.14, 0.15));
+  EXPECT_FALSE(BothWheelsStill(0.15, 0.0, 0.15));  // the threshold itself turns
+  EXPECT_FALSE(BothWheelsStill(0.0, -0.2, 0.15));
+  EXPECT_FALSE(BothWheelsStill(std::nan(""), 0.0, 0.15));
+  EXPECT_FALSE(BothWheelsStill(0.0, std::nan(""), 0.15));
 }
 
 TEST(WheelStopTimer, CountsFromTheFirstStillCycleAndRestartsOnMotion) {
