@@ -89,6 +89,8 @@ void RegisterImportCommand(CLI::App* app, int* status) {
     for (const std::string& line : report.lines) text << "  " << line << "\n";
     log.directory = options->out;
     const LogSummary summary = SummarizeLog(log);
+    const std::string checks = DescribePlausibility(summary.plausibility);
+    if (!checks.empty()) text << "checks: " << checks << "\n";
     if (summary.problems.empty()) {
       text << "plausibility: no problems found\n";
     } else {
@@ -101,7 +103,8 @@ void RegisterImportCommand(CLI::App* app, int* status) {
                            {"files", log.present_files},
                            {"report", report.lines},
                            {"warnings", warnings},
-                           {"problems", summary.problems}});
+                           {"problems", summary.problems},
+                           {"plausibility", PlausibilityRecord(summary.plausibility)}});
     }
     *status = 0;
   });

@@ -45,7 +45,8 @@ void RegisterInfoCommand(CLI::App* app, int* status) {
                            {"t_end_s", summary.t_end_s},
                            {"streams", streams},
                            {"reader_warnings", summary.reader_warnings},
-                           {"problems", summary.problems}});
+                           {"problems", summary.problems},
+                           {"plausibility", PlausibilityRecord(summary.plausibility)}});
     }
     *status = 0;
   });

@@ -1,5 +1,6 @@
 #include "apps/json_output.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -90,6 +91,16 @@ nlohmann::json ModelRecord(const std::string& model_path, const ModelConfig& mod
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
   return {{"file", model_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(model_path)},
           {"fingerprint", hex}};
+}
+
+nlohmann::json PlausibilityRecord(const PlausibilityFigures& f) {
+  const auto value = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; };
+  return {{"rest_seconds", f.rest_seconds},
+          {"rest_az_mps2", value(f.rest_az_mps2)},
+          {"rest_norm_mps2", value(f.rest_norm_mps2)},
+          {"wheel_over_gnss_speed", value(f.wheel_over_gnss_speed)},
+          {"wheel_gyro_yaw_correlation", value(f.wheel_gyro_yaw_correlation)},
+          {"wheel_over_gyro_yaw", value(f.wheel_over_gyro_yaw)}};
 }
 
 }  // namespace slipgraph

@@ -11,6 +11,7 @@
 #include <ostream>
 #include <string>
 
+#include "io/plausibility.h"
 #include "model/model_config.h"
 
 namespace slipgraph {
@@ -44,5 +45,9 @@ class JsonOutput {
 // a fingerprint of the effective model (FNV-1a 64 of its model-file text, hex): two runs with
 // the same fingerprint ran the same model.
 nlohmann::json ModelRecord(const std::string& model_path, const ModelConfig& model);
+
+// A log's plausibility figures (io/plausibility.h) by name, null where not measured (`info` and
+// `import`).
+nlohmann::json PlausibilityRecord(const PlausibilityFigures& figures);
 
 }  // namespace slipgraph

@@ -168,9 +168,11 @@ LogSummary SummarizeLog(const DriveLog& log) {
   }
   AddFrozenSensors(log, &summary.problems);
   // Physical plausibility (gravity at rest, wheels against GNSS and gyro): io/plausibility.
-  for (std::string& problem : CheckPlausibility(log).problems) {
+  Plausibility plausibility = CheckPlausibility(log);
+  for (std::string& problem : plausibility.problems) {
     summary.problems.push_back(std::move(problem));
   }
+  summary.plausibility = plausibility.figures;
   return summary;
 }
 
@@ -218,6 +220,8 @@ void PrintLogSummary(const DriveLog& log, const LogSummary& summary, std::ostrea
     if (!log.Has(optional)) out << "  (no " << optional << ")\n";
   }
   if (!log.events.empty()) out << "events:   " << log.events.size() << " labelled intervals\n";
+  const std::string checks = DescribePlausibility(summary.plausibility);
+  if (!checks.empty()) out << "checks:   " << checks << "\n";
   const size_t count = summary.reader_warnings.size() + summary.problems.size();
   if (count == 0) {
     out << "problems: none found\n";

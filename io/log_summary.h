@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/drive_log.h"
+#include "io/plausibility.h"
 
 namespace slipgraph {
 
@@ -26,6 +27,7 @@ struct LogSummary {
   double t_end_s = 0.0;
   std::vector<std::string> reader_warnings;  // the log reader's (DriveLog::warnings)
   std::vector<std::string> problems;         // found in the data: gaps, frozen sensors, ...
+  PlausibilityFigures plausibility;          // what the physical checks measured
 };
 
 LogSummary SummarizeLog(const DriveLog& log);

@@ -12,6 +12,19 @@ namespace {
 
 constexpr double kStillRadps = 0.05;
 constexpr double kMovingMps = 0.3;
+// The wheels' yaw rate against the gyro's: a scale is read where the gyro's rate varies by more
+// than this sd (a turn, not its noise) and the two correlate by more than this.
+constexpr double kScaleTurnRadps = 0.05;
+constexpr double kScaleMinCorrelation = 0.5;
+// Any drive: the wheels cannot turn the body much faster than they imply; slip and a wheel radius
+// off by a few percent move the scale by as much.
+constexpr double kMinWheelOverGyroYaw = 0.7;
+// A differential drive on castors turns as its wheels imply, give or take their slip.
+constexpr double kMaxDiffDriveWheelOverGyroYaw = 1.4;
+// A skid-steer's tracks or wheels skid sideways in a turn, so its wheels imply more yaw than the
+// body makes: an effective track of 1.2-3 times the geometric one is common (higher on high
+// friction); beyond this a unit is more likely wrong (57.3 for degrees read as radians).
+constexpr double kMaxWheelOverGyroYaw = 6.0;
 
 std::string Format(double v) {
   std::ostringstream out;
@@ -164,9 +177,58 @@ Plausibility CheckPlausibility(const DriveLog& log) {
               "): left and right wheels swapped, or the gyro's z axis flipped");
         }
       }
+      // The scale, where the two clearly move together and the robot turned by more than the
+      // gyro's noise: the slope of the wheels' yaw rate on the gyro's (the gyro's bias in the
+      // intercept).
+      if (vy > kScaleTurnRadps * kScaleTurnRadps &&
+          f.wheel_gyro_yaw_correlation > kScaleMinCorrelation) {
+        f.wheel_over_gyro_yaw = cov / vy;
+        const std::string ratio =
+            "the wheels' yaw rate is " + Format(f.wheel_over_gyro_yaw) + " x the gyro's";
+        const std::string agree = "the track that makes them agree: " +
+                                  Format(c * f.wheel_over_gyro_yaw) + " m against track_width " +
+                                  Format(c) + " m";
+        if (f.wheel_over_gyro_yaw < kMinWheelOverGyroYaw) {
+          out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
+                                 "): track_width too small, the wheel radius too large, or the "
+                                 "gyro's unit or scale wrong");
+        } else if (log.vehicle.type == VehicleType::kDiffDriveCastor &&
+                   f.wheel_over_gyro_yaw > kMaxDiffDriveWheelOverGyroYaw) {
+          out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
+                                 "): on a differential drive with castors the wheels turn the "
+                                 "body as they roll; track_width too large, the wheel radius too "
+                                 "small, or the gyro's unit or scale wrong");
+        } else if (f.wheel_over_gyro_yaw > kMaxWheelOverGyroYaw) {
+          out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
+                                 "): more than a skid-steer's tracks skid in a turn; the gyro's "
+                                 "unit or scale wrong (deg/s read as rad/s?)");
+        }
+      }
     }
   }
   return out;
+}
+
+std::string DescribePlausibility(const PlausibilityFigures& f) {
+  std::vector<std::string> parts;
+  if (std::isfinite(f.rest_norm_mps2)) {
+    parts.push_back("gravity at rest " + Format(f.rest_norm_mps2) + " m/s^2 over " +
+                    Format(f.rest_seconds) + " s");
+  }
+  if (std::isfinite(f.wheel_over_gnss_speed)) {
+    parts.push_back("wheels' speed " + Format(f.wheel_over_gnss_speed) + " x GNSS's");
+  }
+  if (std::isfinite(f.wheel_gyro_yaw_correlation)) {
+    parts.push_back(std::isfinite(f.wheel_over_gyro_yaw)
+                        ? "wheels' yaw rate " + Format(f.wheel_over_gyro_yaw) +
+                              " x the gyro's (correlation " +
+                              Format(f.wheel_gyro_yaw_correlation) + ")"
+                        : "wheels' yaw rate against the gyro's: correlation " +
+                              Format(f.wheel_gyro_yaw_correlation));
+  }
+  std::string line;
+  for (const std::string& part : parts) line += (line.empty() ? "" : "; ") + part;
+  return line;
 }
 
 }  // namespace slipgraph

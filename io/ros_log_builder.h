@@ -18,7 +18,11 @@
 // (rad) is added to the yaw, for a sensor whose heading is not referenced to east.
 // wheels, `from: body_twist`: nav_msgs/Odometry's body twist turned into side speeds,
 // left = (v - w c/2) / r, right = (v + w c/2) / r (the controller's own odometry: it carries no
-// slip of its own). `from: joint_state`: sensor_msgs/JointState's velocities (rad/s), each of the
+// slip of its own). ROS's diff_drive_controller computes that twist with its wheel_separation
+// times wheel_separation_multiplier (and wheel_radius times wheel_radius_multiplier): `track` c
+// and `radius` r set to those products give back the wheels' own speeds; the geometric track
+// gives side speeds whose difference reads the odometry's yaw rate, a smaller one on a skid-steer
+// whose multiplier is above 1 (a Husky's 1.875). `from: joint_state`: sensor_msgs/JointState's velocities (rad/s), each of the
 // vehicle's wheels (left, right; or fl, ml, rl, fr, mr, rr) the mean of the joints `joints` lists
 // for it, times its sign in `signs` (1 when not listed):
 //   wheels: {topic: /joint_states, from: joint_state,

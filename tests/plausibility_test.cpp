@@ -1,10 +1,12 @@
 // Plausibility checks catch wrong mappings on a simulated log with GNSS, turns and rests (the
 // bundled hidden-effect log): a z-down IMU, a left side that reads backwards, swapped sides, a
-// radius in the wrong unit; and the clean log passes.
+// radius in the wrong unit; the wheels' yaw against the gyro's in scale (a track width off, a
+// skid-steer's larger effective track, a gyro in degrees); and the clean log passes.
 #include "io/plausibility.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "io/log_reader.h"
@@ -26,6 +28,7 @@ TEST(Plausibility, CleanLogPasses) {
   EXPECT_NEAR(p.figures.rest_az_mps2, 9.81, 0.3);
   EXPECT_GT(p.figures.wheel_over_gnss_speed, 0.8);
   EXPECT_GT(p.figures.wheel_gyro_yaw_correlation, 0.8);
+  EXPECT_NEAR(p.figures.wheel_over_gyro_yaw, 1.0, 0.1);
 }
 
 TEST(Plausibility, FlippedImuZ) {
@@ -54,6 +57,38 @@ TEST(Plausibility, WheelRadiusInTheWrongUnit) {
   log.vehicle.wheel_radius_m *= 100.0;  // centimetres given as metres
   const Plausibility p = CheckPlausibility(log);
   EXPECT_TRUE(Mentions(p, "radius or units wrong"));
+}
+
+TEST(Plausibility, TrackWidthTwiceTheTrueOnADifferentialDrive) {
+  DriveLog log = Clean();
+  log.vehicle.track_width_m *= 0.5;  // the wheels then imply twice the yaw the body makes
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_NEAR(p.figures.wheel_over_gyro_yaw, 2.0, 0.2);
+  EXPECT_TRUE(Mentions(p, "track_width too large")) << p.problems.size();
+}
+
+TEST(Plausibility, ASkidSteersWheelsMayImplyMoreYawThanTheBodyMakes) {
+  DriveLog log = Clean();
+  log.vehicle.type = VehicleType::kSkidSteer;
+  log.vehicle.track_width_m *= 0.5;  // an effective track twice the geometric one
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_NEAR(p.figures.wheel_over_gyro_yaw, 2.0, 0.2);
+  EXPECT_TRUE(p.problems.empty()) << p.problems.front();
+}
+
+TEST(Plausibility, GyroInDegreesPerSecond) {
+  DriveLog log = Clean();
+  for (ImuSample& s : log.imu) s.gz *= 180.0 / M_PI;
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_NEAR(p.figures.wheel_over_gyro_yaw, M_PI / 180.0, 0.002);
+  EXPECT_TRUE(Mentions(p, "the gyro's unit or scale wrong")) << p.problems.size();
+}
+
+TEST(Plausibility, AGyroThatReadsNoTurnGivesNoScale) {
+  DriveLog log = Clean();
+  for (ImuSample& s : log.imu) s.gz = 0.001 * std::sin(s.t);  // noise-sized, no turn
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_TRUE(std::isnan(p.figures.wheel_over_gyro_yaw));
 }
 
 }  // namespace
