@@ -185,9 +185,9 @@ Plausibility CheckPlausibility(const DriveLog& log) {
         f.wheel_over_gyro_yaw = cov / vy;
         const std::string ratio =
             "the wheels' yaw rate is " + Format(f.wheel_over_gyro_yaw) + " x the gyro's";
-        const std::string agree = "the track that makes them agree: " +
-                                  Format(c * f.wheel_over_gyro_yaw) + " m against track_width " +
-                                  Format(c) + " m";
+        const std::string agree =
+            "the track that makes them agree: " + Format(c * f.wheel_over_gyro_yaw) +
+            " m against track_width " + Format(c) + " m";
         if (f.wheel_over_gyro_yaw < kMinWheelOverGyroYaw) {
           out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
                                  "): track_width too small, the wheel radius too large, or the "
@@ -221,8 +221,8 @@ std::string DescribePlausibility(const PlausibilityFigures& f) {
   if (std::isfinite(f.wheel_gyro_yaw_correlation)) {
     parts.push_back(std::isfinite(f.wheel_over_gyro_yaw)
                         ? "wheels' yaw rate " + Format(f.wheel_over_gyro_yaw) +
-                              " x the gyro's (correlation " +
-                              Format(f.wheel_gyro_yaw_correlation) + ")"
+                              " x the gyro's (correlation " + Format(f.wheel_gyro_yaw_correlation) +
+                              ")"
                         : "wheels' yaw rate against the gyro's: correlation " +
                               Format(f.wheel_gyro_yaw_correlation));
   }

@@ -22,9 +22,9 @@
 // times wheel_separation_multiplier (and wheel_radius times wheel_radius_multiplier): `track` c
 // and `radius` r set to those products give back the wheels' own speeds; the geometric track
 // gives side speeds whose difference reads the odometry's yaw rate, a smaller one on a skid-steer
-// whose multiplier is above 1 (a Husky's 1.875). `from: joint_state`: sensor_msgs/JointState's velocities (rad/s), each of the
-// vehicle's wheels (left, right; or fl, ml, rl, fr, mr, rr) the mean of the joints `joints` lists
-// for it, times its sign in `signs` (1 when not listed):
+// whose multiplier is above 1 (a Husky's 1.875). `from: joint_state`: sensor_msgs/JointState's
+// velocities (rad/s), each of the vehicle's wheels (left, right; or fl, ml, rl, fr, mr, rr) the
+// mean of the joints `joints` lists for it, times its sign in `signs` (1 when not listed):
 //   wheels: {topic: /joint_states, from: joint_state,
 //            joints: {left: [front_left_wheel, rear_left_wheel], right: [front_right_wheel,
 //                     rear_right_wheel]}, signs: {left: 1, right: 1}}
