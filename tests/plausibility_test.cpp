@@ -1,12 +1,13 @@
 // Plausibility checks catch wrong mappings on a simulated log with GNSS, turns and rests (the
-// bundled hidden-effect log): a z-down IMU, a left side that reads backwards, swapped sides, a
-// radius in the wrong unit; the wheels' yaw against the gyro's in scale (a track width off, a
-// skid-steer's larger effective track, a gyro in degrees); and the clean log passes.
+// bundled hidden-effect log): vibration at rest, a z-down IMU, a left side that reads backwards,
+// swapped sides, a radius in the wrong unit; the wheels' yaw against the gyro's in scale (a track
+// width off, a skid-steer's larger effective track, a gyro in degrees); and the clean log passes.
 #include "io/plausibility.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "io/log_reader.h"
@@ -29,6 +30,17 @@ TEST(Plausibility, CleanLogPasses) {
   EXPECT_GT(p.figures.wheel_over_gnss_speed, 0.8);
   EXPECT_GT(p.figures.wheel_gyro_yaw_correlation, 0.8);
   EXPECT_NEAR(p.figures.wheel_over_gyro_yaw, 1.0, 0.1);
+}
+
+TEST(Plausibility, VibrationAtRestIsNotAWrongScale) {
+  DriveLog log = Clean();
+  std::mt19937 rng(7);
+  std::normal_distribution<double> vibration(0.0, 3.0);  // m/s^2, each axis
+  for (ImuSample& s : log.imu)
+    s.ax += vibration(rng), s.ay += vibration(rng), s.az += vibration(rng);
+  const Plausibility p = CheckPlausibility(log);
+  EXPECT_NEAR(p.figures.rest_norm_mps2, 9.81, 0.3);
+  EXPECT_TRUE(p.problems.empty()) << p.problems.front();
 }
 
 TEST(Plausibility, FlippedImuZ) {
