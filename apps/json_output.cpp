@@ -93,14 +93,15 @@ nlohmann::json ModelRecord(const std::string& model_path, const ModelConfig& mod
           {"fingerprint", hex}};
 }
 
-nlohmann::json PlausibilityRecord(const PlausibilityFigures& f) {
+nlohmann::json PlausibilityRecord(const PlausibilityFigures& figures) {
   const auto value = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; };
-  return {{"rest_seconds", f.rest_seconds},
-          {"rest_az_mps2", value(f.rest_az_mps2)},
-          {"rest_norm_mps2", value(f.rest_norm_mps2)},
-          {"wheel_over_gnss_speed", value(f.wheel_over_gnss_speed)},
-          {"wheel_gyro_yaw_correlation", value(f.wheel_gyro_yaw_correlation)},
-          {"wheel_over_gyro_yaw", value(f.wheel_over_gyro_yaw)}};
+  return {{"rest_seconds", figures.rest_seconds},
+          {"gravity_at_rest", figures.gravity_at_rest},
+          {"rest_az_mps2", value(figures.rest_az_mps2)},
+          {"rest_norm_mps2", value(figures.rest_norm_mps2)},
+          {"wheel_over_gnss_speed", value(figures.wheel_over_gnss_speed)},
+          {"wheel_gyro_yaw_correlation", value(figures.wheel_gyro_yaw_correlation)},
+          {"wheel_over_gyro_yaw", value(figures.wheel_over_gyro_yaw)}};
 }
 
 }  // namespace slipgraph

@@ -1,5 +1,6 @@
 #include "io/plausibility.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,18 +13,23 @@ namespace {
 
 constexpr double kStillRadps = 0.05;
 constexpr double kMovingMps = 0.3;
+// Gravity over a log that is never still: the norm of the mean over stretches this long.
+constexpr double kWholeLogStretchS = 1.0;
 // The wheels' yaw rate against the gyro's: a scale is read where the gyro's rate varies by more
-// than this sd (a turn, not its noise) and the two correlate by more than this.
+// than this sd (a turn, not its noise) and the two correlate by more than kScaleMinCorrelation;
+// it is named as a problem only where they correlate by more than kScaleFlagCorrelation.
 constexpr double kScaleTurnRadps = 0.05;
 constexpr double kScaleMinCorrelation = 0.5;
+constexpr double kScaleFlagCorrelation = 0.8;
 // Any drive: the wheels cannot turn the body much faster than they imply; slip and a wheel radius
-// off by a few percent move the scale by as much.
+// off by a few percent move the scale by as much. A gyro in deg/s read as rad/s gives 1/57.3.
 constexpr double kMinWheelOverGyroYaw = 0.7;
 // A differential drive on castors turns as its wheels imply, give or take their slip.
 constexpr double kMaxDiffDriveWheelOverGyroYaw = 1.4;
-// A skid-steer's tracks or wheels skid sideways in a turn, so its wheels imply more yaw than the
-// body makes: an effective track of 1.2-3 times the geometric one is common (higher on high
-// friction); beyond this a unit is more likely wrong (57.3 for degrees read as radians).
+// A skid-steer's tracks or wheels skid sideways in a turn (and a rocker-bogie rover's six), so
+// they imply more yaw than the body makes: an effective track of 1.2-3 times the geometric one is
+// common (higher on high friction); beyond this a unit is more likely wrong (rad/s converted as
+// if deg/s gives 57.3).
 constexpr double kMaxWheelOverGyroYaw = 6.0;
 
 std::string Format(double v) {
@@ -68,40 +74,56 @@ Plausibility CheckPlausibility(const DriveLog& log) {
   }
   // Gravity at rest.
   {
-    double ax = 0.0, ay = 0.0, az = 0.0;
-    long n = 0;
+    // The norm of the mean specific force over each stretch, weighted by its samples: not the
+    // mean of the norms, which vibration raises by about its variance over 2 g (a tracked
+    // vehicle's engine at rest: 2-3 m/s^2 sd on x and y), nor the norm of one mean over stretches
+    // at different tilts, which shrinks by their mean cosine (parked up and down a hill).
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero(), stretch = Eigen::Vector3d::Zero();
+    double norm_sum = 0.0;
+    long n = 0, stretch_n = 0;
+    const auto end_stretch = [&]() {
+      norm_sum += stretch.norm();
+      stretch.setZero();
+      stretch_n = 0;
+    };
+    const auto add = [&](const ImuSample& s) {
+      if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) return;
+      const Eigen::Vector3d a(s.ax, s.ay, s.az);
+      sum += a, stretch += a;
+      ++n, ++stretch_n;
+    };
     size_t i = 0;
     for (const auto& [a, b] : still) {
-      f.rest_seconds += b - a;
       while (i < log.imu.size() && log.imu[i].t < a) ++i;
-      for (; i < log.imu.size() && log.imu[i].t <= b; ++i) {
-        const ImuSample& s = log.imu[i];
-        if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) continue;
-        ax += s.ax, ay += s.ay, az += s.az;
-        ++n;
-      }
+      const long before = n;
+      for (; i < log.imu.size() && log.imu[i].t <= b; ++i) add(log.imu[i]);
+      if (n > before) f.rest_seconds += b - a;
+      end_stretch();
     }
-    const bool at_rest = n > 0;
-    if (!at_rest) {  // never still: the whole log (motion averages out over a drive)
+    f.gravity_at_rest = n > 0;
+    if (!f.gravity_at_rest && !log.imu.empty()) {
+      // Never still: the whole log in stretches of a second (motion averages out over a drive).
+      double stretch_start = log.imu.front().t;
       for (const ImuSample& s : log.imu) {
-        if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) continue;
-        ax += s.ax, ay += s.ay, az += s.az;
-        ++n;
+        if (s.t - stretch_start >= kWholeLogStretchS) {
+          end_stretch();
+          stretch_start = s.t;
+        }
+        add(s);
       }
+      end_stretch();
     }
-    const std::string where = at_rest ? "gravity at rest" : "gravity over the whole log";
+    const std::string where = f.gravity_at_rest ? "gravity at rest" : "gravity over the whole log";
     if (n > 0) {
-      // The norm of the mean, not the mean of the norms: vibration at rest (a tracked vehicle's
-      // engine: 2-3 m/s^2 sd on x and y) would raise the latter by half its variance over g.
-      f.rest_az_mps2 = az / n;
-      f.rest_norm_mps2 = std::sqrt(ax * ax + ay * ay + az * az) / n;
+      f.rest_az_mps2 = sum.z() / n;
+      f.rest_norm_mps2 = norm_sum / n;
       if (std::abs(f.rest_norm_mps2 - 9.81) > 0.5) {
         out.problems.push_back(where + ": the specific force is " + Format(f.rest_norm_mps2) +
                                " m/s^2, not about 9.81: wrong units or scale (g instead of "
                                "m/s^2?)");
       } else if (std::abs(f.rest_az_mps2) < 0.9 * f.rest_norm_mps2) {
         // Gravity mostly on x or y: a sensor frame rotated by 90 deg (or mounted sideways).
-        const double mx = ax / n, my = ay / n;
+        const double mx = sum.x() / n, my = sum.y() / n;
         const char* axis = std::abs(mx) > std::abs(my) ? "x" : "y";
         const double along = std::abs(mx) > std::abs(my) ? mx : my;
         out.problems.push_back(where + ": gravity is along " + (along < 0.0 ? "-" : "+") + axis +
@@ -149,17 +171,25 @@ Plausibility CheckPlausibility(const DriveLog& log) {
       }
     }
   }
-  // Wheels against the gyro's yaw rate.
+  // Wheels against the gyro's yaw rate: each wheel cycle's against the gyro's mean over that
+  // cycle (a wheel sample at 10 Hz against one of a 250 Hz gyro's would set noise against it).
   {
     double sxy = 0.0, sxx = 0.0, syy = 0.0, sx = 0.0, sy = 0.0;
     long n = 0;
-    for (const WheelSample& w : log.wheels) {
-      const long i = LatestAtOrBefore(log.imu, w.t);
-      if (i < 0 || !std::isfinite(log.imu[i].gz)) continue;
-      const SideSpeeds s = DrivenSideSpeeds(w, log.vehicle.type);
+    size_t i = 0;
+    for (size_t k = 1; k < log.wheels.size(); ++k) {
+      const double t0 = log.wheels[k - 1].t, t1 = log.wheels[k].t;
+      while (i < log.imu.size() && log.imu[i].t <= t0) ++i;
+      double gz_sum = 0.0;
+      long gz_n = 0;
+      for (size_t j = i; j < log.imu.size() && log.imu[j].t <= t1; ++j) {
+        if (std::isfinite(log.imu[j].gz)) gz_sum += log.imu[j].gz, ++gz_n;
+      }
+      if (gz_n == 0) continue;
+      const SideSpeeds s = DrivenSideSpeeds(log.wheels[k], log.vehicle.type);
       const double yaw = r * (s.right_radps - s.left_radps) / c;
       if (!std::isfinite(yaw)) continue;
-      const double g = log.imu[i].gz;
+      const double g = gz_sum / gz_n;
       sx += yaw, sy += g, sxx += yaw * yaw, syy += g * g, sxy += yaw * g;
       ++n;
     }
@@ -177,9 +207,10 @@ Plausibility CheckPlausibility(const DriveLog& log) {
               "): left and right wheels swapped, or the gyro's z axis flipped");
         }
       }
-      // The scale, where the two clearly move together and the robot turned by more than the
-      // gyro's noise: the slope of the wheels' yaw rate on the gyro's (the gyro's bias in the
-      // intercept).
+      // The scale, where the two move together and the robot turned by more than the gyro's
+      // noise: the slope of the wheels' yaw rate on the gyro's (the gyro's bias in the
+      // intercept). What scatters about the line (slip, the gyro's noise) pulls the slope towards
+      // zero by up to the squared correlation: only a close fit is named.
       if (vy > kScaleTurnRadps * kScaleTurnRadps &&
           f.wheel_gyro_yaw_correlation > kScaleMinCorrelation) {
         f.wheel_over_gyro_yaw = cov / vy;
@@ -188,20 +219,22 @@ Plausibility CheckPlausibility(const DriveLog& log) {
         const std::string agree =
             "the track that makes them agree: " + Format(c * f.wheel_over_gyro_yaw) +
             " m against track_width " + Format(c) + " m";
-        if (f.wheel_over_gyro_yaw < kMinWheelOverGyroYaw) {
+        const bool close_fit = f.wheel_gyro_yaw_correlation > kScaleFlagCorrelation;
+        if (close_fit && f.wheel_over_gyro_yaw < kMinWheelOverGyroYaw) {
           out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
-                                 "): track_width too small, the wheel radius too large, or the "
-                                 "gyro's unit or scale wrong");
-        } else if (log.vehicle.type == VehicleType::kDiffDriveCastor &&
+                                 "): track_width too large, the wheel radius too small, or the "
+                                 "gyro's unit or scale wrong (deg/s read as rad/s?)");
+        } else if (close_fit && log.vehicle.type == VehicleType::kDiffDriveCastor &&
                    f.wheel_over_gyro_yaw > kMaxDiffDriveWheelOverGyroYaw) {
           out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
                                  "): on a differential drive with castors the wheels turn the "
-                                 "body as they roll; track_width too large, the wheel radius too "
-                                 "small, or the gyro's unit or scale wrong");
-        } else if (f.wheel_over_gyro_yaw > kMaxWheelOverGyroYaw) {
+                                 "body as they roll; track_width too small, the wheel radius too "
+                                 "large, or the gyro's unit or scale wrong");
+        } else if (close_fit && f.wheel_over_gyro_yaw > kMaxWheelOverGyroYaw) {
           out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
-                                 "): more than a skid-steer's tracks skid in a turn; the gyro's "
-                                 "unit or scale wrong (deg/s read as rad/s?)");
+                                 "): more than a skid-steer's or a rover's wheels skid in a "
+                                 "turn; track_width too small, or the gyro's unit or scale wrong "
+                                 "(rad/s converted as if deg/s?)");
         }
       }
     }
@@ -212,8 +245,10 @@ Plausibility CheckPlausibility(const DriveLog& log) {
 std::string DescribePlausibility(const PlausibilityFigures& f) {
   std::vector<std::string> parts;
   if (std::isfinite(f.rest_norm_mps2)) {
-    parts.push_back("gravity at rest " + Format(f.rest_norm_mps2) + " m/s^2 over " +
-                    Format(f.rest_seconds) + " s");
+    parts.push_back(f.gravity_at_rest ? "gravity at rest " + Format(f.rest_norm_mps2) +
+                                            " m/s^2 over " + Format(f.rest_seconds) + " s"
+                                      : "gravity over the whole log (never still) " +
+                                            Format(f.rest_norm_mps2) + " m/s^2");
   }
   if (std::isfinite(f.wheel_over_gnss_speed)) {
     parts.push_back("wheels' speed " + Format(f.wheel_over_gnss_speed) + " x GNSS's");
