@@ -80,17 +80,16 @@ Plausibility CheckPlausibility(const DriveLog& log) {
     // at different tilts, which shrinks by their mean cosine (parked up and down a hill).
     Eigen::Vector3d sum = Eigen::Vector3d::Zero(), stretch = Eigen::Vector3d::Zero();
     double norm_sum = 0.0;
-    long n = 0, stretch_n = 0;
+    long n = 0;
     const auto end_stretch = [&]() {
       norm_sum += stretch.norm();
       stretch.setZero();
-      stretch_n = 0;
     };
     const auto add = [&](const ImuSample& s) {
       if (!std::isfinite(s.ax) || !std::isfinite(s.ay) || !std::isfinite(s.az)) return;
       const Eigen::Vector3d a(s.ax, s.ay, s.az);
       sum += a, stretch += a;
-      ++n, ++stretch_n;
+      ++n;
     };
     size_t i = 0;
     for (const auto& [a, b] : still) {
@@ -214,27 +213,28 @@ Plausibility CheckPlausibility(const DriveLog& log) {
       if (vy > kScaleTurnRadps * kScaleTurnRadps &&
           f.wheel_gyro_yaw_correlation > kScaleMinCorrelation) {
         f.wheel_over_gyro_yaw = cov / vy;
-        const std::string ratio =
-            "the wheels' yaw rate is " + Format(f.wheel_over_gyro_yaw) + " x the gyro's";
-        const std::string agree =
-            "the track that makes them agree: " + Format(c * f.wheel_over_gyro_yaw) +
-            " m against track_width " + Format(c) + " m";
-        const bool close_fit = f.wheel_gyro_yaw_correlation > kScaleFlagCorrelation;
-        if (close_fit && f.wheel_over_gyro_yaw < kMinWheelOverGyroYaw) {
-          out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
-                                 "): track_width too large, the wheel radius too small, or the "
-                                 "gyro's unit or scale wrong (deg/s read as rad/s?)");
-        } else if (close_fit && log.vehicle.type == VehicleType::kDiffDriveCastor &&
-                   f.wheel_over_gyro_yaw > kMaxDiffDriveWheelOverGyroYaw) {
-          out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
-                                 "): on a differential drive with castors the wheels turn the "
-                                 "body as they roll; track_width too small, the wheel radius too "
-                                 "large, or the gyro's unit or scale wrong");
-        } else if (close_fit && f.wheel_over_gyro_yaw > kMaxWheelOverGyroYaw) {
-          out.problems.push_back("wheels against the gyro: " + ratio + " (" + agree +
-                                 "): more than a skid-steer's or a rover's wheels skid in a "
-                                 "turn; track_width too small, or the gyro's unit or scale wrong "
-                                 "(rad/s converted as if deg/s?)");
+        const double scale = f.wheel_over_gyro_yaw;
+        const char* cause = nullptr;
+        if (scale < kMinWheelOverGyroYaw) {
+          cause =
+              "track_width too large, the wheel radius too small, or the gyro's unit or scale "
+              "wrong (deg/s read as rad/s?)";
+        } else if (log.vehicle.type == VehicleType::kDiffDriveCastor &&
+                   scale > kMaxDiffDriveWheelOverGyroYaw) {
+          cause =
+              "on a differential drive with castors the wheels turn the body as they roll; "
+              "track_width too small, the wheel radius too large, or the gyro's unit or scale "
+              "wrong";
+        } else if (scale > kMaxWheelOverGyroYaw) {
+          cause =
+              "more than a skid-steer's or a rover's wheels skid in a turn; track_width too "
+              "small, or the gyro's unit or scale wrong (rad/s converted as if deg/s?)";
+        }
+        if (cause != nullptr && f.wheel_gyro_yaw_correlation > kScaleFlagCorrelation) {
+          out.problems.push_back(
+              "wheels against the gyro: the wheels' yaw rate is " + Format(scale) +
+              " x the gyro's (the track that makes them agree: " + Format(c * scale) +
+              " m against track_width " + Format(c) + " m): " + cause);
         }
       }
     }
