@@ -18,6 +18,7 @@
 
 #include "factors/drive_direction.h"
 #include "factors/effect_term.h"
+#include "factors/gnss_heading_offset.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
 #include "io/state_estimate.h"
@@ -280,9 +281,11 @@ class WardFactorSource {
  private:
   struct Context;
   Context ContextAt(double t) const;
-  // GNSS fix g's velocity along body x at state k and its sd; false when it has none (a
-  // non-finite component).
-  bool GnssAlong(size_t k, const GpsSample& g, double* along, double* sd) const;
+  // GNSS fix g's velocity along body x at state k and its sd, the attitude's yaw corrected by
+  // the GNSS course (*heading, which reads g after): false when it has none (a non-finite
+  // component).
+  bool GnssAlong(size_t k, const GpsSample& g, GnssHeadingOffset* heading, double* along,
+                 double* sd) const;
   // Weak constraint 3's condition at state k: the tires, with the body held still and the wheels
   // at their measured speeds, push along vel_dir harder than gravity pulls back.
   bool PushesAlong(size_t k, double vel_dir, const ward::Params& params) const;

@@ -205,6 +205,12 @@ std::string DescribeFilterRun(const FilterResult& result) {
         << " of the " << result.stats.gps.used
         << " GNSS fixes used, their innovations having kept one sign (--no-gnss-fading: off)\n";
   }
+  if (result.stats.gnss_heading_corrected > 0) {
+    out << "  GNSS heading: the attitude's yaw is off the fixes' course; "
+        << result.stats.gnss_heading_corrected << " of the GNSS fixes were projected on it "
+        << "corrected (the last by "
+        << std::round(result.stats.gnss_heading_offset_rad * 1800.0 / M_PI) / 10.0 << " deg)\n";
+  }
   const StreamCounters& check = result.stats.slip_persistence;
   if (check.used + check.rejected > 0) {
     out << "  the wheels' check on the accelerometer bias: " << check.used << " intervals applied ("

@@ -339,8 +339,19 @@ void WardEkf::AddGps(const GpsSample& gps) {
     ++stats_.gps.dropped_components;
     return;
   }
+  // The yaw corrected by the course of the fixes before this one; then this fix read.
+  const double heading_offset_rad = options_.gnss_heading_offset ? gnss_heading_.offset_rad() : 0.0;
+  if (heading_offset_rad != 0.0) {
+    stats_.gnss_heading_offset_rad = heading_offset_rad;
+    ++stats_.gnss_heading_corrected;
+  }
   const ekf::MeasurementRows rows =
-      GnssRows(x_, gps, {have_attitude_, pitch_rad_, yaw_rad_}, model_.measurement.gps_sd_v_mps);
+      GnssRows(x_, gps, {have_attitude_, pitch_rad_, yaw_rad_ + heading_offset_rad},
+               model_.measurement.gps_sd_v_mps);
+  if (have_attitude_) {
+    gnss_heading_.Observe(gps.vx, gps.vy, GnssVelocitySd(gps, model_.measurement.gps_sd_v_mps),
+                          yaw_rad_, 0.5 * (x_(kOmegaLeft) + x_(kOmegaRight)));
+  }
   // Fading memory (EkfOptions::gnss_fading_*): not in a bank of laws, whose weights are each
   // fix's likelihood under the filter's own covariance (AddGpsScored).
   if (options_.gnss_fading_fixes > 0.0 && !scoring_) {

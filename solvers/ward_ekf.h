@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "factors/drive_direction.h"
+#include "factors/gnss_heading_offset.h"
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
@@ -81,6 +82,9 @@ struct EkfOptions {
   double gnss_fading_fixes = kGnssFadingFixes;
   double gnss_fading_threshold = 0.5;
   double gnss_fading_max = 100.0;
+  // The attitude's yaw corrected by the GNSS course before a fix is projected on the heading
+  // (factors/gnss_heading_offset.h); false: the yaw as logged.
+  bool gnss_heading_offset = true;
   // Sum the sensor measurements' log-likelihood for TakeLogLikelihood() (a bank of filters
   // weighing their models sets it); off, no logarithm is taken in the updates.
   bool track_log_likelihood = false;
@@ -114,6 +118,10 @@ struct EkfStats {
   // Times the state or covariance became non-finite (a model far from the data can make the
   // stiff tire law blow up): the filter went back to its last finite state, covariance inflated.
   long divergence_resets = 0;
+  // GNSS fixes projected on a yaw corrected by the course (factors/gnss_heading_offset.h), and
+  // the last correction applied (rad).
+  long gnss_heading_corrected = 0;
+  double gnss_heading_offset_rad = 0.0;
   long gnss_fading = 0;  // GNSS updates preceded by fading memory (EkfOptions::gnss_fading_*)
   double first_divergence_t = -1.0;
   // With EkfOptions::record_innovations: per measurement ("accelerometer", "gyro",
@@ -210,6 +218,7 @@ class WardEkf {
   ward::AttitudeLoads<double> loads_;
   WardPropagator propagator_;
   GnssFading gnss_fading_;
+  GnssHeadingOffset gnss_heading_;  // the attitude's yaw against the GNSS course
   SlipPersistence slip_persistence_;
   // kAccelerometerDriven: the accelerometer x reading driving the current prediction (the mean
   // over the interval ending at its stamp) and the IMU sample interval, for the input noise.
