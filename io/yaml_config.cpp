@@ -63,6 +63,14 @@ double ReadNumber(const std::string& path, const YAML::Node& node, const std::st
   return value;
 }
 
+bool ReadBool(const std::string& path, const YAML::Node& node, const std::string& key) {
+  bool value = false;
+  if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
+    Fail(path, node, key, node.IsScalar() ? node.Scalar() : "", "expected true or false");
+  }
+  return value;
+}
+
 // Reads the listed numeric keys of `map`. A missing needed key is an error. Keys not listed are
 // errors when `strict`, warnings otherwise.
 void ReadNumbers(const std::string& path, const YAML::Node& map, const std::string& prefix,
@@ -322,6 +330,10 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
       m.gravity_mps2 = ReadNumber(path, entry.second, key);
       continue;
     }
+    if (key == "gnss_heading_from_course") {
+      m.gnss_heading_from_course = ReadBool(path, entry.second, key);
+      continue;
+    }
     if (key == "effect_windows") {
       if (!entry.second.IsSequence()) {
         Fail(path, entry.second, key, "", "expected a list of {effect, from, to}");
@@ -486,6 +498,7 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
   YAML::Emitter e;
   e << YAML::BeginMap;
   e << YAML::Key << "gravity" << YAML::Value << m.gravity_mps2;
+  e << YAML::Key << "gnss_heading_from_course" << YAML::Value << m.gnss_heading_from_course;
   auto section = [&e](const char* name, const std::vector<std::pair<const char*, double>>& fields) {
     e << YAML::Key << name << YAML::Value << YAML::BeginMap;
     for (const auto& field : fields) e << YAML::Key << field.first << YAML::Value << field.second;

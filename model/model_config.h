@@ -207,6 +207,10 @@ struct ModelConfig {
   // An at-rest IMU sample updates the offsets only once the robot has stayed at rest this long
   // after it (the encoders see a start late; solvers/imu_offsets.h).
   double offset_rest_guard_s = 0.5;
+  // Whether a GNSS velocity is projected on the attitude's yaw corrected by the fixes' course
+  // where the two disagree (factors/gnss_heading_offset.h), in the front end and the smoothers
+  // alike (model file `gnss_heading_from_course`); false: on the yaw as logged.
+  bool gnss_heading_from_course = true;
   // Optional physical effects switched on, by the names of their terms (factors/effect_term.h;
   // io/yaml_config checks a model file's against the terms).
   std::vector<std::string> effects;

@@ -24,6 +24,7 @@
 #include "factors/state_walk_factor.h"
 #include "factors/tire_law_uncertainty.h"
 #include "factors/ward_dynamics_factor.h"
+#include "io/gnss_heading_offsets.h"
 #include "io/measurement_stream.h"
 #include "io/nearest_time.h"
 #include "model/option_check.h"
@@ -204,11 +205,12 @@ WardFactorSource::WardFactorSource(const DriveLog& log, const ModelConfig& model
   // each fix's state.
   gnss_.assign(log.gps.size(), GnssFix{});
   int consecutive = 0;
-  GnssHeadingOffset heading;  // as the front end tracks it (solvers/ward_ekf.h)
+  // Each fix on the yaw corrected by the course, as the front end corrects it.
+  const std::vector<double> heading_offsets = GnssHeadingOffsets(log, model);
   for (size_t k = 0; k < n; ++k) {
     for (size_t i = gps_begin_[k]; i < gps_begin_[k + 1]; ++i) {
       GnssFix& fix = gnss_[i];
-      fix.usable = GnssAlong(k, log.gps[i], &heading, &fix.along_mps, &fix.sd_mps);
+      fix.usable = GnssAlong(k, log.gps[i], heading_offsets[i], &fix.along_mps, &fix.sd_mps);
       if (!fix.usable) continue;
       const double v = initial[k].x[ward::kVbx], sd_v = initial[k].sd[ward::kVbx];
       const double d2 =
@@ -265,15 +267,14 @@ void WardFactorSource::AddStiffnessNode(size_t j, double* nodes, ceres::Problem*
                                                    nullptr, &nodes[j - 1], &nodes[j])});
 }
 
-bool WardFactorSource::GnssAlong(size_t k, const GpsSample& g, GnssHeadingOffset* heading,
+bool WardFactorSource::GnssAlong(size_t k, const GpsSample& g, double heading_offset_rad,
                                  double* along, double* sd) const {
   if (!std::isfinite(g.vx) || !std::isfinite(g.vy) || !std::isfinite(g.vz)) return false;
   const Context c = ContextAt(g.t);
   const double wheel_sum = wheel_speeds_[k][0] + wheel_speeds_[k][1];
   *along = GnssVelocityAlongBodyX(g.vx, g.vy, g.vz, c.have_attitude, c.attitude.pitch_rad,
-                                  c.yaw + heading->offset_rad(), wheel_sum);
+                                  c.yaw + heading_offset_rad, wheel_sum);
   *sd = GnssVelocitySd(g, model_.measurement.gps_sd_v_mps);
-  if (c.have_attitude) heading->Observe(g.vx, g.vy, *sd, c.yaw, 0.5 * wheel_sum);
   return std::isfinite(*along);
 }
 

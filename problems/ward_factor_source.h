@@ -18,7 +18,6 @@
 
 #include "factors/drive_direction.h"
 #include "factors/effect_term.h"
-#include "factors/gnss_heading_offset.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
 #include "io/state_estimate.h"
@@ -282,9 +281,9 @@ class WardFactorSource {
   struct Context;
   Context ContextAt(double t) const;
   // GNSS fix g's velocity along body x at state k and its sd, the attitude's yaw corrected by
-  // the GNSS course (*heading, which reads g after): false when it has none (a non-finite
+  // heading_offset_rad (io/gnss_heading_offsets.h): false when it has none (a non-finite
   // component).
-  bool GnssAlong(size_t k, const GpsSample& g, GnssHeadingOffset* heading, double* along,
+  bool GnssAlong(size_t k, const GpsSample& g, double heading_offset_rad, double* along,
                  double* sd) const;
   // Weak constraint 3's condition at state k: the tires, with the body held still and the wheels
   // at their measured speeds, push along vel_dir harder than gravity pulls back.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "factors/frames.h"
+#include "io/gnss_heading_offsets.h"
 #include "io/measurement_stream.h"
 #include "io/nearest_time.h"
 
@@ -88,14 +89,17 @@ const AttitudeSample* HeadingAt(const DriveLog& log, double t) {
 }
 
 // What the fixes between t0 and t1 say against a robot at rest: z of the mean of each fix's
-// velocity along the body's heading, |mean| sqrt(n) / sd, the robot moving either way; or, when
+// velocity along the body's heading (the yaw corrected by heading_offsets, one per log.gps
+// fix), |mean| sqrt(n) / sd, the robot moving either way; or, when
 // any of them has no heading (no attitude within kAttitudeMaxAgeS), of all their squared speeds
 // less the noise's share (k sd^2 over k axes, zero-mean at rest with sd sqrt(2k) sd^2), signed:
 // fixes quieter than their stated sd are a robot at rest. sd is the larger of the stated and the
 // fixes' own scatter. NaN with fewer than min_fixes fixes.
-double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
+double RestZ(const DriveLog& log, const std::vector<double>& heading_offsets, double t0, double t1,
+             int min_fixes) {
   std::vector<const GpsSample*> fixes;
   std::vector<const AttitudeSample*> headings;
+  std::vector<double> offsets_rad;
   bool headed = true;
   for (long i = std::max(0L, LatestAtOrBefore(log.gps, t0)); i < static_cast<long>(log.gps.size());
        ++i) {
@@ -104,6 +108,7 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
     if (fix.t > t1) break;
     fixes.push_back(&fix);
     headings.push_back(HeadingAt(log, fix.t));
+    offsets_rad.push_back(heading_offsets[i]);
     headed = headed && headings.back() != nullptr;
   }
   const size_t n = fixes.size();
@@ -116,7 +121,7 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
     if (headed) {
       const double vz = std::isfinite(fix.vz) ? fix.vz : 0.0;
       values[i] = GnssVelocityAlongBodyX(fix.vx, fix.vy, vz, true, headings[i]->pitch,
-                                         headings[i]->yaw, 1.0);
+                                         headings[i]->yaw + offsets_rad[i], 1.0);
       stated_variance[i] = sd_mps * sd_mps;
     } else {
       const SquaredSpeed squared = SquaredSpeedLessNoise(fix, sd_mps);
@@ -140,6 +145,9 @@ double RestZ(const DriveLog& log, double t0, double t1, int min_fixes) {
 double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstimate>& estimates,
                                 const TrustOptions& options, std::vector<char>* moving,
                                 std::vector<double>* suspect) {
+  // Each fix on the yaw corrected by the course, as the estimators project it.
+  const std::vector<double> heading_offsets =
+      GnssHeadingOffsets(log, DefaultModelConfig(log.vehicle));
   double worst = std::nan("");
   for (size_t first = 0; first < estimates.size();) {
     if (!estimates[first].slip.immobilized) {
@@ -152,7 +160,7 @@ double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstim
       if (estimates[j].slip.immobilized) last = j;
     }
     const double z =
-        RestZ(log, estimates[first].t + options.stretch_start_margin_s,
+        RestZ(log, heading_offsets, estimates[first].t + options.stretch_start_margin_s,
               estimates[last].t - options.stretch_end_margin_s, options.stretch_min_fixes);
     if (std::isfinite(z) && !(z <= worst)) worst = z;
     if (z > options.stretch_z_limit) {

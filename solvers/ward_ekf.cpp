@@ -151,7 +151,7 @@ void WardEkf::AddAttitude(const AttitudeSample& attitude) {
   pitch_rad_ = attitude.pitch;
   loads_ = ComputeAttitudeLoads(CurrentAttitude(), params_);
   pitch_sd_rad_ = std::isfinite(attitude.sd_pitch) ? attitude.sd_pitch : 0.0;
-  if (IsFinite(attitude.yaw)) yaw_rad_ = attitude.yaw;
+  if (IsFinite(attitude.yaw)) yaw_rad_ = attitude.yaw, have_yaw_ = true;
   have_attitude_ = true;
   ++stats_.attitude.used;
 }
@@ -339,8 +339,10 @@ void WardEkf::AddGps(const GpsSample& gps) {
     ++stats_.gps.dropped_components;
     return;
   }
-  // The yaw corrected by the course of the fixes before this one; then this fix read.
-  const double heading_offset_rad = options_.gnss_heading_offset ? gnss_heading_.offset_rad() : 0.0;
+  // The yaw corrected by the course of the fixes before this one; then this fix read, with the
+  // latest encoder reading, as io/gnss_heading_offsets.h reads a whole log.
+  const double heading_offset_rad =
+      model_.gnss_heading_from_course ? gnss_heading_.offset_rad() : 0.0;
   if (heading_offset_rad != 0.0) {
     stats_.gnss_heading_offset_rad = heading_offset_rad;
     ++stats_.gnss_heading_corrected;
@@ -348,9 +350,10 @@ void WardEkf::AddGps(const GpsSample& gps) {
   const ekf::MeasurementRows rows =
       GnssRows(x_, gps, {have_attitude_, pitch_rad_, yaw_rad_ + heading_offset_rad},
                model_.measurement.gps_sd_v_mps);
-  if (have_attitude_) {
+  if (have_yaw_ && t_ - last_wheels_t_ <= gnss_heading_.options().max_wheel_age_s) {
     gnss_heading_.Observe(gps.vx, gps.vy, GnssVelocitySd(gps, model_.measurement.gps_sd_v_mps),
-                          yaw_rad_, 0.5 * (x_(kOmegaLeft) + x_(kOmegaRight)));
+                          yaw_rad_, last_wheel_motion_.speed_mps,
+                          last_wheel_motion_.yaw_rate_radps);
   }
   // Fading memory (EkfOptions::gnss_fading_*): not in a bank of laws, whose weights are each
   // fix's likelihood under the filter's own covariance (AddGpsScored).

@@ -82,9 +82,6 @@ struct EkfOptions {
   double gnss_fading_fixes = kGnssFadingFixes;
   double gnss_fading_threshold = 0.5;
   double gnss_fading_max = 100.0;
-  // The attitude's yaw corrected by the GNSS course before a fix is projected on the heading
-  // (factors/gnss_heading_offset.h); false: the yaw as logged.
-  bool gnss_heading_offset = true;
   // Sum the sensor measurements' log-likelihood for TakeLogLikelihood() (a bank of filters
   // weighing their models sets it); off, no logarithm is taken in the updates.
   bool track_log_likelihood = false;
@@ -238,6 +235,7 @@ class WardEkf {
   double roll_rad_ = 0.0, pitch_rad_ = 0.0, yaw_rad_ = 0.0;
   double pitch_sd_rad_ = 0.0;  // the attitude source's stated pitch sd (0 when not given)
   bool have_attitude_ = false;
+  bool have_yaw_ = false;  // a finite yaw has been read
   ImuOffsetEstimator offsets_;
   ImmobilizationDetector detector_;
   StateVector x_previous_cycle_ = StateVector::Zero();

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "evaluation/evaluation.h"
+#include "io/gnss_heading_offsets.h"
 #include "io/measurement_stream.h"
 #include "sim/scenarios.h"
 #include "sim/simulation.h"
@@ -186,13 +188,25 @@ TEST(WardEkf, AYawOffTheCourseIsCorrectedFromTheFixes) {
       return std::sqrt(sum_sq / truth_v.size());
     };
     const FilterResult as_simulated = RunEkf(log, model);
-    EXPECT_EQ(as_simulated.stats.gnss_heading_offset_rad, 0.0) << seed;
+    EXPECT_EQ(as_simulated.stats.gnss_heading_corrected, 0) << seed;
     for (AttitudeSample& a : log.attitude) a.yaw += 0.4;
     const FilterResult corrected = RunEkf(log, model);
-    FilterRunOptions off;
-    off.ekf.gnss_heading_offset = false;
-    const FilterResult control = RunEkf(log, model, off);
+    ModelConfig off = model;
+    off.gnss_heading_from_course = false;
+    const FilterResult control = RunEkf(log, off);
+    EXPECT_EQ(control.stats.gnss_heading_corrected, 0) << seed;
+    EXPECT_GT(corrected.stats.gnss_heading_corrected, 0) << seed;
     EXPECT_NEAR(corrected.stats.gnss_heading_offset_rad, -0.4, 0.05) << seed;
+    // One rule: the smoothers' offsets over the log (io/gnss_heading_offsets.h) are the front
+    // end's, fix by fix; the last one applied is the same number.
+    const std::vector<double> offsets = GnssHeadingOffsets(log, model);
+    const long applied =
+        std::count_if(offsets.begin(), offsets.end(), [](double offset) { return offset != 0.0; });
+    EXPECT_EQ(applied, corrected.stats.gnss_heading_corrected) << seed;
+    const auto last =
+        std::find_if(offsets.rbegin(), offsets.rend(), [](double offset) { return offset != 0.0; });
+    ASSERT_NE(last, offsets.rend());
+    EXPECT_DOUBLE_EQ(*last, corrected.stats.gnss_heading_offset_rad) << seed;
     EXPECT_LT(rmse(corrected), 1.05 * rmse(as_simulated)) << seed;
     EXPECT_GT(rmse(control), 1.08 * rmse(corrected)) << seed;
   }

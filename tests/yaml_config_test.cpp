@@ -183,6 +183,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.slip_persistence.max_rim_acceleration_mps2 = 0.02;
   m.slip_persistence.lasting_intervals = 4;
   m.slip_persistence.max_lasting_error_mps2 = 0.12;
+  m.gnss_heading_from_course = false;
   std::ostringstream out;
   WriteModelYaml(m, out);
   const ModelConfig back = ReadModelYaml(WriteModel(out.str()), LagrVehicle());
@@ -205,6 +206,19 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.slip_persistence.max_rim_acceleration_mps2, 0.02);
   EXPECT_EQ(back.slip_persistence.lasting_intervals, 4);
   EXPECT_DOUBLE_EQ(back.slip_persistence.max_lasting_error_mps2, 0.12);
+  EXPECT_FALSE(back.gnss_heading_from_course);
+}
+
+TEST(YamlConfig, ASwitchThatIsNotTrueOrFalseIsAnErrorNamingIt) {
+  EXPECT_TRUE(
+      ReadModelYaml(WriteModel("tire: {C1: 0.6}\n"), LagrVehicle()).gnss_heading_from_course);
+  try {
+    ReadModelYaml(WriteModel("tire: {C1: 0.6}\ngnss_heading_from_course: 0.5\n"), LagrVehicle());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.column(), "gnss_heading_from_course");
+    EXPECT_EQ(e.line(), 2);
+  }
 }
 
 TEST(YamlConfig, UnknownVehicleKeyIsAWarningAndMissingSensorsAreDefaulted) {
