@@ -108,7 +108,9 @@ int RunEstimatorOverLogs(const EstimatorRunOptions& options, const Estimator& es
         err << report.str();
         // Whether the estimates hold against the log's own wheels and GNSS
         // (solvers/trust_check.h).
-        const TrustReport trust = CheckTrust(log, output.estimates);
+        TrustOptions trust_options;
+        trust_options.gnss_heading_from_course = model.gnss_heading_from_course;
+        const TrustReport trust = CheckTrust(log, output.estimates, trust_options);
         err << DescribeTrust(trust)
             << (trust.trusted ? "" : "  the estimate file's column `suspect` marks the samples\n");
         output.extra.push_back({"suspect", trust.suspect});

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "model/option_check.h"
@@ -57,7 +58,10 @@ struct GnssHeadingOffsetOptions {
 
 class GnssHeadingOffset {
  public:
-  explicit GnssHeadingOffset(const GnssHeadingOffsetOptions& options = {}) : options_(options) {}
+  explicit GnssHeadingOffset(const GnssHeadingOffsetOptions& options = {}) : options_(options) {
+    std::string error;
+    if (!options_.IsValid(&error)) throw std::invalid_argument(error);
+  }
 
   // One fix: velocity east and north (m/s) with its sd, the attitude's yaw (rad, REP-103), and
   // the encoders' forward speed (m/s, r times the sides' mean; its sign the drive's direction)
@@ -82,14 +86,14 @@ class GnssHeadingOffset {
     }
     outliers_in_row_ = 0;
     ++count_;
-    // Weighted incremental mean and variance (West 1979): the deviation is from the mean before
-    // this fix, so the scatter is unbiased by it.
+    // Weighted incremental mean and variance (West 1979), the deviation from the mean before
+    // this fix; the scatter is about the mean, low by the span's one fix that sd_rad() restores.
     const double w = std::max(2.0 / (1.0 + options_.fixes), 1.0 / count_);
     cos_ += w * (std::cos(d_rad) - cos_);
     sin_ += w * (std::sin(d_rad) - sin_);
-    scatter_sq_ = (1.0 - w) * (scatter_sq_ + w * deviation_rad * deviation_rad);
+    scatter_rad2_ = (1.0 - w) * (scatter_rad2_ + w * deviation_rad * deviation_rad);
     const double stated_rad = sd_v_mps / speed_mps;  // the fix's own direction sd
-    stated_sq_ += w * (stated_rad * stated_rad - stated_sq_);
+    stated_rad2_ += w * (stated_rad * stated_rad - stated_rad2_);
     return true;
   }
 
@@ -102,7 +106,7 @@ class GnssHeadingOffset {
   double sd_rad() const {
     if (count_ < 2) return M_PI;
     const double span = std::min(static_cast<double>(count_), options_.fixes);
-    return std::sqrt(std::max(scatter_sq_ / std::max(1.0, span - 1.0), stated_sq_ / span));
+    return std::sqrt(std::max(scatter_rad2_ / std::max(1.0, span - 1.0), stated_rad2_ / span));
   }
   // What to add to the attitude's yaw: the mean where it is established (module docs), else 0.
   double offset_rad() const {
@@ -119,7 +123,7 @@ class GnssHeadingOffset {
   GnssHeadingOffsetOptions options_;
   int count_ = 0;  // fixes in the average since it (re)started
   int outliers_in_row_ = 0;
-  double cos_ = 0.0, sin_ = 0.0, scatter_sq_ = 0.0, stated_sq_ = 0.0;
+  double cos_ = 0.0, sin_ = 0.0, scatter_rad2_ = 0.0, stated_rad2_ = 0.0;
 };
 
 }  // namespace slipgraph

@@ -15,7 +15,7 @@ std::vector<double> GnssHeadingOffsets(const DriveLog& log, const ModelConfig& m
   GnssHeadingOffset heading(options);
   size_t a = 0, w = 0;  // the next attitude and encoder samples
   bool have_yaw = false, have_wheels = false;
-  double yaw_rad = 0.0, wheels_t = 0.0;
+  double yaw_rad = 0.0, wheels_t_s = 0.0;
   EncoderMotion motion;
   for (size_t i = 0; i < log.gps.size(); ++i) {
     const GpsSample& fix = log.gps[i];
@@ -31,13 +31,13 @@ std::vector<double> GnssHeadingOffsets(const DriveLog& log, const ModelConfig& m
       if (std::isfinite(sides.left_radps) && std::isfinite(sides.right_radps)) {
         motion = EncoderMotionOf(sides.left_radps, sides.right_radps, params.wheel_radius_m,
                                  params.track_width_m);
-        wheels_t = log.wheels[w].t;
+        wheels_t_s = log.wheels[w].t;
         have_wheels = true;
       }
     }
     if (!std::isfinite(fix.vx) || !std::isfinite(fix.vy) || !std::isfinite(fix.vz)) continue;
     offsets[i] = heading.offset_rad();
-    if (have_yaw && have_wheels && fix.t - wheels_t <= options.max_wheel_age_s) {
+    if (have_yaw && have_wheels && fix.t - wheels_t_s <= options.max_wheel_age_s) {
       heading.Observe(fix.vx, fix.vy, GnssVelocitySd(fix, model.measurement.gps_sd_v_mps), yaw_rad,
                       motion.speed_mps, motion.yaw_rate_radps);
     }

@@ -1,8 +1,10 @@
 // The attitude's yaw against the GNSS course over a whole log (factors/gnss_heading_offset.h),
 // fed as the front end feeds it while it streams the log (solvers/ward_ekf.h): at each fix, the
-// latest finite yaw and the latest encoder reading (no older than the options' max_wheel_age_s),
-// both at or before the fix. The smoothers' GNSS factors (problems/ward_factor_source.h) and the
-// trust check's GNSS test (solvers/trust_check.h) project each fix on the yaw so corrected.
+// yaw of the latest attitude sample with finite roll, pitch and yaw and the latest encoder
+// reading with both sides finite (no older than the options' max_wheel_age_s), both at or before
+// the fix; the log's streams sorted by time, as the front end reads them. The smoothers' GNSS
+// factors (problems/ward_factor_source.h) and the trust check's GNSS test (solvers/trust_check.h)
+// project each fix on the yaw so corrected.
 #pragma once
 
 #include <vector>

@@ -9,6 +9,7 @@
 #include "io/gnss_heading_offsets.h"
 #include "io/measurement_stream.h"
 #include "io/nearest_time.h"
+#include "model/model_config.h"
 
 namespace slipgraph {
 
@@ -146,8 +147,9 @@ double FlaggedStretchesThatMove(const DriveLog& log, const std::vector<WardEstim
                                 const TrustOptions& options, std::vector<char>* moving,
                                 std::vector<double>* suspect) {
   // Each fix on the yaw corrected by the course, as the estimators project it.
-  const std::vector<double> heading_offsets =
-      GnssHeadingOffsets(log, DefaultModelConfig(log.vehicle));
+  ModelConfig model = DefaultModelConfig(log.vehicle);
+  model.gnss_heading_from_course = options.gnss_heading_from_course;
+  const std::vector<double> heading_offsets = GnssHeadingOffsets(log, model);
   double worst = std::nan("");
   for (size_t first = 0; first < estimates.size();) {
     if (!estimates[first].slip.immobilized) {

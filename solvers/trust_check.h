@@ -64,6 +64,9 @@ struct TrustOptions {
   int stretch_min_fixes = 4;            // ... from at least this many fixes ...
   double stretch_start_margin_s = 1.5;  // ... none within this of its first flag ...
   double stretch_end_margin_s = 1.0;    // ... nor of its last: it moves
+  // Whether a stretch's fixes are projected on the yaw corrected by the course, as the
+  // estimators project them (the run's ModelConfig::gnss_heading_from_course).
+  bool gnss_heading_from_course = true;
 
   bool IsValid(std::string* error) const;
 };

@@ -233,9 +233,9 @@ void WardEkf::AddWheels(double t, double omega_left, double omega_right) {
     last_wheels_t_ = t_;
     rest_timer_.Update(t_, omega_left, omega_right);
     const bool still = rest_timer_.reading_still();
-    last_wheel_motion_ = {
-        0.5 * params_.wheel_radius_m * (omega_left + omega_right),
-        params_.wheel_radius_m * (omega_right - omega_left) / params_.track_width_m, still};
+    const EncoderMotion motion =
+        EncoderMotionOf(omega_left, omega_right, params_.wheel_radius_m, params_.track_width_m);
+    last_wheel_motion_ = {motion.speed_mps, motion.yaw_rate_radps, still};
     stop_timer_.Update(t_, still);
   }
   const double dt_cycle = have_previous_cycle_ ? t_ - t_previous_cycle_ : 0.0;

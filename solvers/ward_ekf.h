@@ -31,6 +31,7 @@
 #include "factors/ward_dynamics.h"
 #include "factors/ward_state.h"
 #include "io/drive_log.h"
+#include "io/gnss_heading_offsets.h"
 #include "io/state_estimate.h"
 #include "model/model_config.h"
 #include "solvers/ekf_update.h"
@@ -248,7 +249,8 @@ class WardEkf {
   // wheels stand must not restart).
   WheelStopTimer stop_timer_;
   WheelRestTimer rest_timer_;
-  WheelMotion last_wheel_motion_;  // the latest encoder reading, for the offsets' start
+  // The latest encoder reading: for the offsets' start and the GNSS heading's drive direction.
+  WheelMotion last_wheel_motion_;
   EkfStats stats_;
   StreamGate imu_gate_, wheels_gate_, gps_gate_;
   double log_likelihood_ = 0.0;  // since the last TakeLogLikelihood()

@@ -88,7 +88,10 @@ TEST(GnssHeadingOffset, ItsSdIsTheScatterOfItsMean) {
   const int drives = 400;
   for (int drive = 0; drive < drives; ++drive) {
     GnssHeadingOffset heading;
-    for (int i = 0; i < 100; ++i) ObserveAt(&heading, 0.3 + angle(rng));
+    for (int i = 0; i < 100; ++i) {
+      const double d = 0.3 + angle(rng);  // stated 0.01 m/s at 1 m/s: the scatter sets the sd
+      heading.Observe(std::cos(d), std::sin(d), 0.01, 0.0, 1.0, 0.0);
+    }
     error_sq += std::pow(heading.mean_rad() - 0.3, 2) / drives;
     stated_sq += std::pow(heading.sd_rad(), 2) / drives;
   }
