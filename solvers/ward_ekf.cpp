@@ -358,8 +358,10 @@ void WardEkf::AddGps(const GpsSample& gps) {
   // Fading memory (EkfOptions::gnss_fading_*): not in a bank of laws, whose weights are each
   // fix's likelihood under the filter's own covariance (AddGpsScored).
   if (options_.gnss_fading_fixes > 0.0 && !scoring_) {
+    const bool gate_lets_in =
+        gps_gate_.consecutive_rejections >= gps_gate_.max_consecutive_rejections;
     const double scale =
-        gnss_fading_.ScaleFor(rows.innovation(0), P_(kVbx, kVbx) + rows.variance(0));
+        gnss_fading_.ScaleFor(rows.innovation(0), P_(kVbx, kVbx) + rows.variance(0), gate_lets_in);
     if (scale != 1.0) {
       P_ *= scale;
       ++stats_.gnss_fading;

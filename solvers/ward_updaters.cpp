@@ -64,10 +64,14 @@ ekf::MeasurementRows GnssRows(const ekf::StateVector& x, const GpsSample& gps,
   return rows;
 }
 
-double GnssFading::ScaleFor(double innovation, double predicted_variance) {
+double GnssFading::ScaleFor(double innovation, double predicted_variance, bool gate_lets_in) {
   const double z = innovation / std::sqrt(predicted_variance);
+  if (z * z > gate_chi2_) {
+    if (gate_lets_in) ema_ += weight_ * (std::copysign(std::sqrt(gate_chi2_), z) - ema_);
+    return 1.0;
+  }
   ema_ += weight_ * (z - ema_);
-  if (std::abs(ema_) > threshold_ && z * ema_ > 1.0 && std::abs(z) > 1.0 && z * z <= gate_chi2_) {
+  if (std::abs(ema_) > threshold_ && z * ema_ > 1.0 && std::abs(z) > 1.0) {
     return std::min(max_scale_, z * z);
   }
   return 1.0;

@@ -39,14 +39,19 @@ ekf::MeasurementRows GnssRows(const ekf::StateVector& x, const GpsSample& gps,
 // innovations normalized by their predicted sd, z = nu / sqrt(P_vv + r). When the average passes
 // `threshold` and a fix with |z| > 1 agrees with it (z times the average above 1) and would pass
 // the gate, the covariance is to be scaled by z^2 (at most `max_scale`) before the update, so
-// that the fix can pull a drifting velocity back. Never shrinks P; never for a fix the gate
-// rejects (an outlier must not open the covariance for itself).
+// that the fix can pull a drifting velocity back. Never shrinks P; never for a fix beyond the gate
+// (an outlier must not open the covariance for itself). A fix the gate leaves out stays out of
+// the average too: one glitch of the receiver (a position jump read as a velocity) would
+// otherwise hold the average past the threshold for several fixes, and the next fixes, the
+// glitch's neighbours, would open the covariance. A fix beyond the gate that the gate lets in
+// (after a rejection) enters at the gate's z.
 class GnssFading {
  public:
   GnssFading(double fixes, double threshold, double max_scale, double gate_chi2)
       : weight_(1.0 / fixes), threshold_(threshold), max_scale_(max_scale), gate_chi2_(gate_chi2) {}
-  // The factor to scale P by before this fix's update (1: none).
-  double ScaleFor(double innovation, double predicted_variance);
+  // The factor to scale P by before this fix's update (1: none). gate_lets_in: the gate would
+  // apply this fix were it beyond the gate (it has rejected enough in a row).
+  double ScaleFor(double innovation, double predicted_variance, bool gate_lets_in);
 
  private:
   double weight_, threshold_, max_scale_, gate_chi2_;

@@ -84,17 +84,35 @@ TEST(WardUpdaters, EncoderAndGnssRowsSitOnTheirStates) {
 TEST(WardUpdaters, FadingOpensOnlyForARunOfOneSign) {
   GnssFading fading(4.0, 0.5, 100.0, 15.1);
   // Alternating signs: never.
-  for (int i = 0; i < 20; ++i) EXPECT_EQ(fading.ScaleFor(i % 2 ? 2.0 : -2.0, 1.0), 1.0);
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(fading.ScaleFor(i % 2 ? 2.0 : -2.0, 1.0, false), 1.0);
   // A run of +2 sd: the average passes 0.5 and the scale is z^2 = 4.
   GnssFading run(4.0, 0.5, 100.0, 15.1);
-  EXPECT_EQ(run.ScaleFor(2.0, 1.0), 1.0);  // average 0.5: not past the threshold
-  EXPECT_DOUBLE_EQ(run.ScaleFor(2.0, 1.0), 4.0);
+  EXPECT_EQ(run.ScaleFor(2.0, 1.0, false), 1.0);  // average 0.5: not past the threshold
+  EXPECT_DOUBLE_EQ(run.ScaleFor(2.0, 1.0, false), 4.0);
   // A fix the gate would reject does not open it, nor one of the other sign.
-  EXPECT_EQ(run.ScaleFor(5.0, 1.0), 1.0);
-  EXPECT_EQ(run.ScaleFor(-2.0, 1.0), 1.0);
+  EXPECT_EQ(run.ScaleFor(5.0, 1.0, false), 1.0);
+  EXPECT_EQ(run.ScaleFor(-2.0, 1.0, false), 1.0);
   // At most max_scale.
   GnssFading capped(1.0, 0.5, 3.0, 15.1);
-  EXPECT_DOUBLE_EQ(capped.ScaleFor(2.0, 1.0), 3.0);
+  EXPECT_DOUBLE_EQ(capped.ScaleFor(2.0, 1.0, false), 3.0);
+}
+
+TEST(WardUpdaters, FadingLeavesARejectedFixOutOfTheAverage) {
+  // A glitch of -8 sd the gate rejects: the fixes after it, each at -1.5 sd, find the average
+  // as the glitch's neighbours left it, 0.25 * -1.5 = -0.375 after the first, below 0.5.
+  GnssFading glitch(4.0, 0.5, 100.0, 15.1);
+  EXPECT_EQ(glitch.ScaleFor(-8.0, 1.0, false), 1.0);
+  EXPECT_EQ(glitch.ScaleFor(-1.5, 1.0, false), 1.0);
+  // Had the glitch counted, the average would be -2 + 0.25 * (-1.5 + 2) = -1.875 and the scale
+  // 1.5^2; as it is, the same fix a second time finds -0.656, which z times is below 1.
+  EXPECT_EQ(glitch.ScaleFor(-1.5, 1.0, false), 1.0);
+
+  // Let in by the gate (after rejections in a row), a fix beyond it counts at the gate's z,
+  // sqrt(15.1) = 3.886: the average becomes 0.25 * -3.886 = -0.971, past the threshold, and the
+  // next fix of the same sign opens P by its z^2. The let-in fix itself never scales P.
+  GnssFading let_in(4.0, 0.5, 100.0, 15.1);
+  EXPECT_EQ(let_in.ScaleFor(-8.0, 1.0, true), 1.0);
+  EXPECT_DOUBLE_EQ(let_in.ScaleFor(-1.5, 1.0, false), 2.25);
 }
 
 }  // namespace
