@@ -135,6 +135,12 @@ void RegisterIdentifyCommand(CLI::App* app, int* status) {
   cmd->add_flag("--fit-radius", options->identify.fit_radius,
                 "Fit each side's rolling radius with the law (seen only against GNSS ground "
                 "speed, where it is one with the mean slip)");
+  cmd->add_flag_callback(
+      "--no-wheels-clock", [options] { options->identify.wheel_clock = false; },
+      "Leave the encoders' stamps as the model has them. By default how late they are against "
+      "the IMU's is read from the yaw channel (the sides' speed difference against the gyro) and "
+      "the model's calibration.wheels_time_offset takes it where it is told from zero and at "
+      "least 50 ms (solvers/wheel_clock.h)");
   cmd->add_flag("--clock", options->clock_offset,
                 "First, how late the IMU's stamps are against the other streams': the "
                 "workbench's clock_offset test on each fitted log and on its two halves (three "

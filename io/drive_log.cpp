@@ -61,11 +61,16 @@ void ApplyCalibration(const ModelConfig& model, DriveLog* log) {
   }
   if (c.track_width_m > 0.0) log->vehicle.track_width_m = c.track_width_m;
   if (c.imu_time_offset_s != 0.0) MoveImuStampsBack(c.imu_time_offset_s, log);
+  if (c.wheels_time_offset_s != 0.0) MoveWheelStampsBack(c.wheels_time_offset_s, log);
   if (c.imu_mounting_pitch_rad != 0.0) RotateImuAxesBack(c.imu_mounting_pitch_rad, log);
 }
 
 void MoveImuStampsBack(double offset_s, DriveLog* log) {
   for (ImuSample& s : log->imu) s.t -= offset_s;
+}
+
+void MoveWheelStampsBack(double offset_s, DriveLog* log) {
+  for (WheelSample& w : log->wheels) w.t -= offset_s;
 }
 
 void RotateImuAxesBack(double pitch_rad, DriveLog* log) {

@@ -124,11 +124,14 @@ DriveLog SliceLog(const DriveLog& log, double t_begin, double t_end);
 // The model file's calibration (ModelConfig::calibration) applied to the log: each wheel's speed
 // scaled by its side's radius scale (the estimators then read it as the speed of a wheel of
 // vehicle.yaml's radius), the vehicle's track set to the effective track when one is given, the
-// IMU's stamps (imu.csv; attitude.csv keeps its own) moved earlier by the IMU's time offset, and
-// its axes rotated back by its mounting pitch.
+// IMU's stamps (imu.csv; attitude.csv keeps its own) moved earlier by the IMU's time offset, the
+// encoders' (wheels.csv) by theirs, and the IMU's axes rotated back by its mounting pitch.
 void ApplyCalibration(const ModelConfig& model, DriveLog* log);
 // The IMU's stamps (imu.csv) moved earlier by offset_s: what an IMU clock late by offset_s needs.
 void MoveImuStampsBack(double offset_s, DriveLog* log);
+// The encoders' stamps (wheels.csv) moved earlier by offset_s: what encoders late by offset_s
+// need.
+void MoveWheelStampsBack(double offset_s, DriveLog* log);
 // The IMU's accelerometer and gyro (imu.csv) rotated back by pitch_rad about body y: what an IMU
 // mounted pitched nose-down by pitch_rad needs (attitude.csv is left as the body's).
 void RotateImuAxesBack(double pitch_rad, DriveLog* log);

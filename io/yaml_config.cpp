@@ -316,6 +316,7 @@ ModelConfig ReadModel(const std::string& path, const std::string& text, const Ve
         {"wheel_radius_scale_right", &m.calibration.wheel_radius_scale_right, false},
         {"track_width", &m.calibration.track_width_m, false},
         {"imu_time_offset", &m.calibration.imu_time_offset_s, false},
+        {"wheels_time_offset", &m.calibration.wheels_time_offset_s, false},
         {"imu_mounting_pitch", &m.calibration.imu_mounting_pitch_rad, false}}},
       {"tire_uncertainty",
        {{"relative_sd", &m.tire_uncertainty.relative_sd, false},
@@ -568,6 +569,7 @@ void WriteModelYaml(const ModelConfig& m, std::ostream& out) {
                           {"wheel_radius_scale_right", m.calibration.wheel_radius_scale_right},
                           {"track_width", m.calibration.track_width_m},
                           {"imu_time_offset", m.calibration.imu_time_offset_s},
+                          {"wheels_time_offset", m.calibration.wheels_time_offset_s},
                           {"imu_mounting_pitch", m.calibration.imu_mounting_pitch_rad}});
   section("tire_uncertainty", {{"relative_sd", m.tire_uncertainty.relative_sd},
                                {"slip_relative_sd", m.tire_uncertainty.slip_relative_sd},

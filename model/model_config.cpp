@@ -102,6 +102,10 @@ bool ModelConfig::IsValid(std::string* error) const {
     *error = "calibration.imu_time_offset must be within [-1, 1] s";
     return false;
   }
+  if (!(std::abs(calibration.wheels_time_offset_s) <= 1.0)) {
+    *error = "calibration.wheels_time_offset must be within [-1, 1] s";
+    return false;
+  }
   if (!(std::abs(calibration.imu_mounting_pitch_rad) <= kMaxImuMountingPitchRad)) {
     *error = "calibration.imu_mounting_pitch must be within [-0.2, 0.2] rad";
     return false;

@@ -148,13 +148,16 @@ struct TireLawUncertainty {
 // What the model file may correct in vehicle.yaml's geometry and the log's clocks (`slipgraph
 // identify` writes it): each side's effective rolling radius as a scale of vehicle.yaml's
 // wheel_radius, the effective track (a skid-steer turns as if its track were wider than its
-// wheels are apart), and how late the IMU's stamps are against the encoders'. Applied to a log by
-// ApplyCalibration (io/drive_log.h) before any estimator sees it.
+// wheels are apart), how late the IMU's stamps are against the encoders', and how late the
+// encoders' are against the IMU's (a controller's odometry averaged over a window, a driver
+// stamping on receipt). Applied to a log by ApplyCalibration (io/drive_log.h) before any
+// estimator sees it.
 struct CalibrationConfig {
   double wheel_radius_scale_left = 1.0;
   double wheel_radius_scale_right = 1.0;
-  double track_width_m = 0.0;      // 0: vehicle.yaml's
-  double imu_time_offset_s = 0.0;  // subtracted from the IMU's stamps; within +- 1 s
+  double track_width_m = 0.0;         // 0: vehicle.yaml's
+  double imu_time_offset_s = 0.0;     // subtracted from the IMU's stamps; within +- 1 s
+  double wheels_time_offset_s = 0.0;  // subtracted from the encoders' stamps; within +- 1 s
   // The IMU's axes pitched nose-down by this about body y (rad; within +-
   // kMaxImuMountingPitchRad): its accelerometer and gyro rotated back (attitude.csv is taken as
   // the body's).

@@ -82,8 +82,8 @@ py::dict VehicleDict(const Vehicle& v) {
 }
 
 // The log with its model applied (as the CLI's --model does): the vehicle's nominal model, or
-// the model file over it, its calibration (wheel radii, effective track, the IMU's time offset)
-// applied to a copy.
+// the model file over it, its calibration (wheel radii, effective track, the IMU's and the
+// encoders' time offsets) applied to a copy.
 struct CalibratedLog {
   DriveLog log;
   ModelConfig model;

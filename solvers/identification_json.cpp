@@ -48,6 +48,15 @@ nlohmann::json ToJson(const IdentificationResult& r) {
                           {"samples", e.samples},
                           {"method", e.method}});
   }
+  const WheelClockReading& c = r.wheel_clock;
+  j["wheels_clock"] = {{"lag_s", JsonNumber(c.lag_s)},
+                       {"sd_s", JsonNumber(c.sd_s)},
+                       {"correlation", JsonNumber(c.correlation)},
+                       {"correlation_at_zero", JsonNumber(c.correlation_at_zero)},
+                       {"samples", c.samples},
+                       {"parts", c.blocks},
+                       {"taken", c.taken},
+                       {"wheels_time_offset_s", r.model.calibration.wheels_time_offset_s}};
   j["effective_track_m"] = JsonNumber(r.effective_track_m);
   j["gnss_radius_error"] = {{"value", JsonNumber(r.gnss_radius_error)},
                             {"sd", JsonNumber(r.gnss_radius_error_sd)},

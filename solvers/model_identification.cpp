@@ -307,7 +307,17 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   // 1. Sensor noise.
   EstimateSensorNoise(logs, &model, &result.noise);
 
-  // 2. The effective track.
+  // 2. The encoders' delay, then the effective track.
+  if (options.wheel_clock) {
+    result.wheel_clock = EstimateWheelClock(logs);
+    result.wheel_clock.taken =
+        result.wheel_clock.taken &&
+        std::abs(model.calibration.wheels_time_offset_s + result.wheel_clock.lag_s) <= 1.0;
+    if (result.wheel_clock.taken) {
+      model.calibration.wheels_time_offset_s += result.wheel_clock.lag_s;
+      for (DriveLog& log : logs) MoveWheelStampsBack(result.wheel_clock.lag_s, &log);
+    }
+  }
   const VehicleType type = logs[0].vehicle.type;
   result.effective_track_m = EffectiveTrack(logs, &result.track_samples);
   if (std::isfinite(result.effective_track_m) && type == VehicleType::kSkidSteer) {
@@ -489,6 +499,17 @@ std::string DescribeIdentification(const IdentificationResult& r) {
         << " fixes; the mean slip is in it: not applied)\n";
   } else {
     out << "too few fixes while driving\n";
+  }
+  const WheelClockReading& c = r.wheel_clock;
+  if (std::isfinite(c.lag_s)) {
+    out << "encoders against the IMU (the yaw channel): " << std::showpos << 1000.0 * c.lag_s
+        << std::noshowpos << " +- " << 1000.0 * c.sd_s << " ms late (" << c.samples << " samples, "
+        << c.blocks << " parts; correlation with the gyro " << c.correlation_at_zero << " at 0 -> "
+        << c.correlation << ")";
+    out << (c.taken         ? "; the model's calibration.wheels_time_offset takes it\n"
+            : c.lag_s < 0.0 ? "; not taken (the gyro follows the wheels: the body's yaw "
+                              "response, or an IMU clock late: --clock)\n"
+                            : "; not taken (under 3 sd or 50 ms)\n");
   }
   out << "effective track: ";
   if (std::isfinite(r.effective_track_m)) {

@@ -21,9 +21,12 @@
 //      traction reverses within the wheels' rim speeds, or that sends the default front end off
 //      the wheels on the fitted logs, is solved again with C2 >= 0
 //      (IdentifyOptions::keep_front_end_on_wheels).
-//   3. The effective track: the wheels' speed difference r (w_r - w_l) regressed on the yaw gyro
-//      (less its offset), r (w_r - w_l) = c yaw rate; applied to the model for
-//      skid-steer vehicles (a skid-steer turns as if its track were wider), reported for all.
+//   3. The encoders' delay against the IMU (IdentifyOptions::wheel_clock, solvers/wheel_clock.h)
+//      from the yaw channel, taken into calibration.wheels_time_offset where it is told from zero
+//      and at least 50 ms; then the effective track: the wheels' speed difference r (w_r - w_l)
+//      regressed on the yaw gyro (less its offset), r (w_r - w_l) = c yaw rate; applied to the
+//      model for skid-steer vehicles (a skid-steer turns as if its track were wider), reported
+//      for all. Both before the laws, whose slips a late encoder would skew.
 //
 // ScoreModel runs the front end on a log with a model and gives what cross-validation reports:
 // fit on one part of a drive, score on the rest.
@@ -39,6 +42,7 @@
 #include "io/drive_log.h"
 #include "model/model_config.h"
 #include "problems/identification_problem.h"
+#include "solvers/wheel_clock.h"
 
 namespace slipgraph {
 
@@ -54,6 +58,9 @@ struct IdentifyOptions {
   // fading) on each fitted log, sends the velocity off the wheels (solvers/trust_check.h) where
   // the starting model does not, solve again with C2 >= 0.
   bool keep_front_end_on_wheels = true;
+  // Estimate how late the encoders' stamps are against the IMU's (solvers/wheel_clock.h), on
+  // top of the model's calibration.wheels_time_offset, and take it where it is told from zero.
+  bool wheel_clock = true;
   int max_iterations = 100;
   int threads = 1;
   IdentificationPriors priors;
@@ -93,6 +100,9 @@ struct IdentificationResult {
   std::vector<IdentifiedParameter> parameters;
   Eigen::MatrixXd correlation;  // empty when the covariance was not recovered
   std::vector<NoiseEstimate> noise;
+  // The encoders' delay read on the logs (on top of the model's calibration; not read:
+  // IdentifyOptions::wheel_clock off), taken into calibration.wheels_time_offset when `taken`.
+  WheelClockReading wheel_clock;
   double effective_track_m = 0.0;  // NaN when the drive has too little turning
   // GNSS ground speed against the wheels' mean surface speed: (1 + e) r |w| (reported, not
   // applied: e is the radius error less the mean slip). NaN with fewer than 10 fixes.

@@ -39,7 +39,7 @@ TEST(DriveLog, SliceKeepsTheSamplesInItsRangeAndClipsTheEvents) {
   EXPECT_EQ(slice.vehicle.track_width_m, 0.55);
 }
 
-TEST(DriveLog, CalibrationScalesEachSidesWheelsSetsTheTrackAndMovesTheImuStamps) {
+TEST(DriveLog, CalibrationScalesEachSidesWheelsSetsTheTrackAndMovesTheStamps) {
   DriveLog log = TwoWheelLog();
   ModelConfig model;
   ApplyCalibration(model, &log);  // the default changes nothing
@@ -55,6 +55,11 @@ TEST(DriveLog, CalibrationScalesEachSidesWheelsSetsTheTrackAndMovesTheImuStamps)
   EXPECT_EQ(log.vehicle.track_width_m, 0.8);
   EXPECT_DOUBLE_EQ(log.imu[3].t, 3.45);
   EXPECT_EQ(log.wheels[3].t, 3.0);
+  ModelConfig late_wheels;
+  late_wheels.calibration.wheels_time_offset_s = 0.36;  // the encoders' stamps late by 360 ms
+  ApplyCalibration(late_wheels, &log);
+  EXPECT_DOUBLE_EQ(log.wheels[3].t, 2.64);
+  EXPECT_DOUBLE_EQ(log.imu[3].t, 3.45);
 }
 
 TEST(DriveLog, CalibrationRotatesAPitchedImuBackOntoTheBody) {

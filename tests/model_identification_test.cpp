@@ -10,7 +10,8 @@
 //     absorbs what it can and the held-out error falls on seeds 6 and 7; the radius is reported
 //     against GNSS, not applied;
 //   - a law whose falling branch sends the default front end off the wheels, or reverses the
-//     traction at a slip speed the wheels reach, is solved again without one.
+//     traction at a slip speed the wheels reach, is solved again without one;
+//   - encoders whose stamps are late: the delay goes into the model's calibration.
 #include "solvers/model_identification.h"
 
 #include <gtest/gtest.h>
@@ -203,6 +204,20 @@ TEST(ModelIdentification, OneLawOverTwoLogsEachWithItsOffsets) {
   for (const IdentifiedParameter& p : r.parameters) EXPECT_TRUE(std::isfinite(p.sd)) << p.name;
   std::string error;
   EXPECT_TRUE(r.model.IsValid(&error)) << error;
+}
+
+// Encoders whose stamps are 300 ms late: the model's calibration takes the delay (less the body's
+// yaw response, tests/wheel_clock_test.cpp) before the law is fitted; exact stamps, none.
+TEST(ModelIdentification, LateEncodersGoIntoTheCalibration) {
+  DriveLog log = Halves(testing::SimulatedScenario("hiddenm/none", 6)).train;
+  const IdentificationResult exact = IdentifyModel({log}, DefaultModelConfig(log.vehicle));
+  EXPECT_FALSE(exact.wheel_clock.taken);
+  EXPECT_EQ(exact.model.calibration.wheels_time_offset_s, 0.0);
+  MoveWheelStampsBack(-0.3, &log);
+  const IdentificationResult late = IdentifyModel({log}, DefaultModelConfig(log.vehicle));
+  EXPECT_TRUE(late.wheel_clock.taken);
+  EXPECT_NEAR(late.model.calibration.wheels_time_offset_s - exact.wheel_clock.lag_s, 0.3, 0.02);
+  EXPECT_NEAR(late.effective_track_m, exact.effective_track_m, 0.03 * exact.effective_track_m);
 }
 
 TEST(ModelIdentification, NoLogIsAnError) {

@@ -161,6 +161,9 @@ TEST(YamlConfig, InvalidModelValueIsRejected) {
                InputError);
   EXPECT_THROW(ReadModelYaml(WriteModel("calibration: {imu_mounting_pitch: 0.3}\n"), LagrVehicle()),
                InputError);
+  EXPECT_THROW(
+      ReadModelYaml(WriteModel("calibration: {wheels_time_offset: -1.2}\n"), LagrVehicle()),
+      InputError);
 }
 
 TEST(YamlConfig, WrittenModelReadsBackTheSame) {
@@ -173,6 +176,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   m.calibration.wheel_radius_scale_right = 0.97;
   m.calibration.track_width_m = 0.81;
   m.calibration.imu_time_offset_s = -0.035;
+  m.calibration.wheels_time_offset_s = 0.36;
   m.calibration.imu_mounting_pitch_rad = 0.021;
   m.process.attitude_error_walk_s = 45.0;
   m.slip_persistence.interval_s = 0.45;
@@ -196,6 +200,7 @@ TEST(YamlConfig, WrittenModelReadsBackTheSame) {
   EXPECT_DOUBLE_EQ(back.calibration.wheel_radius_scale_right, 0.97);
   EXPECT_DOUBLE_EQ(back.calibration.track_width_m, 0.81);
   EXPECT_DOUBLE_EQ(back.calibration.imu_time_offset_s, -0.035);
+  EXPECT_DOUBLE_EQ(back.calibration.wheels_time_offset_s, 0.36);
   EXPECT_DOUBLE_EQ(back.calibration.imu_mounting_pitch_rad, 0.021);
   EXPECT_DOUBLE_EQ(back.process.attitude_error_walk_s, 45.0);
   EXPECT_DOUBLE_EQ(back.slip_persistence.interval_s, 0.45);
