@@ -304,20 +304,24 @@ IdentificationResult IdentifyModel(const std::vector<DriveLog>& input_logs,
   std::vector<DriveLog> logs = input_logs;
   for (DriveLog& log : logs) ApplyCalibration(model, &log);
 
-  // 1. Sensor noise.
-  EstimateSensorNoise(logs, &model, &result.noise);
-
-  // 2. The encoders' delay, then the effective track.
+  // 1. The encoders' delay (before the noise, whose GNSS sd reads the wheels at the fixes'
+  // stamps, and the track).
   if (options.wheel_clock) {
     result.wheel_clock = EstimateWheelClock(logs);
-    result.wheel_clock.taken =
-        result.wheel_clock.taken &&
-        std::abs(model.calibration.wheels_time_offset_s + result.wheel_clock.lag_s) <= 1.0;
+    if (result.wheel_clock.taken &&
+        !(std::abs(model.calibration.wheels_time_offset_s + result.wheel_clock.lag_s) <= 1.0)) {
+      result.wheel_clock.taken = false;
+      result.notes.push_back(
+          "the encoders' delay would put calibration.wheels_time_offset beyond 1 s: not taken");
+    }
     if (result.wheel_clock.taken) {
       model.calibration.wheels_time_offset_s += result.wheel_clock.lag_s;
       for (DriveLog& log : logs) MoveWheelStampsBack(result.wheel_clock.lag_s, &log);
     }
   }
+
+  // 2. Sensor noise, then the effective track.
+  EstimateSensorNoise(logs, &model, &result.noise);
   const VehicleType type = logs[0].vehicle.type;
   result.effective_track_m = EffectiveTrack(logs, &result.track_samples);
   if (std::isfinite(result.effective_track_m) && type == VehicleType::kSkidSteer) {
@@ -506,10 +510,18 @@ std::string DescribeIdentification(const IdentificationResult& r) {
         << std::noshowpos << " +- " << 1000.0 * c.sd_s << " ms late (" << c.samples << " samples, "
         << c.blocks << " parts; correlation with the gyro " << c.correlation_at_zero << " at 0 -> "
         << c.correlation << ")";
-    out << (c.taken         ? "; the model's calibration.wheels_time_offset takes it\n"
-            : c.lag_s < 0.0 ? "; not taken (the gyro follows the wheels: the body's yaw "
-                              "response, or an IMU clock late: --clock)\n"
-                            : "; not taken (under 3 sd or 50 ms)\n");
+    if (c.taken) {
+      out << "; the model's calibration.wheels_time_offset takes it\n";
+    } else if (c.lag_s < 0.0) {
+      out << "; not taken (the gyro follows the wheels: the body's yaw response, or an IMU clock "
+             "late: --clock)\n";
+    } else if (c.at_grid_edge) {
+      out << "; not taken (at the end of the lags searched: a bound)\n";
+    } else if (!std::isfinite(c.sd_s)) {
+      out << "; not taken (too few parts of the drive turn to give it an sd)\n";
+    } else {
+      out << "; not taken (under 3 sd or 50 ms, or the note below)\n";
+    }
   }
   out << "effective track: ";
   if (std::isfinite(r.effective_track_m)) {

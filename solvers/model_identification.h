@@ -2,9 +2,12 @@
 // each side's rolling radius, the IMU offsets (per log, no rest needed: solvers/imu_offsets.h),
 // the effective track and each stream's noise sd.
 //
-//   1. Noise of the IMU, the encoders and the GNSS velocity from the logs themselves: the spread
-//      of each signal's second difference, x[k+l] - 2 x[k] + x[k-l], which removes any motion
-//      smooth over l samples and leaves 6 sigma^2 of the noise (a difference-based variance
+//   1. The encoders' delay against the IMU (IdentifyOptions::wheel_clock,
+//      solvers/wheel_clock.h) from the yaw channel, taken into calibration.wheels_time_offset
+//      where it reads encoders late beyond 3 sd and 50 ms; the steps below see the moved stamps.
+//      Then noise of the IMU, the encoders and the GNSS velocity from the logs themselves: the
+//      spread of each signal's second difference, x[k+l] - 2 x[k] + x[k-l], which removes any
+//      motion smooth over l samples and leaves 6 sigma^2 of the noise (a difference-based variance
 //      estimate; their RMS within 5 robust sd, so spikes and steps do not count). l = 2 for the
 //      encoders: a speed differenced from counts has noise correlated with its neighbour's, which
 //      l = 1 would count 5/3 times over; l = 1 for the others (at 1 Hz, GNSS's l = 2 would span
@@ -21,12 +24,9 @@
 //      traction reverses within the wheels' rim speeds, or that sends the default front end off
 //      the wheels on the fitted logs, is solved again with C2 >= 0
 //      (IdentifyOptions::keep_front_end_on_wheels).
-//   3. The encoders' delay against the IMU (IdentifyOptions::wheel_clock, solvers/wheel_clock.h)
-//      from the yaw channel, taken into calibration.wheels_time_offset where it is told from zero
-//      and at least 50 ms; then the effective track: the wheels' speed difference r (w_r - w_l)
-//      regressed on the yaw gyro (less its offset), r (w_r - w_l) = c yaw rate; applied to the
-//      model for skid-steer vehicles (a skid-steer turns as if its track were wider), reported
-//      for all. Both before the laws, whose slips a late encoder would skew.
+//   3. The effective track: the wheels' speed difference r (w_r - w_l) regressed on the yaw gyro
+//      (less its offset), r (w_r - w_l) = c yaw rate; applied to the model for skid-steer
+//      vehicles (a skid-steer turns as if its track were wider), reported for all.
 //
 // ScoreModel runs the front end on a log with a model and gives what cross-validation reports:
 // fit on one part of a drive, score on the rest.

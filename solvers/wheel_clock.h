@@ -5,11 +5,11 @@
 // stamps on receipt, or a controller's odometry averaged over a window (its group delay).
 //
 // For each candidate lag on a grid, r (w_r - w_l) at each encoder stamp t is regressed on the
-// gyro at t - lag (interpolated; a slope and an intercept per log: the effective track and the
-// gyro's offset); the lag is the grid's least residual sum of squares, refined by a parabola
-// through its neighbours. Its sd is from the spread of the same estimate over `blocks` parts of
-// the drive (the residuals are correlated over seconds, so the regression's own sd would be far
-// too small).
+// gyro at t - lag (interpolated), with a positive slope (the effective track) and an intercept
+// (the gyro's offset) for each log's part of each of `blocks` parts of the drive, every lag on the
+// same samples; the lag is the grid's least residual sum of squares, refined by a parabola
+// through its neighbours. Its sd is the standard error of the mean of the parts' own readings
+// (the residuals are correlated over seconds, so the regression's own sd would be far too small).
 //
 // The reading is the encoders' delay less the body's yaw response time: the body turns after
 // its wheels do (the yaw dynamics of eq. 2; 60-130 ms on the mismatch suite's castor robot,
@@ -31,7 +31,8 @@ namespace slipgraph {
 
 struct WheelClockOptions {
   double max_lag_s = 1.0;          // lags searched: within +- this
-  double step_s = 0.01;            // the grid's step
+  double step_s = 0.01;            // the grid's step (a thousandth of max_lag_s to all of it)
+  double max_gap_s = 0.2;          // the gyro is interpolated between samples this close
   int blocks = 8;                  // parts of the drive for the sd (at least 4 must turn enough)
   double min_turn_radps = 0.05;    // a sample turns above this yaw rate ...
   long min_turning_samples = 100;  // ... the drive needs this many such, a part its share
@@ -48,8 +49,9 @@ struct WheelClockReading {
   double sd_s = std::nan("");
   double correlation = std::nan("");  // of r (w_r - w_l) with the gyro at that lag
   double correlation_at_zero = std::nan("");
-  long samples = 0;
-  int blocks = 0;  // parts that turned enough
+  long samples = 0;           // encoder samples with the gyro at every lag
+  int blocks = 0;             // parts that turned enough
+  bool at_grid_edge = false;  // the least residual at +-max_lag_s: a bound, never taken
   bool taken = false;
 };
 
