@@ -12,7 +12,7 @@
 // (the residuals are correlated over seconds, so the regression's own sd would be far too small).
 //
 // The reading is the encoders' delay less the body's yaw response time: the body turns after
-// its wheels do (the yaw dynamics of eq. 2; 60-130 ms on the mismatch suite's castor robot,
+// its wheels do (the yaw dynamics of eq. 2; 30-170 ms on the mismatch suite's castor robot,
 // whose stamps are exact), which reads as encoders early, and at the rates the drive turns a
 // first-order response and a delay cannot be told apart. So only a reading of encoders late is
 // taken, where it is `min_sigmas` sd and at least `min_lag_s` above zero: no physics makes the

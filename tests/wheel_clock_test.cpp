@@ -34,8 +34,8 @@ TEST(WheelClock, TheBodysYawResponseReadsAsEncodersEarlyAndIsNotTaken) {
 }
 
 // The grid's step is 10 ms and the parabola refines within it: a moved stamp adds to the reading
-// within 0.3 ms on these logs (docs/identify.md); 20 ms, two steps, is the bound. The parts'
-// spread gives sd of 10-17 ms here.
+// within 0.4 ms on the first halves of seeds 1-3 and 5.4 ms on seed 4 (docs/identify.md); 20 ms,
+// two steps, is the bound. The parts' spread gives sd of 10-17 ms here.
 TEST(WheelClock, ADelayInTheEncodersStampsAddsToTheReading) {
   for (uint64_t seed : {1, 2}) {
     const WheelClockReading exact = EstimateWheelClock({WheelsLateBy(0.0, seed)});
